@@ -1,0 +1,16 @@
+# Every dependency comes from a Debian package (see tools/install-deps.sh).
+find_package(Vulkan REQUIRED)
+find_package(glslang CONFIG REQUIRED)
+find_package(glm CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)
+find_package(tinyexr CONFIG REQUIRED)
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+
+if(AVSM_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()

@@ -1,0 +1,31 @@
+# Build-time GLSL -> SPIR-V. Every shader is compiled when the project builds,
+# so a broken shader fails the build with glslang's file:line message.
+#
+#   avsm_add_shaders(<target> SOURCE_DIR <dir> SOURCES a.comp b.frag ...)
+#
+# writes <build>/spirv/<path relative to the repo root>.spv and makes <target>
+# depend on all of them. #include dependencies are tracked through depfiles.
+set(AVSM_SPIRV_DIR "${CMAKE_BINARY_DIR}/spirv" CACHE INTERNAL "Compiled SPIR-V")
+set(AVSM_SHADER_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/shaders" CACHE INTERNAL "GLSL include root")
+
+function(avsm_add_shaders target)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  set(outputs)
+  foreach(src IN LISTS ARG_SOURCES)
+    get_filename_component(abs "${src}" ABSOLUTE)
+    file(RELATIVE_PATH rel "${CMAKE_SOURCE_DIR}" "${abs}")
+    set(out "${AVSM_SPIRV_DIR}/${rel}.spv")
+    get_filename_component(out_dir "${out}" DIRECTORY)
+    add_custom_command(
+      OUTPUT "${out}"
+      COMMAND ${CMAKE_COMMAND} -E make_directory "${out_dir}"
+      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -g
+              -I${AVSM_SHADER_INCLUDE_DIR} --depfile "${out}.d" -o "${out}" "${abs}"
+      DEPENDS "${abs}"
+      DEPFILE "${out}.d"
+      COMMENT "GLSL ${rel}"
+      VERBATIM)
+    list(APPEND outputs "${out}")
+  endforeach()
+  add_custom_target(${target} ALL DEPENDS ${outputs})
+endfunction()

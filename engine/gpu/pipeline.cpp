@@ -1,0 +1,286 @@
+#include "gpu/pipeline.h"
+
+#include <stdexcept>
+#include <utility>
+
+#include "gpu/context.h"
+#include "gpu/vk_check.h"
+
+namespace avsm::gpu {
+
+static constexpr uint32_t kPushConstantBytes = 128;
+static constexpr size_t kMaxBindingsPerPush = 32;
+
+static VkShaderModule create_module(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spirv.size_bytes();
+  info.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+  ctx.set_name(module, VK_OBJECT_TYPE_SHADER_MODULE, name);
+  return module;
+}
+
+void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages) {
+  ctx_ = &ctx;
+  // Merge bindings across stages; the same binding must mean the same thing everywhere.
+  for (const ShaderReflection& stage : stages) {
+    stages_ |= stage.stage;
+    has_push_constants_ |= stage.uses_push_constants;
+    for (const DescriptorBinding& b : stage.bindings) {
+      if (b.set != 0)
+        throw std::runtime_error("pipeline '" + name_ + "': binding '" + b.name + "' uses set " +
+                                 std::to_string(b.set) + "; only set 0 (push descriptors) is supported");
+      bool merged = false;
+      for (DescriptorBinding& existing : bindings_)
+        if (existing.binding == b.binding) {
+          if (existing.type != b.type || existing.count != b.count)
+            throw std::runtime_error("pipeline '" + name_ + "': binding " + std::to_string(b.binding) +
+                                     " differs between stages");
+          merged = true;
+        }
+      if (!merged) bindings_.push_back(b);
+    }
+  }
+  std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+  for (const DescriptorBinding& b : bindings_)
+    layout_bindings.push_back({b.binding, b.type, b.count, stages_, nullptr});
+  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  set_info.bindingCount = uint32_t(layout_bindings.size());
+  set_info.pBindings = layout_bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &set_info, nullptr, &set_layout_));
+  ctx.set_name(set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name_ + " set layout");
+
+  VkPushConstantRange range{stages_, 0, kPushConstantBytes};
+  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &set_layout_;
+  layout_info.pushConstantRangeCount = has_push_constants_ ? 1 : 0;
+  layout_info.pPushConstantRanges = &range;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device(), &layout_info, nullptr, &layout_));
+  ctx.set_name(layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name_ + " layout");
+}
+
+Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
+  Pipeline p;
+  p.name_ = name;
+  p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+  ShaderReflection reflection = reflect_spirv(spirv);
+  if (reflection.stage != VK_SHADER_STAGE_COMPUTE_BIT)
+    throw std::runtime_error("pipeline '" + name + "': not a compute shader");
+  p.local_size_ = reflection.local_size;
+  p.create_layout(ctx, {reflection});
+  VkShaderModule module = create_module(ctx, spirv, name);
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = reflection.entry_point.c_str();
+  info.layout = p.layout_;
+  VkResult result = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
+  vkDestroyShaderModule(ctx.device(), module, nullptr);
+  VK_CHECK(result);
+  ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
+  return p;
+}
+
+static VkPipelineColorBlendAttachmentState blend_state(BlendMode mode) {
+  VkPipelineColorBlendAttachmentState s{};
+  s.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                     VK_COLOR_COMPONENT_A_BIT;
+  if (mode == BlendMode::None) return s;
+  s.blendEnable = VK_TRUE;
+  s.colorBlendOp = s.alphaBlendOp = VK_BLEND_OP_ADD;
+  switch (mode) {
+    case BlendMode::Alpha:
+      s.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      s.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      s.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      s.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      break;
+    case BlendMode::PremultipliedAlpha:
+      s.srcColorBlendFactor = s.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      s.dstColorBlendFactor = s.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      break;
+    case BlendMode::Additive:
+      s.srcColorBlendFactor = s.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      s.dstColorBlendFactor = s.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      break;
+    case BlendMode::None: break;
+  }
+  return s;
+}
+
+Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc) {
+  Pipeline p;
+  p.name_ = desc.name;
+  p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  std::vector<const std::vector<uint32_t>*> sources = {&desc.vertex};
+  if (!desc.geometry.empty()) sources.push_back(&desc.geometry);
+  if (!desc.fragment.empty()) sources.push_back(&desc.fragment);
+  std::vector<ShaderReflection> reflections;
+  for (const auto* spirv : sources) reflections.push_back(reflect_spirv(*spirv));
+  p.create_layout(ctx, reflections);
+
+  std::vector<VkShaderModule> modules;
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  for (size_t i = 0; i < sources.size(); ++i) {
+    modules.push_back(create_module(ctx, *sources[i], desc.name));
+    VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    stage.stage = reflections[i].stage;
+    stage.module = modules.back();
+    stage.pName = reflections[i].entry_point.c_str();
+    stages.push_back(stage);
+  }
+
+  VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = desc.topology;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = desc.cull_mode;
+  raster.frontFace = desc.front_face;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = desc.depth_test;
+  depth.depthWriteEnable = desc.depth_write;
+  depth.depthCompareOp = desc.depth_compare;
+  std::vector<VkPipelineColorBlendAttachmentState> blends(desc.color_formats.size(), blend_state(desc.blend));
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = uint32_t(blends.size());
+  blend.pAttachments = blends.data();
+  VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamic_states;
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = uint32_t(desc.color_formats.size());
+  rendering.pColorAttachmentFormats = desc.color_formats.data();
+  rendering.depthAttachmentFormat = desc.depth_format;
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.pNext = &rendering;
+  info.stageCount = uint32_t(stages.size());
+  info.pStages = stages.data();
+  info.pVertexInputState = &vertex_input;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamic;
+  info.layout = p.layout_;
+  VkResult result = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
+  for (VkShaderModule m : modules) vkDestroyShaderModule(ctx.device(), m, nullptr);
+  VK_CHECK(result);
+  ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, desc.name);
+  return p;
+}
+
+Pipeline::~Pipeline() { release(); }
+Pipeline::Pipeline(Pipeline&& other) noexcept { *this = std::move(other); }
+
+Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
+  if (this != &other) {
+    release();
+    ctx_ = std::exchange(other.ctx_, nullptr);
+    pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+    layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+    set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
+    bind_point_ = other.bind_point_;
+    stages_ = other.stages_;
+    has_push_constants_ = other.has_push_constants_;
+    bindings_ = std::move(other.bindings_);
+    local_size_ = other.local_size_;
+    name_ = std::move(other.name_);
+  }
+  return *this;
+}
+
+void Pipeline::release() {
+  if (!ctx_) return;
+  if (pipeline_) vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(ctx_->device(), layout_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(ctx_->device(), set_layout_, nullptr);
+  pipeline_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+  set_layout_ = VK_NULL_HANDLE;
+}
+
+void Pipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
+
+void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
+  if (!has_push_constants_) throw std::runtime_error("pipeline '" + name_ + "' declares no push constants");
+  vkCmdPushConstants(cmd, layout_, stages_, 0, bytes, data);
+}
+
+void Pipeline::dispatch_threads(VkCommandBuffer cmd, uint32_t x, uint32_t y, uint32_t z) const {
+  auto groups = [](uint32_t n, uint32_t size) { return (n + size - 1) / size; };
+  vkCmdDispatch(cmd, groups(x, local_size_[0]), groups(y, local_size_[1]), groups(z, local_size_[2]));
+}
+
+const DescriptorBinding& Pipeline::binding(uint32_t index) const {
+  for (const DescriptorBinding& b : bindings_)
+    if (b.binding == index) return b;
+  throw std::runtime_error("pipeline '" + name_ + "' has no binding " + std::to_string(index));
+}
+
+// ---------------------------------------------------------------- Bindings
+
+VkWriteDescriptorSet& Bindings::add(uint32_t binding) {
+  if (writes_.size() == kMaxBindingsPerPush) throw std::runtime_error("too many bindings in one push");
+  if (buffers_.capacity() < kMaxBindingsPerPush) {
+    buffers_.reserve(kMaxBindingsPerPush);
+    images_.reserve(kMaxBindingsPerPush);
+  }
+  const DescriptorBinding& b = pipeline_.binding(binding);
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = b.type;
+  writes_.push_back(write);
+  return writes_.back();
+}
+
+Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
+  VkWriteDescriptorSet& write = add(binding);
+  if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && write.descriptorType != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not a buffer");
+  buffers_.push_back({buffer, offset, range});
+  write.pBufferInfo = &buffers_.back();
+  return *this;
+}
+
+Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler) {
+  VkWriteDescriptorSet& write = add(binding);
+  if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && write.descriptorType != VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE &&
+      write.descriptorType != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not an image");
+  if ((write.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) != (sampler != VK_NULL_HANDLE))
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) +
+                             (sampler ? " takes no sampler" : " needs a sampler"));
+  images_.push_back({sampler, view, layout});
+  write.pImageInfo = &images_.back();
+  return *this;
+}
+
+Bindings& Bindings::sampler(uint32_t binding, VkSampler sampler) {
+  VkWriteDescriptorSet& write = add(binding);
+  images_.push_back({sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
+  write.pImageInfo = &images_.back();
+  return *this;
+}
+
+void Bindings::push(VkCommandBuffer cmd) {
+  ctx_.cmd_push_descriptor_set(cmd, pipeline_.bind_point(), pipeline_.layout(), 0, uint32_t(writes_.size()),
+                               writes_.data());
+}
+
+}  // namespace avsm::gpu

@@ -1,0 +1,363 @@
+#include "gpu/resources.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <utility>
+
+#include "gpu/context.h"
+#include "gpu/vk_check.h"
+
+namespace avsm::gpu {
+
+// Preferred property sets per location, best first.
+static uint32_t choose_memory_type(const Context& ctx, uint32_t type_bits, MemoryLocation location) {
+  constexpr VkMemoryPropertyFlags kDevice = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  constexpr VkMemoryPropertyFlags kHost = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  std::vector<VkMemoryPropertyFlags> preferences;
+  switch (location) {
+    case MemoryLocation::DeviceLocal: preferences = {kDevice, 0}; break;
+    case MemoryLocation::HostUpload: preferences = {kHost | kDevice, kHost}; break;
+    case MemoryLocation::HostReadback: preferences = {kHost | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kHost}; break;
+  }
+  for (VkMemoryPropertyFlags flags : preferences) {
+    int type = ctx.find_memory_type(type_bits, flags);
+    if (type >= 0) return uint32_t(type);
+  }
+  throw std::runtime_error("no memory type fits the resource (type bits " + std::to_string(type_bits) + ")");
+}
+
+static bool is_host_visible(MemoryLocation location) { return location != MemoryLocation::DeviceLocal; }
+
+static VkDeviceMemory allocate(const Context& ctx, VkDeviceSize size, uint32_t type, const std::string& name) {
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = size;
+  info.memoryTypeIndex = type;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateMemory(ctx.device(), &info, nullptr, &memory));
+  ctx.set_name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY, name);
+  return memory;
+}
+
+// ---------------------------------------------------------------- MemoryHeap
+
+MemoryHeap::MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
+                       const std::string& name)
+    : ctx_(&ctx), size_(size) {
+  memory_type_ = choose_memory_type(ctx, memory_type_bits, location);
+  memory_ = allocate(ctx, size, memory_type_, name);
+  if (is_host_visible(location)) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+MemoryHeap::~MemoryHeap() { release(); }
+
+MemoryHeap::MemoryHeap(MemoryHeap&& other) noexcept { *this = std::move(other); }
+
+MemoryHeap& MemoryHeap::operator=(MemoryHeap&& other) noexcept {
+  if (this != &other) {
+    release();
+    ctx_ = std::exchange(other.ctx_, nullptr);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    memory_type_ = other.memory_type_;
+    mapped_ = std::exchange(other.mapped_, nullptr);
+  }
+  return *this;
+}
+
+void MemoryHeap::release() {
+  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
+  memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+}
+
+// ---------------------------------------------------------------- Buffer
+
+static VkBufferCreateInfo buffer_info(const BufferDesc& desc) {
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = desc.size;
+  info.usage = desc.usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  return info;
+}
+
+MemoryRequirements memory_requirements(const Context& ctx, const BufferDesc& desc) {
+  VkBufferCreateInfo create = buffer_info(desc);
+  VkDeviceBufferMemoryRequirements query{VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS};
+  query.pCreateInfo = &create;
+  VkMemoryRequirements2 reqs{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+  vkGetDeviceBufferMemoryRequirements(ctx.device(), &query, &reqs);
+  return {reqs.memoryRequirements.size, reqs.memoryRequirements.alignment,
+          reqs.memoryRequirements.memoryTypeBits};
+}
+
+static VkBuffer create_buffer_handle(const Context& ctx, const BufferDesc& desc) {
+  if (desc.size == 0) throw std::runtime_error("buffer '" + desc.name + "' has size 0");
+  VkBufferCreateInfo info = buffer_info(desc);
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateBuffer(ctx.device(), &info, nullptr, &buffer));
+  ctx.set_name(buffer, VK_OBJECT_TYPE_BUFFER, desc.name);
+  return buffer;
+}
+
+Buffer Buffer::create(const Context& ctx, const BufferDesc& desc) {
+  Buffer b;
+  b.ctx_ = &ctx;
+  b.size_ = desc.size;
+  b.name_ = desc.name;
+  b.buffer_ = create_buffer_handle(ctx, desc);
+  VkMemoryRequirements reqs;
+  vkGetBufferMemoryRequirements(ctx.device(), b.buffer_, &reqs);
+  uint32_t type = choose_memory_type(ctx, reqs.memoryTypeBits, desc.location);
+  b.own_memory_ = allocate(ctx, reqs.size, type, desc.name + " memory");
+  VK_CHECK(vkBindBufferMemory(ctx.device(), b.buffer_, b.own_memory_, 0));
+  if (is_host_visible(desc.location)) VK_CHECK(vkMapMemory(ctx.device(), b.own_memory_, 0, VK_WHOLE_SIZE, 0, &b.mapped_));
+  return b;
+}
+
+Buffer Buffer::create_placed(const Context& ctx, const BufferDesc& desc, const MemoryHeap& heap, VkDeviceSize offset) {
+  Buffer b;
+  b.ctx_ = &ctx;
+  b.size_ = desc.size;
+  b.name_ = desc.name;
+  b.buffer_ = create_buffer_handle(ctx, desc);
+  VkMemoryRequirements reqs;
+  vkGetBufferMemoryRequirements(ctx.device(), b.buffer_, &reqs);
+  if (offset % reqs.alignment != 0 || offset + reqs.size > heap.size() || !(reqs.memoryTypeBits & (1u << heap.memory_type()))) {
+    b.release();
+    throw std::runtime_error("buffer '" + desc.name + "' cannot be placed at offset " + std::to_string(offset) +
+                             " in a heap of " + std::to_string(heap.size()) + " bytes");
+  }
+  VK_CHECK(vkBindBufferMemory(ctx.device(), b.buffer_, heap.handle(), offset));
+  if (heap.mapped()) b.mapped_ = static_cast<char*>(heap.mapped()) + offset;
+  return b;
+}
+
+Buffer::~Buffer() { release(); }
+Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+  if (this != &other) {
+    release();
+    ctx_ = std::exchange(other.ctx_, nullptr);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    own_memory_ = std::exchange(other.own_memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+    name_ = std::move(other.name_);
+  }
+  return *this;
+}
+
+void Buffer::release() {
+  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
+  if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
+  buffer_ = VK_NULL_HANDLE;
+  own_memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+}
+
+void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
+  if (!mapped_) throw std::runtime_error("buffer '" + name_ + "' is not host visible");
+  if (offset + bytes > size_) throw std::runtime_error("upload overflows buffer '" + name_ + "'");
+  std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
+}
+
+// ---------------------------------------------------------------- Image
+
+bool is_depth_format(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32: return true;
+    default: return false;
+  }
+}
+
+uint32_t format_bytes_per_texel(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8_UNORM:
+    case VK_FORMAT_R8_UINT: return 1;
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_D16_UNORM: return 2;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D24_UNORM_S8_UINT: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R32G32_UINT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_UINT: return 16;
+    default: throw std::runtime_error("format_bytes_per_texel: unsupported format " + std::to_string(int(format)));
+  }
+}
+
+VkImageType image_type_of(const ImageDesc& desc) { return desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D; }
+
+static VkImageCreateInfo image_info(const ImageDesc& desc) {
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = image_type_of(desc);
+  info.format = desc.format;
+  info.extent = {desc.width, desc.height, desc.depth};
+  info.mipLevels = desc.mip_levels;
+  info.arrayLayers = desc.array_layers;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = desc.usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  return info;
+}
+
+MemoryRequirements memory_requirements(const Context& ctx, const ImageDesc& desc) {
+  VkImageCreateInfo create = image_info(desc);
+  VkDeviceImageMemoryRequirements query{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
+  query.pCreateInfo = &create;
+  VkMemoryRequirements2 reqs{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+  vkGetDeviceImageMemoryRequirements(ctx.device(), &query, &reqs);
+  return {reqs.memoryRequirements.size, reqs.memoryRequirements.alignment,
+          reqs.memoryRequirements.memoryTypeBits};
+}
+
+void Image::create_image(const Context& ctx, const ImageDesc& desc) {
+  ctx_ = &ctx;
+  desc_ = desc;
+  VkImageCreateInfo info = image_info(desc);
+  VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &image_));
+  ctx.set_name(image_, VK_OBJECT_TYPE_IMAGE, desc.name);
+}
+
+VkImageAspectFlags Image::aspect() const {
+  return is_depth_format(desc_.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+VkImageSubresourceRange Image::full_range() const {
+  return {aspect(), 0, desc_.mip_levels, 0, desc_.array_layers};
+}
+
+static VkImageViewType view_type_of(const ImageDesc& desc) {
+  if (desc.depth > 1) return VK_IMAGE_VIEW_TYPE_3D;
+  return desc.array_layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+}
+
+void Image::create_view() {
+  VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  info.image = image_;
+  info.viewType = view_type_of(desc_);
+  info.format = desc_.format;
+  info.subresourceRange = full_range();
+  VK_CHECK(vkCreateImageView(ctx_->device(), &info, nullptr, &view_));
+  ctx_->set_name(view_, VK_OBJECT_TYPE_IMAGE_VIEW, desc_.name + " view");
+  mip_views_.assign(desc_.mip_levels, VK_NULL_HANDLE);
+}
+
+VkImageView Image::mip_view(uint32_t level) {
+  if (level >= desc_.mip_levels) throw std::runtime_error("image '" + desc_.name + "': mip level out of range");
+  if (!mip_views_[level]) {
+    VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    info.image = image_;
+    info.viewType = view_type_of(desc_);
+    info.format = desc_.format;
+    info.subresourceRange = {aspect(), level, 1, 0, desc_.array_layers};
+    VK_CHECK(vkCreateImageView(ctx_->device(), &info, nullptr, &mip_views_[level]));
+    ctx_->set_name(mip_views_[level], VK_OBJECT_TYPE_IMAGE_VIEW, desc_.name + " mip " + std::to_string(level));
+  }
+  return mip_views_[level];
+}
+
+Image Image::create(const Context& ctx, const ImageDesc& desc) {
+  Image img;
+  img.create_image(ctx, desc);
+  VkMemoryRequirements reqs;
+  vkGetImageMemoryRequirements(ctx.device(), img.image_, &reqs);
+  uint32_t type = choose_memory_type(ctx, reqs.memoryTypeBits, MemoryLocation::DeviceLocal);
+  img.own_memory_ = allocate(ctx, reqs.size, type, desc.name + " memory");
+  VK_CHECK(vkBindImageMemory(ctx.device(), img.image_, img.own_memory_, 0));
+  img.create_view();
+  return img;
+}
+
+Image Image::create_placed(const Context& ctx, const ImageDesc& desc, const MemoryHeap& heap, VkDeviceSize offset) {
+  Image img;
+  img.create_image(ctx, desc);
+  VkMemoryRequirements reqs;
+  vkGetImageMemoryRequirements(ctx.device(), img.image_, &reqs);
+  if (offset % reqs.alignment != 0 || offset + reqs.size > heap.size() || !(reqs.memoryTypeBits & (1u << heap.memory_type()))) {
+    img.release();
+    throw std::runtime_error("image '" + desc.name + "' cannot be placed at offset " + std::to_string(offset) +
+                             " in a heap of " + std::to_string(heap.size()) + " bytes");
+  }
+  VK_CHECK(vkBindImageMemory(ctx.device(), img.image_, heap.handle(), offset));
+  img.create_view();
+  return img;
+}
+
+Image::~Image() { release(); }
+Image::Image(Image&& other) noexcept { *this = std::move(other); }
+
+Image& Image::operator=(Image&& other) noexcept {
+  if (this != &other) {
+    release();
+    ctx_ = std::exchange(other.ctx_, nullptr);
+    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    mip_views_ = std::move(other.mip_views_);
+    own_memory_ = std::exchange(other.own_memory_, VK_NULL_HANDLE);
+    desc_ = std::move(other.desc_);
+  }
+  return *this;
+}
+
+void Image::release() {
+  if (!ctx_) return;
+  for (VkImageView v : mip_views_)
+    if (v) vkDestroyImageView(ctx_->device(), v, nullptr);
+  mip_views_.clear();
+  if (view_) vkDestroyImageView(ctx_->device(), view_, nullptr);
+  if (image_) vkDestroyImage(ctx_->device(), image_, nullptr);
+  if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
+  view_ = VK_NULL_HANDLE;
+  image_ = VK_NULL_HANDLE;
+  own_memory_ = VK_NULL_HANDLE;
+}
+
+// ---------------------------------------------------------------- Sampler
+
+Sampler::Sampler(const Context& ctx, const SamplerDesc& desc) : ctx_(&ctx) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = desc.filter;
+  info.minFilter = desc.filter;
+  info.mipmapMode = desc.mip_mode;
+  info.addressModeU = info.addressModeV = info.addressModeW = desc.address;
+  info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
+  info.compareOp = desc.compare_op;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  info.borderColor = desc.border;
+  VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler_));
+  ctx.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, desc.name.empty() ? "sampler" : desc.name);
+}
+
+Sampler::~Sampler() {
+  if (sampler_) vkDestroySampler(ctx_->device(), sampler_, nullptr);
+}
+
+Sampler::Sampler(Sampler&& other) noexcept { *this = std::move(other); }
+
+Sampler& Sampler::operator=(Sampler&& other) noexcept {
+  if (this != &other) {
+    if (sampler_) vkDestroySampler(ctx_->device(), sampler_, nullptr);
+    ctx_ = std::exchange(other.ctx_, nullptr);
+    sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+}  // namespace avsm::gpu

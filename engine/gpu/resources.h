@@ -1,0 +1,169 @@
+#pragma once
+// Buffers, images, samplers and the memory they live in.
+//
+// Two ways to back a resource with memory:
+//  - create(): its own allocation (persistent resources: scene data, maps kept
+//    across frames, readback buffers);
+//  - create_placed(): at a chosen offset inside a shared MemoryHeap (transient
+//    resources of the frame graph, which aliases several of them in one heap).
+// memory_requirements() gives the driver's real size/alignment for a description
+// without creating anything, so the graph can plan placements before allocating.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace avsm::gpu {
+
+class Context;
+
+enum class MemoryLocation {
+  DeviceLocal,   // GPU-only
+  HostUpload,    // CPU writes, GPU reads (mapped)
+  HostReadback,  // GPU writes, CPU reads (mapped, cached when possible)
+};
+
+struct MemoryRequirements {
+  VkDeviceSize size = 0;
+  VkDeviceSize alignment = 1;
+  uint32_t memory_type_bits = 0;
+};
+
+// One VkDeviceMemory block that placed resources are bound into.
+class MemoryHeap {
+ public:
+  MemoryHeap() = default;
+  MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
+             const std::string& name);
+  ~MemoryHeap();
+  MemoryHeap(MemoryHeap&& other) noexcept;
+  MemoryHeap& operator=(MemoryHeap&& other) noexcept;
+
+  VkDeviceMemory handle() const { return memory_; }
+  VkDeviceSize size() const { return size_; }
+  uint32_t memory_type() const { return memory_type_; }
+  void* mapped() const { return mapped_; }
+
+ private:
+  void release();
+  const Context* ctx_ = nullptr;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  uint32_t memory_type_ = 0;
+  void* mapped_ = nullptr;
+};
+
+struct BufferDesc {
+  VkDeviceSize size = 0;
+  VkBufferUsageFlags usage = 0;
+  MemoryLocation location = MemoryLocation::DeviceLocal;
+  std::string name;
+};
+
+class Buffer {
+ public:
+  Buffer() = default;
+  static Buffer create(const Context& ctx, const BufferDesc& desc);
+  static Buffer create_placed(const Context& ctx, const BufferDesc& desc, const MemoryHeap& heap,
+                              VkDeviceSize offset);
+  ~Buffer();
+  Buffer(Buffer&& other) noexcept;
+  Buffer& operator=(Buffer&& other) noexcept;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+  const std::string& name() const { return name_; }
+  explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
+
+  // Host-visible buffers only. Coherent memory is requested, so no flushes are needed.
+  void* mapped() const { return mapped_; }
+  template <class T>
+  std::span<T> view() const {
+    return {static_cast<T*>(mapped_), size_t(size_ / sizeof(T))};
+  }
+  void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+
+ private:
+  void release();
+  const Context* ctx_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory own_memory_ = VK_NULL_HANDLE;  // null when placed in a heap
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+  std::string name_;
+};
+
+struct ImageDesc {
+  uint32_t width = 1, height = 1, depth = 1;
+  uint32_t mip_levels = 1, array_layers = 1;
+  VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+  VkImageUsageFlags usage = 0;
+  std::string name;
+};
+
+class Image {
+ public:
+  Image() = default;
+  static Image create(const Context& ctx, const ImageDesc& desc);
+  static Image create_placed(const Context& ctx, const ImageDesc& desc, const MemoryHeap& heap,
+                             VkDeviceSize offset);
+  ~Image();
+  Image(Image&& other) noexcept;
+  Image& operator=(Image&& other) noexcept;
+
+  VkImage handle() const { return image_; }
+  VkImageView view() const { return view_; }  // all mips and layers
+  // A view of one mip level (all layers), created on first use.
+  VkImageView mip_view(uint32_t level);
+  const ImageDesc& desc() const { return desc_; }
+  VkImageAspectFlags aspect() const;
+  VkImageSubresourceRange full_range() const;
+  explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
+
+ private:
+  void create_image(const Context& ctx, const ImageDesc& desc);
+  void create_view();
+  void release();
+  const Context* ctx_ = nullptr;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> mip_views_;
+  VkDeviceMemory own_memory_ = VK_NULL_HANDLE;
+  ImageDesc desc_;
+};
+
+struct SamplerDesc {
+  VkFilter filter = VK_FILTER_LINEAR;
+  VkSamplerMipmapMode mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  bool compare = false;  // depth comparison (hardware PCF)
+  VkCompareOp compare_op = VK_COMPARE_OP_LESS_OR_EQUAL;
+  VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+  std::string name;
+};
+
+class Sampler {
+ public:
+  Sampler() = default;
+  Sampler(const Context& ctx, const SamplerDesc& desc);
+  ~Sampler();
+  Sampler(Sampler&& other) noexcept;
+  Sampler& operator=(Sampler&& other) noexcept;
+  VkSampler handle() const { return sampler_; }
+
+ private:
+  const Context* ctx_ = nullptr;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+// The driver's real requirements for a resource, without creating it.
+MemoryRequirements memory_requirements(const Context& ctx, const BufferDesc& desc);
+MemoryRequirements memory_requirements(const Context& ctx, const ImageDesc& desc);
+
+bool is_depth_format(VkFormat format);
+uint32_t format_bytes_per_texel(VkFormat format);
+VkImageType image_type_of(const ImageDesc& desc);
+
+}  // namespace avsm::gpu

@@ -1,0 +1,48 @@
+#pragma once
+// Uploads and readbacks through host-visible staging buffers, each a one-shot
+// submission that waits. For scene loading, tests and captured frames.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "gpu/resources.h"
+
+namespace avsm::gpu {
+
+class Context;
+
+// Creates a device-local buffer holding `bytes`.
+Buffer create_buffer_with_data(const Context& ctx, BufferDesc desc, const void* data, VkDeviceSize bytes);
+void upload_buffer(const Context& ctx, const Buffer& dst, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+
+std::vector<uint8_t> read_buffer_bytes(const Context& ctx, const Buffer& src);
+template <class T>
+std::vector<T> read_buffer(const Context& ctx, const Buffer& src) {
+  std::vector<uint8_t> bytes = read_buffer_bytes(ctx, src);
+  std::vector<T> out(bytes.size() / sizeof(T));
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
+  return out;
+}
+
+// A readback of one mip level / layer as RGBA float, whatever the format.
+struct ImageRGBA32F {
+  uint32_t width = 0, height = 0;
+  std::vector<float> pixels;  // width * height * 4
+  float* at(uint32_t x, uint32_t y) { return &pixels[(size_t(y) * width + x) * 4]; }
+  const float* at(uint32_t x, uint32_t y) const { return &pixels[(size_t(y) * width + x) * 4]; }
+};
+
+// The image must have TRANSFER_SRC usage; it is returned to `layout` afterwards.
+// `after` is how the image is used next, so the readback's copy is ordered before it.
+ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout layout, uint32_t mip = 0,
+                        uint32_t layer = 0);
+
+// Fills mip 0 / layer 0 from tightly packed texels and leaves it in `final_layout`
+// (visible to all later shader reads).
+void upload_image(const Context& ctx, const Image& image, const void* texels, VkDeviceSize bytes,
+                  VkImageLayout final_layout);
+
+}  // namespace avsm::gpu

@@ -1,0 +1,10 @@
+# Fails unless every file in FILES exists, non-empty, in DIR.
+foreach(name IN LISTS FILES)
+  if(NOT EXISTS "${DIR}/${name}")
+    message(FATAL_ERROR "missing ${DIR}/${name}")
+  endif()
+  file(SIZE "${DIR}/${name}" size)
+  if(size EQUAL 0)
+    message(FATAL_ERROR "empty ${DIR}/${name}")
+  endif()
+endforeach()

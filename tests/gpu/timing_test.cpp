@@ -1,0 +1,120 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "gpu/barriers.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "support/gpu_test.h"
+
+namespace avsm {
+namespace {
+
+using testing::GpuTest;
+
+struct SpinPush {
+  uint32_t iterations;
+  uint32_t count;
+};
+
+constexpr uint32_t kInvocations = 1u << 14;
+
+// Finds an iteration count K for which one spin dispatch takes about `target_ms`
+// on this device, so the test is meaningful on lavapipe and on a fast GPU alike.
+uint32_t iterations_for(gpu::Context& ctx, const gpu::Pipeline& spin, const gpu::Buffer& values, double target_ms) {
+  for (uint32_t iterations = 1024;; iterations *= 2) {
+    auto start = std::chrono::steady_clock::now();
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+      spin.bind(cmd);
+      gpu::Bindings(ctx, spin).buffer(0, values.handle()).push(cmd);
+      spin.push_constants(cmd, SpinPush{iterations, kInvocations});
+      spin.dispatch_threads(cmd, kInvocations);
+    });
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (ms >= target_ms || iterations >= (1u << 26)) return iterations;
+  }
+}
+
+void clear_with_rendering(VkCommandBuffer cmd, const gpu::Image& target) {
+  gpu::image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, gpu::kColorWrite);
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = target.view();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, {target.desc().width, target.desc().height}};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  vkCmdBeginRendering(cmd, &rendering);
+  vkCmdEndRendering(cmd);
+}
+
+std::vector<gpu::ScopeTiming> time_k_and_2k(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, gpu::TimestampMode mode) {
+  gpu::Buffer values = gpu::Buffer::create(ctx, {kInvocations * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                 gpu::MemoryLocation::DeviceLocal, "spin values"});
+  gpu::Pipeline spin = gpu::Pipeline::compute(ctx, shaders.load("shaders/gpu/spin.comp"), "spin");
+  uint32_t k = iterations_for(ctx, spin, values, 15.0);
+  gpu::ImageDesc target_desc;
+  target_desc.width = target_desc.height = 64;
+  target_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  target_desc.name = "timing test target";
+  gpu::Image target = gpu::Image::create(ctx, target_desc);
+  gpu::GpuTimer timer(ctx, 4, mode);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    clear_with_rendering(cmd, target);  // like a real frame, where graphics work precedes compute
+    timer.begin_frame(cmd);
+    for (uint32_t iterations : {k, 2 * k}) {
+      uint32_t scope = timer.begin_scope(cmd, "spin " + std::to_string(iterations));
+      spin.bind(cmd);
+      gpu::Bindings(ctx, spin).buffer(0, values.handle()).push(cmd);
+      spin.push_constants(cmd, SpinPush{iterations, kInvocations});
+      spin.dispatch_threads(cmd, kInvocations);
+      timer.end_scope(cmd, scope);
+      // Both dispatches write `values`: order them like the frame graph would.
+      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+      barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dep.memoryBarrierCount = 1;
+      dep.pMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dep);
+    }
+  });
+  return timer.read_scopes();
+}
+
+TEST_F(GpuTest, CalibrationDetectsLateComputeTimestamps) {
+  gpu::TimestampCalibration calibration = gpu::calibrate_timestamps(ctx(), shaders());
+  std::printf("timestamps: mode %s, dispatch %.3f ms by timestamps, %.3f ms by host clock\n",
+              gpu::to_string(calibration.mode), calibration.dispatch_ms_timestamps, calibration.dispatch_ms_host);
+  if (ctx().info().is_lavapipe()) {
+    // Measured on lavapipe: begin/end timestamps around a dispatch see almost none of it.
+    EXPECT_EQ(calibration.mode, gpu::TimestampMode::EndToEnd);
+    EXPECT_LT(calibration.dispatch_ms_timestamps, 0.25 * calibration.dispatch_ms_host);
+  } else {
+    EXPECT_EQ(calibration.mode, gpu::TimestampMode::Exact);
+  }
+}
+
+TEST_F(GpuTest, PassesOfKnownCostAreTimedInRatio) {
+  gpu::TimestampCalibration calibration = gpu::calibrate_timestamps(ctx(), shaders());
+  // Median of three frames: the ratio within one frame is stable, single frames can hiccup.
+  std::vector<double> ratios;
+  for (int frame = 0; frame < 3; ++frame) {
+    std::vector<gpu::ScopeTiming> t = time_k_and_2k(ctx(), shaders(), calibration.mode);
+    ASSERT_EQ(t.size(), 2u);
+    ASSERT_GT(t[0].gpu_ms, 0.0);
+    std::printf("K: %.3f ms, 2K: %.3f ms (mode %s)\n", t[0].gpu_ms, t[1].gpu_ms, gpu::to_string(calibration.mode));
+    ratios.push_back(t[1].gpu_ms / t[0].gpu_ms);
+  }
+  std::sort(ratios.begin(), ratios.end());
+  EXPECT_NEAR(ratios[1], 2.0, 0.4) << "2K iterations should take twice as long as K";
+}
+
+}  // namespace
+}  // namespace avsm

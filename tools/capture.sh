@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build (Release), capture the default scene.
+# Extra arguments go to avsm-capture (see: build/tools/avsm-capture --help).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j"$(nproc)"
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+build/tools/avsm-capture --out out/capture "$@"

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The whole test suite: install what is missing, build, run everything through CTest.
+# GPU tests run under Vulkan validation with synchronization validation.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j"$(nproc)"
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+# Serial on purpose: timing tests measure ratios and need the cores to themselves.
+ctest --test-dir build --output-on-failure "$@"
