@@ -8,10 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <rendergraph/rendergraph.h>
+#include <rendergraph/vulkan/executor.h>
 
-#include "gpu/barriers.h"
 #include "gpu/context.h"
-#include "gpu/gpu_timer.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
@@ -47,26 +47,21 @@ Stats stats_of(std::vector<double> values) {
 
 nlohmann::json to_json(const Stats& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
 
-// The frame the capture renders until scene loading and the frame graph land:
-// an HDR scene pass and a tonemap pass.
+// The frame the capture renders until scene loading and the AVSM passes land:
+// an HDR scene pass and a tonemap pass, declared in the frame graph each frame.
 class PreviewFrame {
  public:
-  PreviewFrame(const gpu::Context& ctx, const gpu::ShaderLibrary& shaders, uint32_t width, uint32_t height)
+  PreviewFrame(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, uint32_t width, uint32_t height)
       : ctx_(ctx), width_(width), height_(height) {
     gpu::ImageDesc hdr_desc;
     hdr_desc.width = width;
     hdr_desc.height = height;
-    hdr_desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    hdr_desc.format = kHdrFormat;
     hdr_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     hdr_desc.name = "hdr color";
     hdr_ = gpu::Image::create(ctx, hdr_desc);
-    gpu::ImageDesc depth_desc = hdr_desc;
-    depth_desc.format = VK_FORMAT_D32_SFLOAT;
-    depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    depth_desc.name = "depth";
-    depth_ = gpu::Image::create(ctx, depth_desc);
     gpu::ImageDesc ldr_desc = hdr_desc;
-    ldr_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    ldr_desc.format = kLdrFormat;
     ldr_desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     ldr_desc.name = "tonemapped";
     ldr_ = gpu::Image::create(ctx, ldr_desc);
@@ -75,55 +70,68 @@ class PreviewFrame {
     scene.name = "preview scene";
     scene.vertex = shaders.load("shaders/preview/boxes.vert");
     scene.fragment = shaders.load("shaders/preview/boxes.frag");
-    scene.color_formats = {hdr_desc.format};
-    scene.depth_format = depth_desc.format;
+    scene.color_formats = {kHdrFormat};
+    scene.depth_format = kDepthFormat;
     scene.depth_test = scene.depth_write = true;
     scene.cull_mode = VK_CULL_MODE_BACK_BIT;
     scene_ = gpu::Pipeline::graphics(ctx, scene);
     tonemap_ = gpu::Pipeline::compute(ctx, shaders.load("shaders/preview/tonemap.comp"), "tonemap");
   }
 
-  // Records the frame; each pass is labelled and timed.
-  void record(VkCommandBuffer cmd, gpu::GpuTimer& timer, std::map<std::string, double>& cpu_ms) {
-    timer.begin_frame(cmd);
-    time_pass(cmd, timer, cpu_ms, "scene", [&] { record_scene(cmd); });
-    time_pass(cmd, timer, cpu_ms, "tonemap", [&] { record_tonemap(cmd); });
+  // Declares this frame's passes; the persistent output images are bound to `executor`.
+  rg::Graph build(rg::vulkan::Executor& executor) {
+    rg::Graph graph;
+    rg::TextureDesc hdr_desc{width_, height_, 1, 1, 1, kHdrFormat};
+    rg::TextureDesc ldr_desc{width_, height_, 1, 1, 1, kLdrFormat};
+    rg::TextureDesc depth_desc{width_, height_, 1, 1, 1, kDepthFormat};
+    // Both outputs are read back after the frame, hence TransferSrc as their final state.
+    rg::TextureHandle hdr = graph.import_texture("hdr color", hdr_desc, rg::ImportState::none(),
+                                                 rg::ImportState::of(rg::Usage::TransferSrc));
+    rg::TextureHandle ldr = graph.import_texture("tonemapped", ldr_desc, rg::ImportState::none(),
+                                                 rg::ImportState::of(rg::Usage::TransferSrc));
+    executor.bind(hdr, hdr_);
+    executor.bind(ldr, ldr_);
+
+    struct Scene {
+      rg::TextureHandle color, depth;
+    };
+    const Scene& scene = graph.add_pass<Scene>("scene", rg::QueueType::Graphics,
+        [&](rg::PassBuilder& b, Scene& d) {
+          d.color = b.write(hdr, rg::Usage::ColorAttachment);
+          d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
+        },
+        [this](const Scene& d, rg::PassContext& c) { record_scene(c, d.color, d.depth); });
+    struct Tonemap {
+      rg::TextureHandle hdr, ldr;
+    };
+    graph.add_pass<Tonemap>("tonemap", rg::QueueType::Compute,
+        [&](rg::PassBuilder& b, Tonemap& d) {
+          d.hdr = b.read(scene.color, rg::Usage::StorageRead);
+          d.ldr = b.write(ldr, rg::Usage::StorageWrite);
+        },
+        [this](const Tonemap& d, rg::PassContext& c) { record_tonemap(c, d.hdr, d.ldr); });
+    return graph;
   }
 
   const gpu::Image& hdr() const { return hdr_; }
   const gpu::Image& ldr() const { return ldr_; }
 
  private:
-  template <class Fn>
-  void time_pass(VkCommandBuffer cmd, gpu::GpuTimer& timer, std::map<std::string, double>& cpu_ms,
-                 const std::string& name, Fn&& fn) {
-    auto start = std::chrono::steady_clock::now();
-    gpu::ScopedLabel label(ctx_, cmd, name);
-    uint32_t scope = timer.begin_scope(cmd, name);
-    fn();
-    timer.end_scope(cmd, scope);
-    cpu_ms[name] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
+  static constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  static constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-  void record_scene(VkCommandBuffer cmd) {
-    gpu::image_barrier(cmd, hdr_.handle(), hdr_.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
-                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE},
-                       gpu::kColorWrite);
-    gpu::image_barrier(cmd, depth_.handle(), depth_.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
-                       VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                       {VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_NONE},
-                       {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT});
+  void record_scene(rg::PassContext& c, rg::TextureHandle color_target, rg::TextureHandle depth_target) {
+    VkCommandBuffer cmd = c.cmd();
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = hdr_.view();
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.imageView = c.view(color_target);
+    color.imageLayout = c.layout(color_target);
     color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     color.clearValue.color = {{0.35f, 0.45f, 0.6f, 1.0f}};
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depth_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.imageView = c.view(depth_target);
+    depth.imageLayout = c.layout(depth_target);
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth.clearValue.depthStencil = {1.0f, 0};
@@ -147,26 +155,24 @@ class PreviewFrame {
     vkCmdEndRendering(cmd);
   }
 
-  void record_tonemap(VkCommandBuffer cmd) {
-    gpu::image_barrier(cmd, hdr_.handle(), hdr_.full_range(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                       VK_IMAGE_LAYOUT_GENERAL, gpu::kColorWrite,
-                       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT});
-    gpu::image_barrier(cmd, ldr_.handle(), ldr_.full_range(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE}, gpu::kComputeWrite);
-    tonemap_.bind(cmd);
-    gpu::Bindings(ctx_, tonemap_)
-        .image(0, hdr_.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .image(1, ldr_.view(), VK_IMAGE_LAYOUT_GENERAL)
-        .push(cmd);
-    tonemap_.push_constants(cmd, 1.0f);
-    tonemap_.dispatch_threads(cmd, width_, height_);
+  void record_tonemap(rg::PassContext& c, rg::TextureHandle hdr, rg::TextureHandle ldr) {
+    tonemap_.bind(c.cmd());
+    gpu::Bindings(ctx_, tonemap_).image(0, c.view(hdr), c.layout(hdr)).image(1, c.view(ldr), c.layout(ldr)).push(c.cmd());
+    tonemap_.push_constants(c.cmd(), 1.0f);
+    tonemap_.dispatch_threads(c.cmd(), width_, height_);
   }
 
-  const gpu::Context& ctx_;
+  gpu::Context& ctx_;
   uint32_t width_, height_;
-  gpu::Image hdr_, depth_, ldr_;
+  gpu::Image hdr_, ldr_;
   gpu::Pipeline scene_, tonemap_;
 };
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  out << text;
+}
 
 void write_json(const fs::path& path, const nlohmann::json& json) {
   std::ofstream out(path);
@@ -197,47 +203,48 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                  ctx.info().driver_info.c_str(), gpu::to_string(calibration.mode));
 
   PreviewFrame frame(ctx, shaders, options.width, options.height);
-  gpu::GpuTimer timer(ctx, 64, calibration.mode);
+  rg::vulkan::Executor executor(ctx, calibration.mode);
   VkCommandBuffer cmd = ctx.allocate_command_buffer("frame");
   std::map<std::string, PassSamples> samples;
   std::vector<std::string> pass_order;
+  std::map<std::string, rg::QueueType> queues;
   std::vector<double> frame_gpu_ms, frame_wall_ms;
 
   for (uint32_t index = 0; index < options.frames; ++index) {
-    std::map<std::string, double> cpu_ms;
     auto start = std::chrono::steady_clock::now();
+    rg::Graph graph = frame.build(executor);
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    frame.record(cmd, timer, cpu_ms);
+    executor.record(graph, cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
     ctx.submit_and_wait(cmd);
     double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::vector<gpu::ScopeTiming> scopes = timer.read_scopes();
     bool warm_up = index == 0 && options.frames > 1;
     if (options.progress)
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", index + 1, options.frames, wall, warm_up ? " (warm-up)" : "");
     if (warm_up) continue;
     double total = 0;
-    for (const gpu::ScopeTiming& scope : scopes) {
-      if (!samples.count(scope.name)) pass_order.push_back(scope.name);
-      samples[scope.name].gpu_ms.push_back(scope.gpu_ms);
-      samples[scope.name].cpu_record_ms.push_back(cpu_ms[scope.name]);
-      total += scope.gpu_ms;
+    for (const rg::vulkan::PassTiming& pass : executor.read_timings()) {
+      if (!samples.count(pass.name)) pass_order.push_back(pass.name);
+      samples[pass.name].gpu_ms.push_back(pass.gpu_ms);
+      samples[pass.name].cpu_record_ms.push_back(pass.cpu_record_ms);
+      queues[pass.name] = pass.queue;
+      total += pass.gpu_ms;
     }
     frame_gpu_ms.push_back(total);
     frame_wall_ms.push_back(wall);
   }
 
   CaptureOutputs out{options.out_dir / "frame.png", options.out_dir / "frame.exr", options.out_dir / "timings.json"};
-  io::write_png_raw(out.png, gpu::read_image(ctx, frame.ldr(), VK_IMAGE_LAYOUT_GENERAL));
-  io::write_exr(out.exr, gpu::read_image(ctx, frame.hdr(), VK_IMAGE_LAYOUT_GENERAL));
+  io::write_png_raw(out.png, gpu::read_image(ctx, frame.ldr(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
+  io::write_exr(out.exr, gpu::read_image(ctx, frame.hdr(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
 
   nlohmann::json passes = nlohmann::json::array();
   for (const std::string& name : pass_order) {
     const PassSamples& s = samples[name];
     passes.push_back({{"name", name},
-                      {"queue", name == "tonemap" ? "compute" : "graphics"},
+                      {"queue", rg::to_string(queues[name])},
                       {"gpu_ms", to_json(stats_of(s.gpu_ms))},
                       {"cpu_record_ms", to_json(stats_of(s.cpu_record_ms))}});
   }
@@ -253,6 +260,12 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       {"frame_wall_ms", to_json(stats_of(frame_wall_ms))},
   };
   write_json(out.timings, timings);
+  write_text(options.out_dir / "graph.json", executor.plan().to_json());
+  write_text(options.out_dir / "graph.dot", executor.plan().to_dot());
+  const rg::PlanStats& stats = executor.plan().stats;
+  write_json(options.out_dir / "memory.json", {{"transient_bytes_aliased", stats.transient_bytes_aliased},
+                                               {"transient_bytes_unaliased", stats.transient_bytes_unaliased},
+                                               {"heaps", executor.plan().heaps.size()}});
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
   if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));

@@ -1,0 +1,215 @@
+// Phase 6: barrier plan. Walks the passes in order, tracking per resource what later
+// accesses must wait for, and emits one sync2 barrier per (pass, resource) when needed:
+//
+//   read after write    wait for the write, unless it is already visible to this
+//                       stage/access (read-after-read in the same layout: no barrier)
+//   write after read    wait for ALL reads since the last write (execution dependency)
+//   write after write   wait for the write (memory dependency)
+//   layout change       behaves as a write: waits for everything, then later readers in
+//                       other stages wait for the transition
+//   aliasing            a transient's first use waits for the last accesses of the
+//                       resources that occupied its memory before, starting from UNDEFINED
+//
+// Every barrier names the earlier accesses directly in its src scope (not only through
+// chains of barriers): plans are easy to read and to check.
+//
+// All passes are treated as one queue in plan order, whatever their QueueType (see plan.h).
+#include <algorithm>
+#include <map>
+
+#include "phases.h"
+
+namespace rg::detail {
+namespace {
+
+struct Scope {
+  VkPipelineStageFlags2 stages;
+  VkAccessFlags2 access;
+};
+
+struct SyncState {
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // textures only
+  // The last write or layout transition: every later access is ordered after these.
+  VkPipelineStageFlags2 write_stages = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 write_access = VK_ACCESS_2_NONE;  // write bits to make available
+  // Stages that read since the last write: a later write waits for all of them.
+  VkPipelineStageFlags2 read_stages = VK_PIPELINE_STAGE_2_NONE;
+  // Scopes the last write is already visible to: reads inside one need no barrier.
+  std::vector<Scope> visible;
+};
+
+bool is_visible(const SyncState& state, const AccessNeeds& need) {
+  return std::any_of(state.visible.begin(), state.visible.end(), [&](const Scope& scope) {
+    return (need.stages & ~scope.stages) == 0 && (need.access & ~scope.access) == 0;
+  });
+}
+
+// An imported resource starts in its declared state. A read-only state still has to be
+// waited for by later writes, and its data is only known to be visible to that scope.
+SyncState imported_state(const ImportState& initial, bool is_texture) {
+  SyncState state;
+  state.layout = is_texture ? initial.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+  if (const VkAccessFlags2 writes = write_access_bits(initial.access)) {
+    state.write_stages = initial.stages;
+    state.write_access = writes;
+  } else if (initial.stages != VK_PIPELINE_STAGE_2_NONE) {
+    state.write_stages = initial.stages;
+    state.read_stages = initial.stages;
+    state.visible.push_back({initial.stages, initial.access});
+  }
+  return state;
+}
+
+// A transient's first use after others used its memory: wait for all of their last
+// accesses; contents are discarded (layout UNDEFINED).
+SyncState state_after_occupants(const std::vector<uint32_t>& occupants, const std::vector<SyncState>& sync) {
+  SyncState state;
+  for (uint32_t previous : occupants) {
+    state.write_stages |= sync[previous].write_stages;
+    state.write_access |= sync[previous].write_access;
+    state.read_stages |= sync[previous].read_stages;
+  }
+  return state;
+}
+
+// Updates `state` for an access needing `need`; returns true when `barrier` must be
+// recorded before it (barrier.resource/aliased are filled in by the caller).
+bool synchronise(SyncState& state, const AccessNeeds& need, bool is_texture, Barrier& barrier) {
+  const bool transition = is_texture && need.layout != state.layout;
+  barrier.dst_stages = need.stages;
+  barrier.dst_access = need.access;
+  barrier.old_layout = state.layout;
+  barrier.new_layout = is_texture ? need.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+
+  if (!transition && !need.writes) {  // read in the current layout
+    const bool wait = state.write_stages != VK_PIPELINE_STAGE_2_NONE && !is_visible(state, need);
+    state.read_stages |= need.stages;
+    if (!wait) return false;
+    barrier.src_stages = state.write_stages;
+    barrier.src_access = state.write_access;
+    state.visible.push_back({need.stages, need.access});
+    return true;
+  }
+
+  barrier.src_stages = state.write_stages | state.read_stages;
+  barrier.src_access = state.write_access;
+  if (need.writes) {
+    state.write_stages = need.stages;
+    state.write_access = write_access_bits(need.access);
+    state.read_stages = VK_PIPELINE_STAGE_2_NONE;
+    state.visible.clear();
+  } else {
+    // A transition for a read acts as a write at need.stages. Keeping the earlier write in
+    // the state makes later barriers name it directly too (it is already available).
+    state.write_stages |= need.stages;
+    state.read_stages = need.stages;
+    state.visible.assign(1, Scope{need.stages, need.access});
+  }
+  state.layout = barrier.new_layout;
+  return transition || barrier.src_stages != VK_PIPELINE_STAGE_2_NONE;
+}
+
+// An imported resource's final state is a promise to its next user (the next frame's
+// import, the presentation engine, the host): it is in that layout, its last write is
+// visible to that scope, and everything the graph did is ordered before those stages, so
+// that the next user's barrier, waiting on exactly those stages, waits for the whole
+// graph. A final layout of UNDEFINED keeps whatever layout the graph left.
+bool finish(SyncState& state, const ImportState& final_state, bool is_texture, Barrier& barrier) {
+  AccessNeeds need{final_state.stages, final_state.access, final_state.layout,
+                   write_access_bits(final_state.access) != 0};
+  if (!is_texture || need.layout == VK_IMAGE_LAYOUT_UNDEFINED) need.layout = state.layout;
+  if (need.stages == VK_PIPELINE_STAGE_2_NONE && need.access == VK_ACCESS_2_NONE && need.layout == state.layout)
+    return false;  // ImportState::none(): no promise
+  // Reads in other stages would escape the next user's wait: order them like a write would.
+  if ((state.read_stages & ~need.stages) != 0) need.writes = true;
+  return synchronise(state, need, is_texture, barrier);
+}
+
+Barrier full_barrier() {
+  Barrier barrier;
+  barrier.src_stages = barrier.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.src_access = barrier.dst_access = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  return barrier;
+}
+
+// Which resource last occupied each byte range of one heap. A first use waits only for
+// the latest occupants of its bytes: older ones were already waited for by the resource
+// that replaced them, and that wait chains into this one through the replacing resource's
+// own barriers (each of which names its last write stages in its src scope).
+class HeapOccupancy {
+ public:
+  // Makes `resource` the occupant of [begin, end); returns the previous occupants.
+  std::vector<uint32_t> occupy(uint64_t begin, uint64_t end, uint32_t resource) {
+    std::vector<uint32_t> previous;
+    auto it = segments_.lower_bound(begin);
+    if (it != segments_.begin()) {
+      auto before = std::prev(it);
+      if (before->second.end > begin) {  // straddles `begin`: split it there
+        Segment inside = before->second;
+        before->second.end = begin;
+        it = segments_.emplace_hint(it, begin, inside);
+      }
+    }
+    while (it != segments_.end() && it->first < end) {
+      previous.push_back(it->second.resource);
+      if (it->second.end > end) segments_.emplace_hint(std::next(it), end, it->second);  // keep the tail
+      it = segments_.erase(it);
+    }
+    segments_.emplace(begin, Segment{end, resource});
+    std::sort(previous.begin(), previous.end());
+    previous.erase(std::unique(previous.begin(), previous.end()), previous.end());
+    return previous;
+  }
+
+ private:
+  struct Segment {
+    uint64_t end;
+    uint32_t resource;
+  };
+  std::map<uint64_t, Segment> segments_;  // begin -> segment, non-overlapping
+};
+
+}  // namespace
+
+void plan_barriers(CompileState& state) {
+  const auto& passes = state.graph.passes();
+  const auto& resources = state.graph.resources();
+
+  std::vector<SyncState> sync(resources.size());
+  for (uint32_t r = 0; r < resources.size(); ++r)
+    if (resources[r].imported)
+      sync[r] = imported_state(resources[r].initial, resources[r].kind == ResourceKind::Texture);
+  std::vector<HeapOccupancy> occupancy(state.heaps.size());
+
+  state.barriers.assign(state.order.size(), {});
+  for (uint32_t position = 0; position < state.order.size(); ++position) {
+    std::vector<Barrier>& barriers = state.barriers[position];
+    if (state.options.serial_full_barriers && position > 0) barriers.push_back(full_barrier());
+
+    const PassDecl& pass = passes[state.order[position]];
+    for (const AccessDecl& access : pass.accesses) {
+      const uint32_t r = access.resource;
+      const bool is_texture = resources[r].kind == ResourceKind::Texture;
+      Barrier barrier;
+      barrier.resource = r;
+      if (!resources[r].imported && state.lifetimes[r].first == position) {
+        const Placement& placement = state.placements[r];
+        barrier.aliased = occupancy[placement.heap].occupy(placement.offset, placement.offset + placement.footprint, r);
+        sync[r] = state_after_occupants(barrier.aliased, sync);
+      }
+      if (synchronise(sync[r], access_needs(access, pass.queue, resources[r].kind), is_texture, barrier))
+        barriers.push_back(std::move(barrier));
+    }
+  }
+
+  state.final_barriers.clear();
+  for (uint32_t r = 0; r < resources.size(); ++r) {
+    if (!resources[r].imported) continue;
+    Barrier barrier;
+    barrier.resource = r;
+    if (finish(sync[r], resources[r].final_state, resources[r].kind == ResourceKind::Texture, barrier))
+      state.final_barriers.push_back(std::move(barrier));
+  }
+}
+
+}  // namespace rg::detail

@@ -1,0 +1,133 @@
+// Symbolic names for dumps and messages. Only the values the graph can produce plus the
+// common ones are listed; anything else prints as a number so nothing is ever hidden.
+#include <rendergraph/vk_names.h>
+
+#include <cstdio>
+#include <utility>
+
+namespace rg {
+namespace {
+
+template <class Flags, size_t N>
+std::string flag_names(Flags flags, const std::pair<Flags, const char*> (&names)[N]) {
+  if (flags == 0) return "NONE";
+  std::string text;
+  for (const auto& [bit, name] : names) {
+    if ((flags & bit) != bit) continue;
+    if (!text.empty()) text += '|';
+    text += name;
+    flags &= ~bit;
+  }
+  if (flags != 0) {  // bits without a name
+    char hex[32];
+    std::snprintf(hex, sizeof hex, "0x%llx", static_cast<unsigned long long>(flags));
+    if (!text.empty()) text += '|';
+    text += hex;
+  }
+  return text;
+}
+
+const std::pair<VkPipelineStageFlags2, const char*> kStages[] = {
+    {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "ALL_COMMANDS"},
+    {VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, "ALL_GRAPHICS"},
+    {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, "TOP_OF_PIPE"},
+    {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, "DRAW_INDIRECT"},
+    {VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT, "VERTEX_INPUT"},
+    {VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT, "INDEX_INPUT"},
+    {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, "VERTEX_ATTRIBUTE_INPUT"},
+    {VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT, "PRE_RASTERIZATION_SHADERS"},
+    {VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, "VERTEX_SHADER"},
+    {VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT, "TESSELLATION_CONTROL_SHADER"},
+    {VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT, "TESSELLATION_EVALUATION_SHADER"},
+    {VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT, "GEOMETRY_SHADER"},
+    {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT, "EARLY_FRAGMENT_TESTS"},
+    {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, "FRAGMENT_SHADER"},
+    {VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, "LATE_FRAGMENT_TESTS"},
+    {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, "COLOR_ATTACHMENT_OUTPUT"},
+    {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, "COMPUTE_SHADER"},
+    {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, "TRANSFER"},
+    {VK_PIPELINE_STAGE_2_COPY_BIT, "COPY"},
+    {VK_PIPELINE_STAGE_2_RESOLVE_BIT, "RESOLVE"},
+    {VK_PIPELINE_STAGE_2_BLIT_BIT, "BLIT"},
+    {VK_PIPELINE_STAGE_2_CLEAR_BIT, "CLEAR"},
+    {VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, "BOTTOM_OF_PIPE"},
+    {VK_PIPELINE_STAGE_2_HOST_BIT, "HOST"},
+};
+
+const std::pair<VkAccessFlags2, const char*> kAccesses[] = {
+    {VK_ACCESS_2_MEMORY_READ_BIT, "MEMORY_READ"},
+    {VK_ACCESS_2_MEMORY_WRITE_BIT, "MEMORY_WRITE"},
+    {VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, "INDIRECT_COMMAND_READ"},
+    {VK_ACCESS_2_INDEX_READ_BIT, "INDEX_READ"},
+    {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, "VERTEX_ATTRIBUTE_READ"},
+    {VK_ACCESS_2_UNIFORM_READ_BIT, "UNIFORM_READ"},
+    {VK_ACCESS_2_INPUT_ATTACHMENT_READ_BIT, "INPUT_ATTACHMENT_READ"},
+    {VK_ACCESS_2_SHADER_READ_BIT, "SHADER_READ"},
+    {VK_ACCESS_2_SHADER_WRITE_BIT, "SHADER_WRITE"},
+    {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, "SHADER_SAMPLED_READ"},
+    {VK_ACCESS_2_SHADER_STORAGE_READ_BIT, "SHADER_STORAGE_READ"},
+    {VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, "SHADER_STORAGE_WRITE"},
+    {VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, "COLOR_ATTACHMENT_READ"},
+    {VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, "COLOR_ATTACHMENT_WRITE"},
+    {VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, "DEPTH_STENCIL_ATTACHMENT_READ"},
+    {VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, "DEPTH_STENCIL_ATTACHMENT_WRITE"},
+    {VK_ACCESS_2_TRANSFER_READ_BIT, "TRANSFER_READ"},
+    {VK_ACCESS_2_TRANSFER_WRITE_BIT, "TRANSFER_WRITE"},
+    {VK_ACCESS_2_HOST_READ_BIT, "HOST_READ"},
+    {VK_ACCESS_2_HOST_WRITE_BIT, "HOST_WRITE"},
+};
+
+}  // namespace
+
+std::string stage_names(VkPipelineStageFlags2 stages) { return flag_names(stages, kStages); }
+std::string access_names(VkAccessFlags2 access) { return flag_names(access, kAccesses); }
+
+std::string layout_name(VkImageLayout layout) {
+  switch (layout) {
+    case VK_IMAGE_LAYOUT_UNDEFINED: return "UNDEFINED";
+    case VK_IMAGE_LAYOUT_GENERAL: return "GENERAL";
+    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL: return "COLOR_ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL: return "DEPTH_STENCIL_ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL: return "DEPTH_STENCIL_READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: return "SHADER_READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return "TRANSFER_SRC_OPTIMAL";
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return "TRANSFER_DST_OPTIMAL";
+    case VK_IMAGE_LAYOUT_PREINITIALIZED: return "PREINITIALIZED";
+    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL: return "DEPTH_ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL: return "DEPTH_READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL: return "READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL: return "ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_PRESENT_SRC_KHR: return "PRESENT_SRC";
+    default: return "VkImageLayout(" + std::to_string(static_cast<int>(layout)) + ")";
+  }
+}
+
+std::string format_name(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_UNDEFINED: return "UNDEFINED";
+    case VK_FORMAT_R8_UNORM: return "R8_UNORM";
+    case VK_FORMAT_R8G8_UNORM: return "R8G8_UNORM";
+    case VK_FORMAT_R8G8B8A8_UNORM: return "R8G8B8A8_UNORM";
+    case VK_FORMAT_R8G8B8A8_SRGB: return "R8G8B8A8_SRGB";
+    case VK_FORMAT_B8G8R8A8_UNORM: return "B8G8R8A8_UNORM";
+    case VK_FORMAT_B8G8R8A8_SRGB: return "B8G8R8A8_SRGB";
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return "A2B10G10R10_UNORM_PACK32";
+    case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return "B10G11R11_UFLOAT_PACK32";
+    case VK_FORMAT_R16_SFLOAT: return "R16_SFLOAT";
+    case VK_FORMAT_R16G16_SFLOAT: return "R16G16_SFLOAT";
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return "R16G16B16A16_SFLOAT";
+    case VK_FORMAT_R32_UINT: return "R32_UINT";
+    case VK_FORMAT_R32_SFLOAT: return "R32_SFLOAT";
+    case VK_FORMAT_R32G32_UINT: return "R32G32_UINT";
+    case VK_FORMAT_R32G32_SFLOAT: return "R32G32_SFLOAT";
+    case VK_FORMAT_R32G32B32A32_UINT: return "R32G32B32A32_UINT";
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return "R32G32B32A32_SFLOAT";
+    case VK_FORMAT_D16_UNORM: return "D16_UNORM";
+    case VK_FORMAT_D32_SFLOAT: return "D32_SFLOAT";
+    case VK_FORMAT_D24_UNORM_S8_UINT: return "D24_UNORM_S8_UINT";
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return "D32_SFLOAT_S8_UINT";
+    default: return "VkFormat(" + std::to_string(static_cast<int>(format)) + ")";
+  }
+}
+
+}  // namespace rg

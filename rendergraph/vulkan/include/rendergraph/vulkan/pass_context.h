@@ -1,0 +1,56 @@
+#pragma once
+// What a pass's execute callback receives from the Vulkan executor: the command
+// buffer to record into and the physical resources behind the handles it declared.
+// Defines the rg::PassContext that the planning core only forward-declares.
+#include <rendergraph/graph.h>
+#include <vulkan/vulkan.h>
+
+#include <vector>
+
+namespace avsm::gpu {
+class Context;
+class Image;
+class Buffer;
+}  // namespace avsm::gpu
+
+namespace rg {
+
+namespace vulkan {
+class Executor;
+}
+
+class PassContext {
+ public:
+  VkCommandBuffer cmd() const { return cmd_; }
+  const avsm::gpu::Context& gpu() const { return gpu_; }
+  const std::string& pass_name() const { return pass_->name; }
+
+  // Only handles this pass declared in its setup resolve; anything else is a
+  // GraphError naming the pass and the resource.
+  VkImage image(TextureHandle texture) const;
+  VkImageView view(TextureHandle texture) const;  // all mips and layers
+  VkImageView mip_view(TextureHandle texture, uint32_t level) const;
+  // The layout the plan put the texture in for this pass.
+  VkImageLayout layout(TextureHandle texture) const;
+  const TextureDesc& desc(TextureHandle texture) const;
+  VkBuffer buffer(BufferHandle buffer) const;
+  uint64_t size(BufferHandle buffer) const;
+
+ private:
+  friend class vulkan::Executor;
+  PassContext(const avsm::gpu::Context& gpu, VkCommandBuffer cmd, const PlannedPass& pass,
+              const CompiledPlan& plan, const std::vector<avsm::gpu::Image*>& images,
+              const std::vector<avsm::gpu::Buffer*>& buffers)
+      : gpu_(gpu), cmd_(cmd), pass_(&pass), plan_(plan), images_(images), buffers_(buffers) {}
+
+  const PlannedAccess& access(ResourceKind kind, uint32_t index, uint32_t graph_id) const;
+
+  const avsm::gpu::Context& gpu_;
+  VkCommandBuffer cmd_;
+  const PlannedPass* pass_;
+  const CompiledPlan& plan_;
+  const std::vector<avsm::gpu::Image*>& images_;    // by resource index
+  const std::vector<avsm::gpu::Buffer*>& buffers_;  // by resource index
+};
+
+}  // namespace rg

@@ -1,0 +1,216 @@
+#include <rendergraph/vulkan/executor.h>
+
+#include <chrono>
+
+#include "gpu/context.h"
+
+namespace rg::vulkan {
+
+using avsm::gpu::Buffer;
+using avsm::gpu::Image;
+
+// ------------------------------------------------------------ memory model
+
+static avsm::gpu::ImageDesc image_desc(const TextureDesc& desc, VkImageUsageFlags usage, const std::string& name) {
+  avsm::gpu::ImageDesc out;
+  out.width = desc.width;
+  out.height = desc.height;
+  out.depth = desc.depth;
+  out.mip_levels = desc.mip_levels;
+  out.array_layers = desc.array_layers;
+  out.format = desc.format;
+  out.usage = usage;
+  out.name = name;
+  return out;
+}
+
+static avsm::gpu::BufferDesc buffer_desc(const BufferDesc& desc, VkBufferUsageFlags usage, const std::string& name) {
+  return {desc.size, usage, avsm::gpu::MemoryLocation::DeviceLocal, name};
+}
+
+MemoryRequirements DeviceMemoryModel::texture(const TextureDesc& desc, UsageSet usages) const {
+  auto reqs = avsm::gpu::memory_requirements(ctx_, image_desc(desc, image_usage_flags(usages), ""));
+  return {reqs.size, reqs.alignment, reqs.memory_type_bits};
+}
+
+MemoryRequirements DeviceMemoryModel::buffer(const BufferDesc& desc, UsageSet usages) const {
+  auto reqs = avsm::gpu::memory_requirements(ctx_, buffer_desc(desc, buffer_usage_flags(usages), ""));
+  return {reqs.size, reqs.alignment, reqs.memory_type_bits};
+}
+
+uint64_t DeviceMemoryModel::buffer_image_granularity() const { return ctx_.info().buffer_image_granularity; }
+
+// ------------------------------------------------------------ executor
+
+Executor::Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t max_passes)
+    : ctx_(ctx), memory_model_(ctx), timer_(ctx, max_passes, timestamps) {}
+
+Executor::~Executor() = default;
+
+// Bindings belong to one graph: binding a handle of a new graph forgets the old ones.
+void Executor::start_binding(uint32_t graph_id) {
+  if (graph_id == bound_graph_id_) return;
+  imported_images_.clear();
+  imported_buffers_.clear();
+  bound_graph_id_ = graph_id;
+}
+
+void Executor::bind(TextureHandle texture, Image& image) {
+  if (!texture.valid()) throw GraphError("bind: invalid texture handle");
+  start_binding(texture.graph_id);
+  if (imported_images_.size() <= texture.index) imported_images_.resize(texture.index + 1, nullptr);
+  imported_images_[texture.index] = &image;
+}
+
+void Executor::bind(BufferHandle buffer, Buffer& buffer_object) {
+  if (!buffer.valid()) throw GraphError("bind: invalid buffer handle");
+  start_binding(buffer.graph_id);
+  if (imported_buffers_.size() <= buffer.index) imported_buffers_.resize(buffer.index + 1, nullptr);
+  imported_buffers_[buffer.index] = &buffer_object;
+}
+
+void Executor::check_imports_bound(const Graph& graph) const {
+  const std::vector<ResourceDecl>& resources = graph.resources();
+  for (uint32_t i = 0; i < resources.size(); ++i) {
+    if (!resources[i].imported || !plan_.resources[i].used) continue;
+    bool bound = bound_graph_id_ == graph.id() &&
+                 (resources[i].kind == ResourceKind::Texture
+                      ? i < imported_images_.size() && imported_images_[i]
+                      : i < imported_buffers_.size() && imported_buffers_[i]);
+    if (!bound) throw GraphError("imported " + std::string(to_string(resources[i].kind)) + " '" + resources[i].name +
+                                 "' has no physical resource: call Executor::bind before record");
+  }
+}
+
+// Creates the heaps and the placed transients of plan_. Called when the plan changes.
+void Executor::realise_transients() {
+  transient_images_.clear();
+  transient_buffers_.clear();
+  heaps_.clear();
+  for (uint32_t h = 0; h < plan_.heaps.size(); ++h) {
+    const PlannedHeap& heap = plan_.heaps[h];
+    heaps_.emplace_back(ctx_, heap.size, heap.memory_type_bits, avsm::gpu::MemoryLocation::DeviceLocal,
+                        "frame graph heap " + std::to_string(h));
+  }
+  transient_images_.resize(plan_.resources.size());
+  transient_buffers_.resize(plan_.resources.size());
+  for (uint32_t i = 0; i < plan_.resources.size(); ++i) {
+    const PlannedResource& r = plan_.resources[i];
+    if (r.imported || !r.used || r.heap == kInvalidIndex) continue;
+    const avsm::gpu::MemoryHeap& heap = heaps_[r.heap];
+    if (r.kind == ResourceKind::Texture)
+      transient_images_[i] = std::make_unique<Image>(
+          Image::create_placed(ctx_, image_desc(r.texture, r.image_usage, r.name), heap, r.offset));
+    else
+      transient_buffers_[i] = std::make_unique<Buffer>(
+          Buffer::create_placed(ctx_, buffer_desc(r.buffer, r.buffer_usage, r.name), heap, r.offset));
+  }
+}
+
+void Executor::record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers) const {
+  if (barriers.empty()) return;
+  std::vector<VkMemoryBarrier2> memory;
+  std::vector<VkBufferMemoryBarrier2> buffers;
+  std::vector<VkImageMemoryBarrier2> images;
+  for (const Barrier& b : barriers) {
+    if (b.is_global()) {
+      VkMemoryBarrier2 m{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      m.srcStageMask = b.src_stages;
+      m.srcAccessMask = b.src_access;
+      m.dstStageMask = b.dst_stages;
+      m.dstAccessMask = b.dst_access;
+      memory.push_back(m);
+      continue;
+    }
+    const PlannedResource& r = plan_.resources[b.resource];
+    if (r.kind == ResourceKind::Texture) {
+      VkImageMemoryBarrier2 m{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+      m.srcStageMask = b.src_stages;
+      m.srcAccessMask = b.src_access;
+      m.dstStageMask = b.dst_stages;
+      m.dstAccessMask = b.dst_access;
+      m.oldLayout = b.old_layout;
+      m.newLayout = b.new_layout;
+      m.srcQueueFamilyIndex = m.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      m.image = images_[b.resource]->handle();
+      m.subresourceRange = {r.aspect, 0, r.texture.mip_levels, 0, r.texture.array_layers};
+      images.push_back(m);
+    } else {
+      VkBufferMemoryBarrier2 m{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+      m.srcStageMask = b.src_stages;
+      m.srcAccessMask = b.src_access;
+      m.dstStageMask = b.dst_stages;
+      m.dstAccessMask = b.dst_access;
+      m.srcQueueFamilyIndex = m.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      m.buffer = buffers_[b.resource]->handle();
+      m.size = VK_WHOLE_SIZE;
+      buffers.push_back(m);
+    }
+  }
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = uint32_t(memory.size());
+  dep.pMemoryBarriers = memory.data();
+  dep.bufferMemoryBarrierCount = uint32_t(buffers.size());
+  dep.pBufferMemoryBarriers = buffers.data();
+  dep.imageMemoryBarrierCount = uint32_t(images.size());
+  dep.pImageMemoryBarriers = images.data();
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOptions& options) {
+  uint64_t shape = graph.shape_hash(options);
+  plan_reused_ = has_plan_ && plan_.shape_hash == shape;
+  if (!plan_reused_) {
+    plan_ = graph.compile(memory_model_, options);
+    has_plan_ = true;
+    realise_transients();
+  }
+  check_imports_bound(graph);
+
+  // Physical resource of every plan resource: placed transient or bound import.
+  images_.assign(plan_.resources.size(), nullptr);
+  buffers_.assign(plan_.resources.size(), nullptr);
+  for (uint32_t i = 0; i < plan_.resources.size(); ++i) {
+    if (plan_.resources[i].imported) {
+      if (i < imported_images_.size()) images_[i] = imported_images_[i];
+      if (i < imported_buffers_.size()) buffers_[i] = imported_buffers_[i];
+    } else {
+      images_[i] = transient_images_[i].get();
+      buffers_[i] = transient_buffers_[i].get();
+    }
+  }
+
+  timer_.begin_frame(cmd);
+  cpu_record_ms_.assign(plan_.passes.size(), 0.0);
+  for (uint32_t p = 0; p < plan_.passes.size(); ++p) {
+    const PlannedPass& pass = plan_.passes[p];
+    auto start = std::chrono::steady_clock::now();
+    avsm::gpu::ScopedLabel label(ctx_, cmd, pass.name);
+    record_barriers(cmd, pass.barriers);
+    uint32_t scope = timer_.begin_scope(cmd, pass.name);
+    PassContext context(ctx_, cmd, pass, plan_, images_, buffers_);
+    const std::function<void(PassContext&)>& execute = graph.passes()[pass.pass_index].execute;
+    if (execute) execute(context);
+    timer_.end_scope(cmd, scope);
+    cpu_record_ms_[p] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  record_barriers(cmd, plan_.final_barriers);
+}
+
+std::vector<PassTiming> Executor::read_timings() const {
+  std::vector<avsm::gpu::ScopeTiming> scopes = timer_.read_scopes();
+  std::vector<PassTiming> out;
+  for (uint32_t p = 0; p < plan_.passes.size() && p < scopes.size(); ++p)
+    out.push_back({plan_.passes[p].name, plan_.passes[p].queue, scopes[p].gpu_ms, cpu_record_ms_[p]});
+  return out;
+}
+
+const Image* Executor::transient_image(uint32_t resource) const {
+  return resource < transient_images_.size() ? transient_images_[resource].get() : nullptr;
+}
+
+const Buffer* Executor::transient_buffer(uint32_t resource) const {
+  return resource < transient_buffers_.size() ? transient_buffers_[resource].get() : nullptr;
+}
+
+}  // namespace rg::vulkan
