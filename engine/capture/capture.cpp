@@ -13,6 +13,7 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/transfer.h"
@@ -123,30 +124,9 @@ class PreviewFrame {
 
   void record_scene(rg::PassContext& c, rg::TextureHandle color_target, rg::TextureHandle depth_target) {
     VkCommandBuffer cmd = c.cmd();
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = c.view(color_target);
-    color.imageLayout = c.layout(color_target);
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.35f, 0.45f, 0.6f, 1.0f}};
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = c.view(depth_target);
-    depth.imageLayout = c.layout(depth_target);
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {width_, height_}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &color;
-    rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &rendering);
-    // Vulkan clip space has y down; flip the viewport so +y is up.
-    VkViewport viewport{0, float(height_), float(width_), -float(height_), 0, 1};
-    VkRect2D scissor{{0, 0}, {width_, height_}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    gpu::ColorTarget color{c.view(color_target), c.layout(color_target), {{0.35f, 0.45f, 0.6f, 1.0f}}};
+    gpu::DepthTarget depth{c.view(depth_target), c.layout(depth_target)};
+    gpu::begin_rendering(cmd, {width_, height_}, {&color, 1}, &depth, /*flip_y=*/true);
     glm::mat4 view = glm::lookAt(glm::vec3(3.5f, 2.5f, 4.5f), glm::vec3(0, 0.4f, 0), glm::vec3(0, 1, 0));
     glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(45.0f), float(width_) / float(height_), 0.1f, 50.0f);
     scene_.bind(cmd);

@@ -10,6 +10,13 @@ struct Access {
   VkAccessFlags2 access = VK_ACCESS_2_NONE;
 };
 
+// The sync2 structs, for callers that batch several barriers in one call.
+VkBufferMemoryBarrier2 make_buffer_barrier(VkBuffer buffer, Access src, Access dst);
+VkImageMemoryBarrier2 make_image_barrier(VkImage image, VkImageSubresourceRange range, VkImageLayout old_layout,
+                                         VkImageLayout new_layout, Access src, Access dst);
+VkMemoryBarrier2 make_memory_barrier(Access src, Access dst);
+
+// One barrier, recorded at once.
 void buffer_barrier(VkCommandBuffer cmd, VkBuffer buffer, Access src, Access dst);
 void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout old_layout,
                    VkImageLayout new_layout, Access src, Access dst);

@@ -6,6 +6,7 @@
 #include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/vk_check.h"
@@ -97,17 +98,8 @@ struct SpinPush {
 static void render_something(VkCommandBuffer cmd, const Image& target) {
   image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, kColorWrite);
-  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = target.view();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  rendering.renderArea = {{0, 0}, {target.desc().width, target.desc().height}};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &color;
-  vkCmdBeginRendering(cmd, &rendering);
+  ColorTarget color{target.view()};
+  begin_rendering(cmd, {target.desc().width, target.desc().height}, {&color, 1});
   vkCmdEndRendering(cmd);
 }
 

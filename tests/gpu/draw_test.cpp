@@ -4,6 +4,7 @@
 
 #include "gpu/barriers.h"
 #include "gpu/pipeline.h"
+#include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "io/image_io.h"
@@ -36,22 +37,9 @@ TEST_F(GpuTest, OffscreenDrawProducesExpectedPixels) {
     gpu::ScopedLabel label(ctx(), cmd, "draw triangle");
     gpu::image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, gpu::kColorWrite);
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = target.view();
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.0f, 0.0f, 0.25f, 1.0f}};
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {size, size}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &color;
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport{0, 0, float(size), float(size), 0, 1};
-    VkRect2D scissor{{0, 0}, {size, size}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    gpu::ColorTarget color{target.view()};
+    color.clear = {{0.0f, 0.0f, 0.25f, 1.0f}};
+    gpu::begin_rendering(cmd, {size, size}, {&color, 1});
     triangle.bind(cmd);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);

@@ -7,6 +7,7 @@
 #include <rendergraph/vulkan/executor.h>
 
 #include "gpu/pipeline.h"
+#include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "support/gpu_test.h"
@@ -101,22 +102,8 @@ rg::Graph build_graph(gpu::Context& ctx, Pipelines& p, rg::TextureHandle& result
         d.target = b.write(b.create_texture("drawn", image_desc), rg::Usage::ColorAttachment);
       },
       [&p](const Draw& d, rg::PassContext& c) {
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = c.view(d.target);
-        color.imageLayout = c.layout(d.target);
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{0.0f, 0.1f, 0.2f, 1.0f}};
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, {kSize, kSize}};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachments = &color;
-        vkCmdBeginRendering(c.cmd(), &rendering);
-        VkViewport viewport{0, 0, float(kSize), float(kSize), 0, 1};
-        VkRect2D scissor{{0, 0}, {kSize, kSize}};
-        vkCmdSetViewport(c.cmd(), 0, 1, &viewport);
-        vkCmdSetScissor(c.cmd(), 0, 1, &scissor);
+        gpu::ColorTarget color{c.view(d.target), c.layout(d.target), {{0.0f, 0.1f, 0.2f, 1.0f}}};
+        gpu::begin_rendering(c.cmd(), {kSize, kSize}, {&color, 1});
         p.triangle.bind(c.cmd());
         vkCmdDraw(c.cmd(), 3, 1, 0, 0);
         vkCmdEndRendering(c.cmd());

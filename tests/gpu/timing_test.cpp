@@ -6,6 +6,7 @@
 #include "gpu/barriers.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/pipeline.h"
+#include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "support/gpu_test.h"
 
@@ -40,17 +41,8 @@ uint32_t iterations_for(gpu::Context& ctx, const gpu::Pipeline& spin, const gpu:
 void clear_with_rendering(VkCommandBuffer cmd, const gpu::Image& target) {
   gpu::image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, gpu::kColorWrite);
-  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = target.view();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  rendering.renderArea = {{0, 0}, {target.desc().width, target.desc().height}};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &color;
-  vkCmdBeginRendering(cmd, &rendering);
+  gpu::ColorTarget color{target.view()};
+  gpu::begin_rendering(cmd, {target.desc().width, target.desc().height}, {&color, 1});
   vkCmdEndRendering(cmd);
 }
 

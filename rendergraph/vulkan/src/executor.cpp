@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "gpu/barriers.h"
 #include "gpu/context.h"
 
 namespace rg::vulkan {
@@ -113,38 +114,18 @@ void Executor::record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& 
   std::vector<VkBufferMemoryBarrier2> buffers;
   std::vector<VkImageMemoryBarrier2> images;
   for (const Barrier& b : barriers) {
+    avsm::gpu::Access src{b.src_stages, b.src_access}, dst{b.dst_stages, b.dst_access};
     if (b.is_global()) {
-      VkMemoryBarrier2 m{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-      m.srcStageMask = b.src_stages;
-      m.srcAccessMask = b.src_access;
-      m.dstStageMask = b.dst_stages;
-      m.dstAccessMask = b.dst_access;
-      memory.push_back(m);
+      memory.push_back(avsm::gpu::make_memory_barrier(src, dst));
       continue;
     }
     const PlannedResource& r = plan_.resources[b.resource];
     if (r.kind == ResourceKind::Texture) {
-      VkImageMemoryBarrier2 m{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-      m.srcStageMask = b.src_stages;
-      m.srcAccessMask = b.src_access;
-      m.dstStageMask = b.dst_stages;
-      m.dstAccessMask = b.dst_access;
-      m.oldLayout = b.old_layout;
-      m.newLayout = b.new_layout;
-      m.srcQueueFamilyIndex = m.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      m.image = images_[b.resource]->handle();
-      m.subresourceRange = {r.aspect, 0, r.texture.mip_levels, 0, r.texture.array_layers};
-      images.push_back(m);
+      VkImageSubresourceRange range{r.aspect, 0, r.texture.mip_levels, 0, r.texture.array_layers};
+      images.push_back(avsm::gpu::make_image_barrier(images_[b.resource]->handle(), range, b.old_layout,
+                                                     b.new_layout, src, dst));
     } else {
-      VkBufferMemoryBarrier2 m{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-      m.srcStageMask = b.src_stages;
-      m.srcAccessMask = b.src_access;
-      m.dstStageMask = b.dst_stages;
-      m.dstAccessMask = b.dst_access;
-      m.srcQueueFamilyIndex = m.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      m.buffer = buffers_[b.resource]->handle();
-      m.size = VK_WHOLE_SIZE;
-      buffers.push_back(m);
+      buffers.push_back(avsm::gpu::make_buffer_barrier(buffers_[b.resource]->handle(), src, dst));
     }
   }
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};

@@ -1,0 +1,43 @@
+#pragma once
+// Axis-aligned bounding box; starts empty (min > max) so extend() just works.
+#include <glm/glm.hpp>
+
+#include <limits>
+
+namespace avsm::scene {
+
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+  bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
+
+  void extend(const glm::vec3& point) {
+    min = glm::min(min, point);
+    max = glm::max(max, point);
+  }
+  void extend(const Bounds& other) {
+    if (other.empty()) return;
+    extend(other.min);
+    extend(other.max);
+  }
+  bool contains(const glm::vec3& point) const {
+    return glm::all(glm::lessThanEqual(min, point)) && glm::all(glm::lessThanEqual(point, max));
+  }
+};
+
+// The box around the eight transformed corners of `box`.
+inline Bounds transform_bounds(const Bounds& box, const glm::mat4& transform) {
+  Bounds result;
+  if (box.empty()) return result;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                      (corner & 4) ? box.max.z : box.min.z);
+    result.extend(glm::vec3(transform * glm::vec4(p, 1.0f)));
+  }
+  return result;
+}
+
+}  // namespace avsm::scene

@@ -1,0 +1,18 @@
+#pragma once
+#include <glm/glm.hpp>
+
+#include <string>
+
+namespace avsm::scene {
+
+struct Camera {
+  std::string name;
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float vertical_fov = 0.785398f;  // radians
+  float near_plane = 0.1f;
+  float far_plane = 100.0f;
+};
+
+}  // namespace avsm::scene

@@ -1,0 +1,64 @@
+#pragma once
+// The scene file (JSON) as parsed and checked, before any asset is read. The
+// format is documented in content/README.md. Parsing is strict: unknown keys,
+// duplicate keys, wrong types and out-of-range values are LoadErrors whose
+// message names the file, the JSON path (e.g. "lights[1].shadow.nodes") and
+// the problem.
+#include "scene/camera.h"
+#include "scene/light.h"
+#include "scene/mesh.h"
+
+#include <glm/glm.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace avsm::scene {
+
+inline constexpr int kSceneFormatVersion = 1;
+
+struct ModelEntry {  // "models": glTF files whose triangles become meshes
+  std::string name;
+  std::filesystem::path file;  // absolute or relative to the scene file, resolved
+  glm::mat4 transform{1.0f};
+  NormalGeneration missing_normals = NormalGeneration::flat;
+};
+
+struct VolumeEntry {  // "volumes": OpenVDB fog volumes
+  std::string name;
+  std::filesystem::path file;
+  std::string grid;
+  glm::mat4 transform{1.0f};
+  float extinction_scale = 1.0f;  // sigma_t = extinction_scale * density, per world unit
+  glm::vec3 albedo{1.0f};
+  int majorant_brick_size = 8;
+};
+
+struct HairEntry {  // "hair": .tfx, .hair, or the line primitives of a .gltf/.glb
+  std::string name;
+  std::filesystem::path file;
+  glm::mat4 transform{1.0f};
+  std::optional<float> width;        // world units; see HairGroom / content/README.md
+  std::optional<float> opacity;      // overrides the file's per-strand values
+  std::optional<glm::vec3> color;
+};
+
+struct SceneDescription {
+  std::filesystem::path file;
+  std::string description;
+  std::vector<ModelEntry> models;
+  std::vector<VolumeEntry> volumes;
+  std::vector<HairEntry> hair;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;  // at least one
+};
+
+// Reads and checks a scene file; asset paths come back resolved against its folder.
+SceneDescription read_scene_description(const std::filesystem::path& file);
+// The same from text; `file` names the scene in messages and anchors relative paths.
+SceneDescription parse_scene_description(std::string_view json_text, const std::filesystem::path& file);
+
+}  // namespace avsm::scene

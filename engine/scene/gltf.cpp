@@ -1,0 +1,653 @@
+// glTF loading: tinygltf parses (Debian's libtinygltf, built with stb_image),
+// this file validates everything it hands us before touching buffer bytes.
+#include "scene/gltf.h"
+
+#include "scene/binary_reader.h"
+#include "scene/load_error.h"
+
+#include <stb/stb_image.h>
+#include <tiny_gltf.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numeric>
+#include <set>
+
+namespace avsm::scene {
+namespace {
+
+// ---- file access handed to tinygltf: bounded, regular files only, optional ----
+
+bool file_exists(const std::string& path, void* user) {
+  const auto* options = static_cast<const GltfOptions*>(user);
+  std::error_code error;
+  return options->allow_external_files && std::filesystem::is_regular_file(path, error);
+}
+
+std::string expand_path(const std::string& path, void*) { return path; }
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  const auto* options = static_cast<const GltfOptions*>(user);
+  if (!options->allow_external_files) {
+    if (err) *err += "external file '" + path + "' not allowed here\n";
+    return false;
+  }
+  try {
+    const auto bytes = detail::read_file_bytes(path, options->max_file_bytes);
+    const auto* begin = reinterpret_cast<const unsigned char*>(bytes.data());
+    out->assign(begin, begin + bytes.size());
+    return true;
+  } catch (const LoadError& error) {
+    if (err) *err += std::string(error.what()) + "\n";
+    return false;
+  }
+}
+
+bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not supported\n";
+  return false;
+}
+
+// Images are kept encoded: only base-colour textures get decoded, and only
+// after their size has been checked (see decode_texture).
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  image->as_is = true;
+  if (bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+std::string trim(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ';');
+  return text;
+}
+
+tinygltf::Model parse_model(std::span<const std::byte> bytes, const std::filesystem::path& name,
+                            const GltfOptions& options, std::string& warning) {
+  const bool has_glb_magic = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  if (name.extension() == ".glb" && !has_glb_magic) throw LoadError(name, "not a GLB file: no 'glTF' magic");
+  if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw LoadError(name, "file is too large");
+
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&file_exists, &expand_path, &read_whole_file, &refuse_write,
+                                              const_cast<GltfOptions*>(&options)});
+  loader.SetImageLoader(&keep_encoded_image, nullptr);
+  tinygltf::Model model;
+  std::string error;
+  const std::string base_dir = name.parent_path().string();
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok = has_glb_magic
+                      ? loader.LoadBinaryFromMemory(&model, &error, &warning, data,
+                                                    static_cast<unsigned int>(bytes.size()), base_dir)
+                      : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(data),
+                                                   static_cast<unsigned int>(bytes.size()), base_dir);
+  if (!ok) throw LoadError(name, "invalid glTF: " + (error.empty() ? std::string("tinygltf refused it") : trim(error)));
+  return model;
+}
+
+// ---- accessors ----
+
+int component_bytes(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+int component_count(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+  }
+}
+
+// Validated view of an accessor's bytes; data == nullptr means "all zeros"
+// (an accessor without a bufferView, as the spec allows).
+struct AccessorView {
+  const unsigned char* data = nullptr;
+  std::size_t stride = 0;
+  std::size_t count = 0;
+  int component_type = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+class Loader {
+ public:
+  Loader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options)
+      : model_(model), file_(file), options_(options) {}
+
+  GltfAsset load();
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) const { throw LoadError(file_, problem); }
+
+  AccessorView view(int accessor_index, const std::string& what) const;
+  template <int N>
+  std::vector<glm::vec<N, float>> read_vectors(int accessor_index, const std::string& what,
+                                               bool allow_normalized_integers) const;
+  std::vector<std::uint32_t> read_indices(int accessor_index, const std::string& what) const;
+
+  void check_required_extensions() const;
+  std::vector<int> root_nodes() const;
+  void visit_nodes();
+  void add_mesh_instance(int mesh_index, const glm::mat4& world);
+  void add_triangles(const tinygltf::Primitive& primitive, const std::string& name,
+                     std::vector<std::uint32_t> indices, const glm::mat4& world);
+  void add_lines(const tinygltf::Primitive& primitive, int mode, const std::vector<std::uint32_t>& indices,
+                 const std::vector<glm::vec3>& positions);
+  std::uint32_t material_index(int gltf_material);
+  Material convert_material(const tinygltf::Material& source);
+  int texture_for(int gltf_texture);
+  Texture decode_texture(int image_index) const;
+
+  const tinygltf::Model& model_;
+  const std::filesystem::path& file_;
+  const GltfOptions& options_;
+  GltfAsset asset_;
+  std::map<int, std::uint32_t> materials_;  // glTF material (-1 = default) -> ours
+  std::map<int, int> textures_;             // glTF image -> ours
+};
+
+AccessorView Loader::view(int accessor_index, const std::string& what) const {
+  if (accessor_index < 0 || std::size_t(accessor_index) >= model_.accessors.size())
+    fail(what + ": accessor " + std::to_string(accessor_index) + " does not exist");
+  const tinygltf::Accessor& accessor = model_.accessors[accessor_index];
+  const std::string label = what + " (accessor " + std::to_string(accessor_index) + ")";
+  if (accessor.sparse.isSparse) fail(label + ": sparse accessors are not supported");
+
+  AccessorView result;
+  result.count = accessor.count;
+  result.component_type = accessor.componentType;
+  result.components = component_count(accessor.type);
+  result.normalized = accessor.normalized;
+  const int component_size = component_bytes(accessor.componentType);
+  if (component_size == 0) fail(label + ": unsupported component type " + std::to_string(accessor.componentType));
+  if (result.components == 0) fail(label + ": unsupported accessor type " + std::to_string(accessor.type));
+  const std::size_t element_bytes = std::size_t(component_size) * result.components;
+  if (accessor.bufferView < 0) return result;  // zeros
+  if (std::size_t(accessor.bufferView) >= model_.bufferViews.size())
+    fail(label + ": bufferView " + std::to_string(accessor.bufferView) + " does not exist");
+
+  const tinygltf::BufferView& buffer_view = model_.bufferViews[accessor.bufferView];
+  if (buffer_view.buffer < 0 || std::size_t(buffer_view.buffer) >= model_.buffers.size())
+    fail(label + ": buffer " + std::to_string(buffer_view.buffer) + " does not exist");
+  const tinygltf::Buffer& buffer = model_.buffers[buffer_view.buffer];
+  if (buffer_view.byteOffset > buffer.data.size() || buffer_view.byteLength > buffer.data.size() - buffer_view.byteOffset)
+    fail(label + ": bufferView " + std::to_string(accessor.bufferView) + " lies outside its buffer of " +
+         std::to_string(buffer.data.size()) + " bytes");
+  result.stride = buffer_view.byteStride != 0 ? buffer_view.byteStride : element_bytes;
+  if (result.stride < element_bytes) fail(label + ": byteStride is smaller than one element");
+  if (result.count > 0) {
+    // Overflow-safe form of: byteOffset + (count - 1) * stride + element <= byteLength.
+    const std::size_t length = buffer_view.byteLength;
+    if (accessor.byteOffset > length || element_bytes > length - accessor.byteOffset ||
+        result.count - 1 > (length - accessor.byteOffset - element_bytes) / result.stride)
+      fail(label + ": " + std::to_string(result.count) + " elements do not fit in bufferView " +
+           std::to_string(accessor.bufferView) + " (" + std::to_string(length) + " bytes)");
+  }
+  result.data = buffer.data.data() + buffer_view.byteOffset + accessor.byteOffset;
+  return result;
+}
+
+float read_component(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float value;
+      std::memcpy(&value, p, 4);
+      return value;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0f : p[0];
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const auto value = static_cast<std::int8_t>(p[0]);
+      return normalized ? std::max(value / 127.0f, -1.0f) : value;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t value;
+      std::memcpy(&value, p, 2);
+      return normalized ? value / 65535.0f : value;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t value;
+      std::memcpy(&value, p, 2);
+      return normalized ? std::max(value / 32767.0f, -1.0f) : value;
+    }
+    default: return 0.0f;
+  }
+}
+
+template <int N>
+std::vector<glm::vec<N, float>> Loader::read_vectors(int accessor_index, const std::string& what,
+                                                     bool allow_normalized_integers) const {
+  const AccessorView v = view(accessor_index, what);
+  if (v.components != N) fail(what + ": expected " + std::to_string(N) + " components per element, accessor has " + std::to_string(v.components));
+  const bool is_float = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  const bool is_normalized_int = v.normalized && (v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                  v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if (!is_float && !(allow_normalized_integers && is_normalized_int))
+    fail(what + ": component type " + std::to_string(v.component_type) + " is not supported here (expected float" +
+         (allow_normalized_integers ? " or normalized unsigned byte/short)" : ")"));
+  std::vector<glm::vec<N, float>> values(v.count, glm::vec<N, float>(0.0f));
+  if (v.data == nullptr) return values;
+  const int component_size = component_bytes(v.component_type);
+  for (std::size_t i = 0; i < v.count; ++i)
+    for (int c = 0; c < N; ++c)
+      values[i][c] = read_component(v.data + i * v.stride + c * component_size, v.component_type, v.normalized);
+  return values;
+}
+
+std::vector<std::uint32_t> Loader::read_indices(int accessor_index, const std::string& what) const {
+  const AccessorView v = view(accessor_index, what);
+  if (v.components != 1) fail(what + ": indices must be scalars");
+  std::vector<std::uint32_t> indices(v.count, 0);
+  if (v.data == nullptr) return indices;
+  for (std::size_t i = 0; i < v.count; ++i) {
+    const unsigned char* p = v.data + i * v.stride;
+    switch (v.component_type) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = p[0]; break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t value;
+        std::memcpy(&value, p, 2);
+        indices[i] = value;
+        break;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&indices[i], p, 4); break;
+      default: fail(what + ": index component type " + std::to_string(v.component_type) + " is not allowed");
+    }
+  }
+  return indices;
+}
+
+// ---- hierarchy ----
+
+void Loader::check_required_extensions() const {
+  static const std::set<std::string> supported = {"KHR_materials_emissive_strength"};
+  for (const std::string& extension : model_.extensionsRequired)
+    if (!supported.count(extension)) fail("requires extension " + extension + ", which is not supported");
+}
+
+glm::mat4 local_matrix(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = static_cast<float>(node.matrix[i]);  // column-major
+    return m;
+  }
+  glm::mat4 m(1.0f);
+  if (node.translation.size() == 3)
+    m[3] = glm::vec4(float(node.translation[0]), float(node.translation[1]), float(node.translation[2]), 1.0f);
+  if (node.rotation.size() == 4) {
+    const glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+    m = m * glm::mat4_cast(glm::normalize(q));
+  }
+  if (node.scale.size() == 3)
+    m = m * glm::mat4(glm::vec4(float(node.scale[0]), 0, 0, 0), glm::vec4(0, float(node.scale[1]), 0, 0),
+                      glm::vec4(0, 0, float(node.scale[2]), 0), glm::vec4(0, 0, 0, 1));
+  return m;
+}
+
+bool is_finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// glTF requires a forest: every node has at most one parent and a scene lists
+// roots only. Checking that up front rules out cycles, so the walk terminates.
+std::vector<int> Loader::root_nodes() const {
+  const std::size_t node_count = model_.nodes.size();
+  std::vector<int> parent(node_count, -1);
+  for (std::size_t n = 0; n < node_count; ++n)
+    for (int child : model_.nodes[n].children) {
+      if (child < 0 || std::size_t(child) >= node_count)
+        fail("node " + std::to_string(n) + " has child " + std::to_string(child) + ", which does not exist");
+      if (parent[child] != -1 || child == int(n))
+        fail("node " + std::to_string(child) + " has more than one parent (the node hierarchy must be a tree)");
+      parent[child] = int(n);
+    }
+
+  std::vector<int> roots;
+  const int scene = model_.defaultScene >= 0 ? model_.defaultScene : (model_.scenes.empty() ? -1 : 0);
+  if (scene >= 0 && std::size_t(scene) >= model_.scenes.size()) fail("default scene " + std::to_string(scene) + " does not exist");
+  if (scene < 0) {
+    for (std::size_t n = 0; n < node_count; ++n)
+      if (parent[n] == -1) roots.push_back(int(n));
+    return roots;
+  }
+  std::set<int> seen;
+  for (int node : model_.scenes[scene].nodes) {
+    if (node < 0 || std::size_t(node) >= node_count) fail("scene lists node " + std::to_string(node) + ", which does not exist");
+    if (parent[node] != -1) fail("scene lists node " + std::to_string(node) + ", which is not a root");
+    if (!seen.insert(node).second) fail("scene lists node " + std::to_string(node) + " twice");
+    roots.push_back(node);
+  }
+  return roots;
+}
+
+void Loader::visit_nodes() {
+  std::vector<std::pair<int, glm::mat4>> stack;
+  for (int root : root_nodes()) stack.emplace_back(root, options_.transform);
+  std::size_t visited = 0;
+  while (!stack.empty()) {
+    auto [node_index, parent_world] = stack.back();
+    stack.pop_back();
+    if (++visited > model_.nodes.size()) fail("node hierarchy has a cycle");
+    const tinygltf::Node& node = model_.nodes[node_index];
+    const glm::mat4 world = parent_world * local_matrix(node);
+    if (!is_finite(world)) fail("node " + std::to_string(node_index) + " has a non-finite transform");
+    if (node.mesh >= 0) add_mesh_instance(node.mesh, world);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, world);
+  }
+}
+
+// ---- primitives ----
+
+std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32_t>& in) {
+  std::vector<std::uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) return in;
+  for (std::size_t i = 0; i + 2 < in.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)  // keep every other triangle's winding consistent
+      out.insert(out.end(), {in[i], in[i + 1 + i % 2], in[i + 2 - i % 2]});
+    else  // fan
+      out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
+  }
+  return out;
+}
+
+glm::vec3 safe_normalize(const glm::vec3& v) {
+  const float length = glm::length(v);
+  return (length > 0.0f && std::isfinite(length)) ? v / length : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+glm::vec3 face_normal(const Mesh& mesh, std::size_t triangle) {
+  const glm::vec3& a = mesh.positions[mesh.indices[3 * triangle]];
+  const glm::vec3& b = mesh.positions[mesh.indices[3 * triangle + 1]];
+  const glm::vec3& c = mesh.positions[mesh.indices[3 * triangle + 2]];
+  return glm::cross(b - a, c - a);  // length = 2 x area: weights smooth normals by area
+}
+
+void generate_flat_normals(Mesh& mesh) {
+  Mesh flat;
+  for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
+    flat.positions.push_back(mesh.positions[mesh.indices[corner]]);
+    if (!mesh.uvs.empty()) flat.uvs.push_back(mesh.uvs[mesh.indices[corner]]);
+  }
+  flat.indices.resize(mesh.indices.size());
+  std::iota(flat.indices.begin(), flat.indices.end(), 0u);
+  for (std::size_t t = 0; t < flat.triangle_count(); ++t) {
+    const glm::vec3 n = safe_normalize(face_normal(flat, t));
+    flat.normals.insert(flat.normals.end(), {n, n, n});
+  }
+  mesh.positions = std::move(flat.positions);
+  mesh.uvs = std::move(flat.uvs);
+  mesh.indices = std::move(flat.indices);
+  mesh.normals = std::move(flat.normals);
+}
+
+void generate_smooth_normals(Mesh& mesh) {
+  mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const glm::vec3 n = face_normal(mesh, t);
+    for (int k = 0; k < 3; ++k) mesh.normals[mesh.indices[3 * t + k]] += n;
+  }
+  for (glm::vec3& n : mesh.normals) n = safe_normalize(n);
+}
+
+int texcoord_set(const tinygltf::Model& model, int material) {
+  if (material < 0 || std::size_t(material) >= model.materials.size()) return 0;
+  return std::max(0, model.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord);
+}
+
+void Loader::add_mesh_instance(int mesh_index, const glm::mat4& world) {
+  if (std::size_t(mesh_index) >= model_.meshes.size()) fail("node uses mesh " + std::to_string(mesh_index) + ", which does not exist");
+  const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+  const std::string mesh_name = mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : "mesh '" + mesh.name + "'";
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& primitive = mesh.primitives[p];
+    const std::string name = mesh_name + " primitive " + std::to_string(p);
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode == TINYGLTF_MODE_POINTS) {
+      ++asset_.point_primitives_skipped;
+      continue;
+    }
+    if (mode > TINYGLTF_MODE_TRIANGLE_FAN) fail(name + ": unknown primitive mode " + std::to_string(mode));
+    const auto position = primitive.attributes.find("POSITION");
+    if (position == primitive.attributes.end()) fail(name + ": no POSITION attribute");
+    const auto positions = read_vectors<3>(position->second, name + " POSITION", false);
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+        fail(name + ": position " + std::to_string(i) + " is not finite");
+
+    std::vector<std::uint32_t> indices;
+    if (primitive.indices >= 0) {
+      indices = read_indices(primitive.indices, name + " indices");
+      for (std::uint32_t index : indices)
+        if (index >= positions.size())
+          fail(name + ": index " + std::to_string(index) + " is out of range (" + std::to_string(positions.size()) + " vertices)");
+    } else {
+      indices.resize(positions.size());
+      std::iota(indices.begin(), indices.end(), 0u);
+    }
+
+    if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+      std::vector<glm::vec3> world_positions(positions.size());
+      for (std::size_t i = 0; i < positions.size(); ++i) world_positions[i] = glm::vec3(world * glm::vec4(positions[i], 1.0f));
+      add_lines(primitive, mode, indices, world_positions);
+      continue;
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
+      fail(name + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");
+    Mesh out;
+    out.name = (mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name) +
+               (mesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
+    out.positions = positions;
+    asset_.meshes.push_back(std::move(out));
+    add_triangles(primitive, name, triangle_list(mode, indices), world);
+  }
+}
+
+// Finishes asset_.meshes.back(), whose positions are still in mesh space.
+void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::string& name,
+                           std::vector<std::uint32_t> indices, const glm::mat4& world) {
+  Mesh& mesh = asset_.meshes.back();
+  mesh.material = material_index(primitive.material);
+  const std::size_t vertex_count = mesh.positions.size();
+  const auto uv = primitive.attributes.find("TEXCOORD_" + std::to_string(texcoord_set(model_, primitive.material)));
+  if (uv != primitive.attributes.end()) {
+    mesh.uvs = read_vectors<2>(uv->second, name + " " + uv->first, true);
+    if (mesh.uvs.size() != vertex_count) fail(name + ": " + uv->first + " count differs from POSITION count");
+  }
+  const auto normal = primitive.attributes.find("NORMAL");
+  if (normal != primitive.attributes.end()) {
+    mesh.normals = read_vectors<3>(normal->second, name + " NORMAL", false);
+    if (mesh.normals.size() != vertex_count) fail(name + ": NORMAL count differs from POSITION count");
+  }
+
+  const glm::mat3 linear(world);
+  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
+  for (glm::vec3& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
+  for (glm::vec3& n : mesh.normals) n = safe_normalize(normal_matrix * n);
+  if (glm::determinant(linear) < 0.0f)  // a mirror turns CCW into CW: swap to keep front faces CCW
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
+  mesh.indices = std::move(indices);
+
+  if (mesh.normals.empty()) {
+    if (options_.missing_normals == NormalGeneration::flat)
+      generate_flat_normals(mesh);
+    else
+      generate_smooth_normals(mesh);
+  }
+  for (const glm::vec3& p : mesh.positions) mesh.bounds.extend(p);
+  if (!std::isfinite(mesh.bounds.min.x + mesh.bounds.max.x + mesh.bounds.min.y + mesh.bounds.max.y +
+                     mesh.bounds.min.z + mesh.bounds.max.z) && !mesh.positions.empty())
+    fail(name + ": transformed positions are not finite");
+  if (mesh.indices.empty()) asset_.meshes.pop_back();  // e.g. a strip of two vertices
+}
+
+void Loader::add_lines(const tinygltf::Primitive& primitive, int mode, const std::vector<std::uint32_t>& indices,
+                       const std::vector<glm::vec3>& positions) {
+  glm::vec3 color(1.0f);
+  if (primitive.material >= 0) {
+    const std::uint32_t m = material_index(primitive.material);
+    color = glm::vec3(asset_.materials[m].base_color_factor);
+  }
+  HairGroom& hair = asset_.line_strands;
+  if (hair.strand_offsets.empty()) hair.strand_offsets.push_back(0);
+  auto start_strand = [&] {
+    hair.strand_offsets.push_back(static_cast<std::uint32_t>(hair.points.size()));
+    hair.strand_width.push_back(1.0f);
+    hair.strand_opacity.push_back(1.0f);
+    hair.strand_color.push_back(color);
+  };
+  auto append = [&](std::uint32_t index) {
+    hair.points.push_back(positions[index]);
+    hair.strand_offsets.back() = static_cast<std::uint32_t>(hair.points.size());
+  };
+
+  if (mode == TINYGLTF_MODE_LINE) {
+    if (indices.size() % 2 != 0) fail("LINES primitive has an odd number of indices");
+    for (std::size_t i = 0; i < indices.size(); i += 2) {
+      const bool continues = i > 0 && indices[i] == indices[i - 1];
+      if (!continues) {
+        start_strand();
+        append(indices[i]);
+      }
+      append(indices[i + 1]);
+    }
+    return;
+  }
+  if (indices.size() < 2) return;
+  start_strand();
+  for (std::uint32_t index : indices) append(index);
+  if (mode == TINYGLTF_MODE_LINE_LOOP) append(indices.front());
+}
+
+// ---- materials and textures ----
+
+std::uint32_t Loader::material_index(int gltf_material) {
+  if (gltf_material >= 0 && std::size_t(gltf_material) >= model_.materials.size())
+    fail("primitive uses material " + std::to_string(gltf_material) + ", which does not exist");
+  const auto found = materials_.find(gltf_material);
+  if (found != materials_.end()) return found->second;
+  Material material = gltf_material < 0 ? Material{"default"} : convert_material(model_.materials[gltf_material]);
+  asset_.materials.push_back(std::move(material));
+  const auto index = static_cast<std::uint32_t>(asset_.materials.size() - 1);
+  materials_[gltf_material] = index;
+  return index;
+}
+
+Material Loader::convert_material(const tinygltf::Material& source) {
+  Material material;
+  material.name = source.name;
+  const std::string label = "material '" + source.name + "'";
+  const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
+  if (factor.size() != 4) fail(label + ": baseColorFactor needs 4 numbers");
+  material.base_color_factor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+  if (source.emissiveFactor.size() == 3)
+    material.emissive = glm::vec3(float(source.emissiveFactor[0]), float(source.emissiveFactor[1]), float(source.emissiveFactor[2]));
+  const auto strength = source.extensions.find("KHR_materials_emissive_strength");
+  if (strength != source.extensions.end() && strength->second.Has("emissiveStrength") &&
+      strength->second.Get("emissiveStrength").IsNumber())
+    material.emissive *= float(strength->second.Get("emissiveStrength").GetNumberAsDouble());
+
+  if (source.alphaMode == "OPAQUE") material.alpha_mode = AlphaMode::opaque;
+  else if (source.alphaMode == "MASK") material.alpha_mode = AlphaMode::mask;
+  else if (source.alphaMode == "BLEND") material.alpha_mode = AlphaMode::blend;
+  else fail(label + ": unknown alphaMode '" + source.alphaMode + "'");
+  material.alpha_cutoff = float(source.alphaCutoff);
+  material.double_sided = source.doubleSided;
+  const float values[] = {material.base_color_factor.r, material.base_color_factor.g, material.base_color_factor.b,
+                          material.base_color_factor.a, material.emissive.r, material.emissive.g, material.emissive.b,
+                          material.alpha_cutoff};
+  for (float value : values)
+    if (!std::isfinite(value)) fail(label + ": has a non-finite factor");
+  material.base_color_texture = texture_for(source.pbrMetallicRoughness.baseColorTexture.index);
+  return material;
+}
+
+int Loader::texture_for(int gltf_texture) {
+  if (gltf_texture < 0) return -1;
+  if (std::size_t(gltf_texture) >= model_.textures.size())
+    fail("material uses texture " + std::to_string(gltf_texture) + ", which does not exist");
+  const int image = model_.textures[gltf_texture].source;
+  if (image < 0 || std::size_t(image) >= model_.images.size())
+    fail("texture " + std::to_string(gltf_texture) + " has no image we can decode (source " + std::to_string(image) +
+         "; extension-only sources such as KTX2 or WebP are not supported)");
+  const auto found = textures_.find(image);
+  if (found != textures_.end()) return found->second;
+  asset_.textures.push_back(decode_texture(image));
+  return textures_[image] = int(asset_.textures.size() - 1);
+}
+
+Texture Loader::decode_texture(int image_index) const {
+  const tinygltf::Image& image = model_.images[image_index];
+  const std::string label = "image " + std::to_string(image_index) + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " '" + image.uri + "'");
+  if (image.image.empty()) fail(label + " has no data (missing file or empty bufferView)");
+  if (image.image.size() > std::size_t(std::numeric_limits<int>::max())) fail(label + " is too large");
+  const auto size = static_cast<int>(image.image.size());
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(image.image.data(), size, &width, &height, &channels))
+    fail(label + " cannot be decoded: " + stbi_failure_reason());
+  if (width <= 0 || height <= 0 || std::uint32_t(width) > options_.max_texture_size ||
+      std::uint32_t(height) > options_.max_texture_size)
+    fail(label + " is " + std::to_string(width) + " x " + std::to_string(height) + ", outside 1 to " +
+         std::to_string(options_.max_texture_size) + " per side");
+  unsigned char* pixels = stbi_load_from_memory(image.image.data(), size, &width, &height, &channels, 4);
+  if (pixels == nullptr) fail(label + " cannot be decoded: " + stbi_failure_reason());
+  Texture texture;
+  texture.name = image.name.empty() ? image.uri.substr(0, 64) : image.name;
+  texture.width = std::uint32_t(width);
+  texture.height = std::uint32_t(height);
+  texture.rgba8.assign(pixels, pixels + std::size_t(width) * height * 4);
+  stbi_image_free(pixels);
+  return texture;
+}
+
+GltfAsset Loader::load() {
+  check_required_extensions();
+  visit_nodes();
+  if (!asset_.line_strands.points.empty()) {
+    asset_.line_strands.name = file_.stem().string();
+    asset_.line_strands.width_kind = StrandWidth::relative;
+    validate_groom(asset_.line_strands, file_);
+  } else {
+    asset_.line_strands = HairGroom{};
+  }
+  for (const Mesh& mesh : asset_.meshes) asset_.bounds.extend(mesh.bounds);
+  asset_.bounds.extend(asset_.line_strands.bounds);
+  return std::move(asset_);
+}
+
+}  // namespace
+
+GltfAsset parse_gltf(std::span<const std::byte> bytes, const std::filesystem::path& name, const GltfOptions& options) {
+  std::string warnings;
+  const tinygltf::Model model = parse_model(bytes, name, options, warnings);
+  GltfAsset asset = Loader(model, name, options).load();
+  std::size_t start = 0;
+  while (start < warnings.size()) {  // tinygltf separates warnings with newlines
+    const std::size_t end = std::min(warnings.find('\n', start), warnings.size());
+    if (end > start) asset.warnings.push_back(warnings.substr(start, end - start));
+    start = end + 1;
+  }
+  return asset;
+}
+
+GltfAsset load_gltf(const std::filesystem::path& file, const GltfOptions& options) {
+  return parse_gltf(detail::read_file_bytes(file, options.max_file_bytes), file, options);
+}
+
+}  // namespace avsm::scene

@@ -1,0 +1,78 @@
+#pragma once
+// Hair as the renderer wants it: one point array, strands as ranges of it, and
+// one width / opacity / colour per strand. Readers for TressFX 3 (.tfx) and
+// Cem Yuksel's cyHair (.hair); glTF line primitives come from gltf.h.
+#include "scene/bounds.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace avsm::scene {
+
+// What strand_width holds. cyHair stores real thicknesses (absolute, in the
+// units of the points); TressFX and glTF do not, so their strand_width is a
+// multiplier (1 unless the file has per-strand factors) that the scene file's
+// "width" scales.
+enum class StrandWidth { absolute, relative };
+
+// Defaults used where a file says nothing about opacity or colour.
+inline constexpr float kDefaultStrandOpacity = 1.0f;
+inline constexpr glm::vec3 kDefaultStrandColor{0.35f, 0.22f, 0.12f};
+
+struct HairGroom {
+  std::string name;
+  std::vector<glm::vec3> points;
+  // Strand s is points[strand_offsets[s] .. strand_offsets[s + 1]); size = strands + 1.
+  std::vector<std::uint32_t> strand_offsets;
+  std::vector<float> strand_width;       // see width_kind
+  std::vector<float> strand_opacity;     // in [0, 1]; 1 = one fibre blocks all light
+  std::vector<glm::vec3> strand_color;   // linear RGB
+  StrandWidth width_kind = StrandWidth::relative;
+  Bounds bounds;                         // of the points
+
+  std::size_t strand_count() const { return strand_offsets.empty() ? 0 : strand_offsets.size() - 1; }
+  std::size_t strand_size(std::size_t strand) const {
+    return strand_offsets[strand + 1] - strand_offsets[strand];
+  }
+};
+
+// Upper bound on hair files, far above any real groom; protects against
+// accidental multi-gigabyte reads.
+inline constexpr std::uint64_t kMaxHairFileBytes = 1ull << 31;
+
+// TressFX 3 (.tfx, "TressFXFileObject"): a 296-byte header (version 3.x,
+// strand count, vertices per strand, then byte offsets), float3 positions, and
+// optional per-strand thickness factors and per-vertex RGBA colours.
+HairGroom load_tfx(const std::filesystem::path& file);
+HairGroom parse_tfx(std::span<const std::byte> bytes, const std::filesystem::path& name);
+// Writes positions (and the thickness factors if not all 1). Every strand must
+// have the same number of points, 2 to 64.
+std::vector<std::byte> encode_tfx(const HairGroom& groom);
+
+// cyHair (.hair): a 128-byte header "HAIR" with counts, a bit field of present
+// arrays and defaults, then segments (uint16 per strand), points (float3),
+// thickness, transparency (float per point) and colour (float3 per point).
+// Per-point thickness / transparency / colour are averaged per strand.
+HairGroom load_cyhair(const std::filesystem::path& file);
+HairGroom parse_cyhair(std::span<const std::byte> bytes, const std::filesystem::path& name);
+// Writes segments, points and per-point thickness, transparency and colour
+// (each strand's value repeated on its points). Strands may differ in length.
+std::vector<std::byte> encode_cyhair(const HairGroom& groom);
+
+// Applies a placement: points by `transform`; absolute widths by its uniform
+// scale (cube root of |det|).
+void transform_groom(HairGroom& groom, const glm::mat4& transform);
+
+// Throws LoadError naming `file` unless the groom is consistent: offsets
+// increasing and matching the points, per-strand arrays of the right size,
+// finite positions, widths >= 0, opacity in [0, 1], colours finite and >= 0.
+// Also (re)computes bounds. Every loader calls it before returning.
+void validate_groom(HairGroom& groom, const std::filesystem::path& file);
+
+}  // namespace avsm::scene

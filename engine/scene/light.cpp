@@ -1,0 +1,48 @@
+#include "scene/light.h"
+
+#include <array>
+#include <utility>
+
+namespace avsm::scene {
+namespace {
+
+constexpr std::array<std::pair<ShadowTechnique, std::string_view>, 5> kTechniques = {{
+    {ShadowTechnique::avsm, "avsm"},
+    {ShadowTechnique::uncompressed, "uncompressed"},
+    {ShadowTechnique::dsm, "dsm"},
+    {ShadowTechnique::osm, "osm"},
+    {ShadowTechnique::fom, "fom"},
+}};
+constexpr std::array<std::pair<ShadowFilter, std::string_view>, 3> kFilters = {{
+    {ShadowFilter::point, "point"},
+    {ShadowFilter::bilinear, "bilinear"},
+    {ShadowFilter::trilinear, "trilinear"},
+}};
+
+template <class Table, class Enum>
+std::string_view name_of(const Table& table, Enum value) {
+  for (const auto& [candidate, name] : table)
+    if (candidate == value) return name;
+  return "?";
+}
+
+template <class Enum, class Table>
+std::optional<Enum> value_of(const Table& table, std::string_view text) {
+  for (const auto& [value, name] : table)
+    if (name == text) return value;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view to_string(ShadowTechnique technique) { return name_of(kTechniques, technique); }
+std::string_view to_string(ShadowFilter filter) { return name_of(kFilters, filter); }
+std::string_view to_string(LightType type) { return type == LightType::directional ? "directional" : "spot"; }
+std::optional<ShadowTechnique> shadow_technique_from_string(std::string_view text) {
+  return value_of<ShadowTechnique>(kTechniques, text);
+}
+std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
+  return value_of<ShadowFilter>(kFilters, text);
+}
+
+}  // namespace avsm::scene

@@ -1,0 +1,55 @@
+#pragma once
+// Lights and the per-light shadow settings the scene file chooses.
+#include <glm/glm.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace avsm::scene {
+
+// avsm: adaptive volumetric shadow maps (Salvi et al. 2010); uncompressed: all
+// nodes kept (reference); dsm: deep shadow maps; osm: opacity shadow maps;
+// fom: Fourier opacity maps.
+enum class ShadowTechnique { avsm, uncompressed, dsm, osm, fom };
+enum class ShadowFilter { point, bilinear, trilinear };
+
+struct ShadowSettings {
+  ShadowTechnique technique = ShadowTechnique::avsm;
+  int nodes = 8;                 // 4, 8, 12 or 16
+  int resolution = 1024;         // shadow map texels per side, 16 to 16384
+  ShadowFilter filter = ShadowFilter::bilinear;
+  bool sort = true;              // sort fragments before compression
+  // Technique-specific numbers (e.g. depth bias, slab count), passed through
+  // for the technique to read and check; the scene file only checks that they
+  // are finite numbers.
+  std::map<std::string, double> parameters;
+
+  double parameter(const std::string& name, double fallback) const {
+    const auto found = parameters.find(name);
+    return found == parameters.end() ? fallback : found->second;
+  }
+};
+
+enum class LightType { directional, spot };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::directional;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit; the way the light travels
+  glm::vec3 position{0.0f};                // spot only
+  glm::vec3 color{1.0f};                   // linear RGB
+  float intensity = 1.0f;
+  float inner_cone_angle = 0.0f;           // spot only: radians from the axis, full intensity inside
+  float outer_cone_angle = 0.0f;           // spot only: radians from the axis, dark outside
+  ShadowSettings shadow;
+};
+
+std::string_view to_string(ShadowTechnique technique);
+std::string_view to_string(ShadowFilter filter);
+std::string_view to_string(LightType type);
+std::optional<ShadowTechnique> shadow_technique_from_string(std::string_view text);
+std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
+
+}  // namespace avsm::scene

@@ -1,0 +1,122 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace avsm::scene {
+namespace {
+
+// An asset's LoadError names the asset file; add which scene entry asked for it.
+template <class Load>
+auto with_context(const SceneDescription& description, const std::string& entry_path, Load&& load) {
+  try {
+    return load();
+  } catch (const LoadError& error) {
+    throw LoadError(error.file(), error.problem() + " (referenced by " + description.file.string() + " at " +
+                                      entry_path + ")");
+  }
+}
+
+std::string lowercase_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return extension;
+}
+
+void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, GltfAsset asset) {
+  const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
+  const auto texture_base = static_cast<int>(scene.textures.size());
+  for (Material& material : asset.materials) {
+    if (material.base_color_texture >= 0) material.base_color_texture += texture_base;
+    scene.materials.push_back(std::move(material));
+  }
+  for (Texture& texture : asset.textures) scene.textures.push_back(std::move(texture));
+  for (Mesh& mesh : asset.meshes) {
+    mesh.material += material_base;
+    mesh.name = entry.name + "/" + mesh.name;
+    scene.meshes.push_back(std::move(mesh));
+  }
+  const std::string label = where + " (" + entry.file.filename().string() + "): ";
+  if (asset.line_strands.strand_count() > 0)
+    scene.warnings.push_back(label + std::to_string(asset.line_strands.strand_count()) +
+                             " line strands ignored; list the file under \"hair\" to load them as strands");
+  if (asset.point_primitives_skipped > 0)
+    scene.warnings.push_back(label + std::to_string(asset.point_primitives_skipped) + " POINTS primitives ignored");
+  for (const std::string& warning : asset.warnings) scene.warnings.push_back(label + "glTF: " + warning);
+}
+
+HairGroom load_hair_file(const HairEntry& entry) {
+  const std::string extension = lowercase_extension(entry.file);
+  if (extension == ".gltf" || extension == ".glb") {
+    GltfOptions options;
+    options.transform = entry.transform;
+    HairGroom groom = load_gltf(entry.file, options).line_strands;
+    if (groom.strand_count() == 0)
+      throw LoadError(entry.file, "has no LINES, LINE_LOOP or LINE_STRIP primitives to use as hair");
+    return groom;
+  }
+  HairGroom groom = extension == ".tfx" ? load_tfx(entry.file) : load_cyhair(entry.file);
+  transform_groom(groom, entry.transform);
+  return groom;
+}
+
+// Final widths are world units: the entry's width (times the file's relative
+// factors), or the file's absolute widths already scaled by the placement.
+void apply_hair_overrides(HairGroom& groom, const HairEntry& entry) {
+  if (entry.width) {
+    for (float& width : groom.strand_width)
+      width = groom.width_kind == StrandWidth::relative ? width * *entry.width : *entry.width;
+  }
+  groom.width_kind = StrandWidth::absolute;
+  if (entry.opacity) std::fill(groom.strand_opacity.begin(), groom.strand_opacity.end(), *entry.opacity);
+  if (entry.color) std::fill(groom.strand_color.begin(), groom.strand_color.end(), *entry.color);
+  groom.name = entry.name;
+}
+
+}  // namespace
+
+Scene load_scene(const SceneDescription& description) {
+  Scene scene;
+  scene.file = description.file;
+  scene.lights = description.lights;
+  scene.cameras = description.cameras;
+
+  for (std::size_t i = 0; i < description.models.size(); ++i) {
+    const ModelEntry& entry = description.models[i];
+    const std::string where = "models[" + std::to_string(i) + "]";
+    GltfOptions options;
+    options.transform = entry.transform;
+    options.missing_normals = entry.missing_normals;
+    add_model(scene, entry, where, with_context(description, where, [&] { return load_gltf(entry.file, options); }));
+  }
+  for (std::size_t i = 0; i < description.volumes.size(); ++i) {
+    const VolumeEntry& entry = description.volumes[i];
+    VolumeOptions options;
+    options.grid_name = entry.grid;
+    options.transform = entry.transform;
+    options.extinction_scale = entry.extinction_scale;
+    options.albedo = entry.albedo;
+    options.majorant_brick_size = entry.majorant_brick_size;
+    const std::string where = "volumes[" + std::to_string(i) + "]";
+    Volume volume = with_context(description, where, [&] { return load_vdb_volume(entry.file, options); });
+    volume.name = entry.name;
+    scene.volumes.push_back(std::move(volume));
+  }
+  for (std::size_t i = 0; i < description.hair.size(); ++i) {
+    const HairEntry& entry = description.hair[i];
+    const std::string where = "hair[" + std::to_string(i) + "]";
+    HairGroom groom = with_context(description, where, [&] { return load_hair_file(entry); });
+    apply_hair_overrides(groom, entry);
+    scene.hair.push_back(std::move(groom));
+  }
+
+  for (const Mesh& mesh : scene.meshes) scene.bounds.extend(mesh.bounds);
+  for (const HairGroom& groom : scene.hair) scene.bounds.extend(groom.bounds);
+  for (const Volume& volume : scene.volumes) scene.bounds.extend(volume.world_bounds);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file) { return load_scene(read_scene_description(file)); }
+
+}  // namespace avsm::scene

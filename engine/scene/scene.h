@@ -1,0 +1,39 @@
+#pragma once
+// A loaded scene: every asset read, placed in one world space (metres by
+// convention, +Y up) and checked. Start here: load_scene(path).
+#include "scene/bounds.h"
+#include "scene/camera.h"
+#include "scene/description.h"
+#include "scene/gltf.h"
+#include "scene/hair.h"
+#include "scene/light.h"
+#include "scene/load_error.h"
+#include "scene/mesh.h"
+#include "scene/volume.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace avsm::scene {
+
+struct Scene {
+  std::filesystem::path file;
+  std::vector<Mesh> meshes;         // world space; opaque ones cast into shadow maps as blockers
+  std::vector<Material> materials;  // Mesh::material indexes this
+  std::vector<Texture> textures;    // Material::base_color_texture indexes this
+  std::vector<HairGroom> hair;      // world space, StrandWidth::absolute (world units)
+  std::vector<Volume> volumes;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;      // at least one
+  Bounds bounds;                    // meshes, hair and volume bounds together
+  std::vector<std::string> warnings;  // things that loaded but deserve a log line
+};
+
+// Reads the scene file and every asset it references. Throws LoadError: for
+// the scene file itself the message names it and the JSON path; for an asset
+// it names the asset file, the problem, and the scene entry that referenced it.
+Scene load_scene(const std::filesystem::path& file);
+Scene load_scene(const SceneDescription& description);
+
+}  // namespace avsm::scene

@@ -1,0 +1,111 @@
+#pragma once
+// Fog volumes: an OpenVDB float grid converted to one NanoVDB buffer for the
+// GPU (sampled there through PNanoVDB.h), plus what a renderer needs around it:
+// world mapping, bounds, a coarse majorant grid for empty-space skipping,
+// density statistics, and CPU reference sampling / transmittance.
+#include "scene/bounds.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace avsm::scene {
+
+// NanoVDB grids must start on a 32-byte boundary (NANOVDB_DATA_ALIGNMENT).
+template <class T, std::size_t Alignment>
+struct AlignedAllocator {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = AlignedAllocator<U, Alignment>;
+  };
+  AlignedAllocator() = default;
+  template <class U>
+  AlignedAllocator(const AlignedAllocator<U, Alignment>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(Alignment))); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(Alignment)); }
+  template <class U>
+  bool operator==(const AlignedAllocator<U, Alignment>&) const { return true; }
+};
+using NanoVdbBytes = std::vector<std::byte, AlignedAllocator<std::byte, 32>>;
+
+struct DensityStats {
+  float min = 0.0f;  // over active voxels (tiles count with their voxels)
+  float max = 0.0f;
+  double mean = 0.0;
+  std::uint64_t active_voxel_count = 0;
+};
+
+// One value per brick of brick_size^3 voxels: an upper bound of the trilinear
+// density anywhere inside the brick (it includes the voxels one step outside,
+// since trilinear interpolation reads them). Zero means "skip this brick".
+// Brick b covers index space [index_origin + b * brick_size, ... + brick_size].
+struct MajorantGrid {
+  glm::ivec3 dims{0};
+  int brick_size = 8;
+  glm::ivec3 index_origin{0};
+  std::vector<float> max_density;  // x fastest, then y, then z
+
+  float at(const glm::ivec3& brick) const {
+    return max_density[std::size_t(brick.x) + std::size_t(dims.x) * (std::size_t(brick.y) + std::size_t(dims.y) * brick.z)];
+  }
+};
+
+struct Volume {
+  std::string name;
+  std::string grid_name;
+  NanoVdbBytes nanovdb;             // one NanoVDB float grid: upload as is
+  // Scene world <-> NanoVDB index space; voxel centres sit at integer index
+  // coordinates (OpenVDB's convention), so trilinear filtering at index
+  // position p blends the voxels floor(p) and floor(p) + 1.
+  glm::mat4 world_from_index{1.0f};
+  glm::mat4 index_from_world{1.0f};
+  glm::ivec3 active_index_min{0};   // inclusive bounding box of the active voxels
+  glm::ivec3 active_index_max{-1};
+  Bounds world_bounds;              // where the trilinear density can be non-zero
+  MajorantGrid majorant;
+  DensityStats stats;
+  float extinction_scale = 1.0f;    // sigma_t = extinction_scale * density, per world unit
+  glm::vec3 albedo{1.0f};           // sigma_s = albedo * sigma_t
+  glm::mat4 transform{1.0f};        // the placement applied: scene world from VDB world
+  glm::mat4 world_from_majorant{1.0f};  // brick coordinates (brick units) to scene world
+
+  float max_extinction() const { return extinction_scale * stats.max; }
+};
+
+struct VolumeOptions {
+  std::string grid_name = "density";
+  glm::mat4 transform{1.0f};
+  float extinction_scale = 1.0f;
+  glm::vec3 albedo{1.0f};
+  int majorant_brick_size = 8;       // 2 to 64 voxels
+  std::uint64_t max_file_bytes = 1ull << 33;
+};
+
+// Reads the float fog grid `grid_name` from an OpenVDB file. Throws LoadError
+// (naming the file) for a missing/unreadable file, a file that is not VDB, a
+// missing grid (listing those present), a grid that is not float, a level set,
+// a non-zero background, a non-affine transform, non-finite values, or no
+// active voxels.
+Volume load_vdb_volume(const std::filesystem::path& file, const VolumeOptions& options = {});
+
+// ---- CPU reference (tests compare GPU results against these) ----
+
+// Trilinear density at a world point (0 outside the active region), read
+// through NanoVDB's own sampler from Volume::nanovdb. Thread-safe.
+float sample_density(const Volume& volume, const glm::vec3& world);
+
+// sigma_t integrated along the segment from -> to: extinction_scale times the
+// integral of max(density, 0), midpoint rule with at most `step` world units
+// per sample (default: a quarter voxel). Bricks with a zero majorant are skipped.
+float optical_depth(const Volume& volume, const glm::vec3& from, const glm::vec3& to, float step = 0.0f);
+
+// exp(-optical_depth): the fraction of light that survives the segment.
+float transmittance(const Volume& volume, const glm::vec3& from, const glm::vec3& to, float step = 0.0f);
+
+}  // namespace avsm::scene
