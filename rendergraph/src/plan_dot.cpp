@@ -22,9 +22,11 @@ std::string dot_label(const std::string& text) {
   return out + "\"";
 }
 
-std::string mib(uint64_t bytes) {
+std::string size_text(uint64_t bytes) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.2f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  if (bytes >= 1024 * 1024) std::snprintf(text, sizeof text, "%.2f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  else if (bytes >= 1024) std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
+  else std::snprintf(text, sizeof text, "%llu B", static_cast<unsigned long long>(bytes));
   return text;
 }
 
@@ -50,7 +52,7 @@ std::string CompiledPlan::to_dot() const {
     const PlannedResource& res = resources[r];
     std::string label = detail::cat(res.name, "\n", detail::desc_text(res));
     if (res.heap != kInvalidIndex)
-      label += detail::cat("\nheap ", std::to_string(res.heap), " @ ", std::to_string(res.offset), " (", mib(res.size), ")");
+      label += detail::cat("\nheap ", std::to_string(res.heap), " @ ", std::to_string(res.offset), " (", size_text(res.size), ")");
     else if (res.imported)
       label += "\nimported";
     out << "  r" << r << " [shape=ellipse, label=" << dot_label(label);

@@ -21,6 +21,7 @@ void compute_lifetimes(CompileState& state) {
     }
   }
 
+  if (state.order.empty()) return;
   const auto last_position = static_cast<uint32_t>(state.order.size()) - 1;
   for (const OutputDecl& output : state.graph.outputs()) {
     Lifetime& life = state.lifetimes[output.resource];
