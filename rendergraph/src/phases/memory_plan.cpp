@@ -4,9 +4,9 @@
 // memory (aliasing). Placement is greedy: resources in decreasing size, each going into
 // the smallest gap left by the already placed resources it is alive together with (best
 // fit) -- the classic "greedy by size" offline allocator -- plus one alignment-aware
-// variant, keeping the smaller result. The randomized test measures the heap against the
-// lower bound (peak of live bytes): within 1.3x on every random graph, equal on the
-// multi-light graphs.
+// variant, keeping the smaller result. Measured against the lower bound (peak of live
+// bytes) by the randomized test: 1.003x overall, worst 1.28x over its 3000 graphs (1.49x
+// over 30000), and exactly the bound on the multi-light graphs.
 #include <algorithm>
 #include <map>
 
