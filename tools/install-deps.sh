@@ -7,8 +7,9 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools glslang-dev spirv-tools
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
-  libopenvdb-dev libnanovdb-dev libopenvdb-tools
-  libgtest-dev
+  libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev
+  libgtest-dev assimp-testmodels
+  clang libclang-rt-14-dev
 )
 
 missing=()

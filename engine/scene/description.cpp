@@ -474,7 +474,7 @@ json parse_json(const Reader& reader, std::string_view text) {
   try {
     DuplicateKeyCheck check(reader);
     return json::parse(text.begin(), text.end(), std::ref(check));
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {  // parse_error, and out_of_range for numbers like 1e999
     std::string message = error.what();
     if (const auto bracket = message.find("] "); message.rfind("[json.exception", 0) == 0 && bracket != std::string::npos)
       message.erase(0, bracket + 2);

@@ -1,11 +1,13 @@
-// glTF loading: tinygltf parses (Debian's libtinygltf, built with stb_image),
-// this file validates everything it hands us before touching buffer bytes.
+// glTF loading: tinygltf parses (Debian's shared libtinygltf), this file
+// validates everything it hands us before touching buffer bytes. Images are
+// decoded by image_decode.cpp, not by tinygltf.
 #include "scene/gltf.h"
 
 #include "scene/binary_reader.h"
+#include "scene/gltf_json_check.h"
+#include "scene/image_decode.h"
 #include "scene/load_error.h"
 
-#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -72,6 +75,8 @@ tinygltf::Model parse_model(std::span<const std::byte> bytes, const std::filesys
   const bool has_glb_magic = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (name.extension() == ".glb" && !has_glb_magic) throw LoadError(name, "not a GLB file: no 'glTF' magic");
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw LoadError(name, "file is too large");
+
+  detail::check_gltf_json_types(bytes, name);
 
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks(tinygltf::FsCallbacks{&file_exists, &expand_path, &read_whole_file, &refuse_write,
@@ -144,10 +149,12 @@ class Loader {
   void check_required_extensions() const;
   std::vector<int> root_nodes() const;
   void visit_nodes();
-  void add_mesh_instance(int mesh_index, const glm::mat4& world);
+  void add_mesh_instance(int mesh_index, const std::string& node_name, const glm::mat4& world);
+  void count_vertices(std::size_t count, const std::string& name);
+  void repair_zero_normals(Mesh& mesh, const std::string& name);
   void add_triangles(const tinygltf::Primitive& primitive, const std::string& name,
                      std::vector<std::uint32_t> indices, const glm::mat4& world);
-  void add_lines(const tinygltf::Primitive& primitive, int mode, const std::vector<std::uint32_t>& indices,
+  void add_lines(const tinygltf::Primitive& primitive, const std::string& name, int mode, const std::vector<std::uint32_t>& indices,
                  const std::vector<glm::vec3>& positions);
   std::uint32_t material_index(int gltf_material);
   Material convert_material(const tinygltf::Material& source);
@@ -160,6 +167,7 @@ class Loader {
   GltfAsset asset_;
   std::map<int, std::uint32_t> materials_;  // glTF material (-1 = default) -> ours
   std::map<int, int> textures_;             // glTF image -> ours
+  std::uint64_t vertices_emitted_ = 0;
 };
 
 AccessorView Loader::view(int accessor_index, const std::string& what) const {
@@ -178,7 +186,10 @@ AccessorView Loader::view(int accessor_index, const std::string& what) const {
   if (component_size == 0) fail(label + ": unsupported component type " + std::to_string(accessor.componentType));
   if (result.components == 0) fail(label + ": unsupported accessor type " + std::to_string(accessor.type));
   const std::size_t element_bytes = std::size_t(component_size) * result.components;
-  if (accessor.bufferView < 0) return result;  // zeros
+  if (accessor.bufferView < 0) {  // all zeros: no buffer bounds its count, so cap it
+    if (result.count > options_.max_vertices) fail(label + ": " + std::to_string(result.count) + " elements without data");
+    return result;
+  }
   if (std::size_t(accessor.bufferView) >= model_.bufferViews.size())
     fail(label + ": bufferView " + std::to_string(accessor.bufferView) + " does not exist");
 
@@ -339,7 +350,8 @@ std::vector<int> Loader::root_nodes() const {
 
 void Loader::visit_nodes() {
   std::vector<std::pair<int, glm::mat4>> stack;
-  for (int root : root_nodes()) stack.emplace_back(root, options_.transform);
+  const std::vector<int> roots = root_nodes();
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.emplace_back(*root, options_.transform);  // pops in file order
   std::size_t visited = 0;
   while (!stack.empty()) {
     auto [node_index, parent_world] = stack.back();
@@ -348,7 +360,7 @@ void Loader::visit_nodes() {
     const tinygltf::Node& node = model_.nodes[node_index];
     const glm::mat4 world = parent_world * local_matrix(node);
     if (!is_finite(world)) fail("node " + std::to_string(node_index) + " has a non-finite transform");
-    if (node.mesh >= 0) add_mesh_instance(node.mesh, world);
+    if (node.mesh >= 0) add_mesh_instance(node.mesh, node.name, world);
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, world);
   }
 }
@@ -411,7 +423,8 @@ int texcoord_set(const tinygltf::Model& model, int material) {
   return std::max(0, model.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord);
 }
 
-void Loader::add_mesh_instance(int mesh_index, const glm::mat4& world) {
+// Meshes are named after their node (instances of one glTF mesh differ), else the glTF mesh.
+void Loader::add_mesh_instance(int mesh_index, const std::string& node_name, const glm::mat4& world) {
   if (std::size_t(mesh_index) >= model_.meshes.size()) fail("node uses mesh " + std::to_string(mesh_index) + ", which does not exist");
   const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
   const std::string mesh_name = mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : "mesh '" + mesh.name + "'";
@@ -442,21 +455,43 @@ void Loader::add_mesh_instance(int mesh_index, const glm::mat4& world) {
       std::iota(indices.begin(), indices.end(), 0u);
     }
 
+    count_vertices(std::max(positions.size(), indices.size()), name);
     if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
       std::vector<glm::vec3> world_positions(positions.size());
       for (std::size_t i = 0; i < positions.size(); ++i) world_positions[i] = glm::vec3(world * glm::vec4(positions[i], 1.0f));
-      add_lines(primitive, mode, indices, world_positions);
+      add_lines(primitive, name, mode, indices, world_positions);
       continue;
     }
     if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
       fail(name + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");
     Mesh out;
-    out.name = (mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name) +
+    out.name = (!node_name.empty() ? node_name : mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name) +
                (mesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
     out.positions = positions;
     asset_.meshes.push_back(std::move(out));
     add_triangles(primitive, name, triangle_list(mode, indices), world);
   }
+}
+
+void Loader::count_vertices(std::size_t count, const std::string& name) {
+  vertices_emitted_ += count;
+  if (vertices_emitted_ > options_.max_vertices)
+    fail(name + ": the file expands to more than " + std::to_string(options_.max_vertices) +
+         " vertices in total (max_vertices)");
+}
+
+bool is_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Some exporters write (0, 0, 0) normals; shading with them gives NaNs.
+void Loader::repair_zero_normals(Mesh& mesh, const std::string& name) {
+  std::size_t zero = 0;
+  for (const glm::vec3& n : mesh.normals) zero += glm::dot(n, n) < 1e-20f;
+  if (zero == 0) return;
+  Mesh smooth = mesh;
+  generate_smooth_normals(smooth);
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+    if (glm::dot(mesh.normals[i], mesh.normals[i]) < 1e-20f) mesh.normals[i] = smooth.normals[i];
+  asset_.warnings.push_back(name + ": " + std::to_string(zero) + " zero-length normals replaced by smooth normals");
 }
 
 // Finishes asset_.meshes.back(), whose positions are still in mesh space.
@@ -474,12 +509,17 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
   if (normal != primitive.attributes.end()) {
     mesh.normals = read_vectors<3>(normal->second, name + " NORMAL", false);
     if (mesh.normals.size() != vertex_count) fail(name + ": NORMAL count differs from POSITION count");
+    for (std::size_t i = 0; i < vertex_count; ++i)
+      if (!is_finite(mesh.normals[i])) fail(name + ": normal " + std::to_string(i) + " is not finite");
   }
 
   const glm::mat3 linear(world);
   const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
   for (glm::vec3& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
-  for (glm::vec3& n : mesh.normals) n = safe_normalize(normal_matrix * n);
+  for (glm::vec3& n : mesh.normals) {
+    const glm::vec3 transformed = normal_matrix * n;
+    n = glm::dot(transformed, transformed) > 0.0f ? glm::normalize(transformed) : glm::vec3(0.0f);
+  }
   if (glm::determinant(linear) < 0.0f)  // a mirror turns CCW into CW: swap to keep front faces CCW
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
   mesh.indices = std::move(indices);
@@ -489,15 +529,17 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
       generate_flat_normals(mesh);
     else
       generate_smooth_normals(mesh);
+  } else {
+    repair_zero_normals(mesh, name);
   }
-  for (const glm::vec3& p : mesh.positions) mesh.bounds.extend(p);
-  if (!std::isfinite(mesh.bounds.min.x + mesh.bounds.max.x + mesh.bounds.min.y + mesh.bounds.max.y +
-                     mesh.bounds.min.z + mesh.bounds.max.z) && !mesh.positions.empty())
-    fail(name + ": transformed positions are not finite");
+  for (const glm::vec3& p : mesh.positions) {
+    if (!is_finite(p)) fail(name + ": a position is not finite after the node transforms");
+    mesh.bounds.extend(p);
+  }
   if (mesh.indices.empty()) asset_.meshes.pop_back();  // e.g. a strip of two vertices
 }
 
-void Loader::add_lines(const tinygltf::Primitive& primitive, int mode, const std::vector<std::uint32_t>& indices,
+void Loader::add_lines(const tinygltf::Primitive& primitive, const std::string& name, int mode, const std::vector<std::uint32_t>& indices,
                        const std::vector<glm::vec3>& positions) {
   glm::vec3 color(1.0f);
   if (primitive.material >= 0) {
@@ -518,7 +560,7 @@ void Loader::add_lines(const tinygltf::Primitive& primitive, int mode, const std
   };
 
   if (mode == TINYGLTF_MODE_LINE) {
-    if (indices.size() % 2 != 0) fail("LINES primitive has an odd number of indices");
+    if (indices.size() % 2 != 0) fail(name + ": LINES with an odd number of indices (" + std::to_string(indices.size()) + ")");
     for (std::size_t i = 0; i < indices.size(); i += 2) {
       const bool continues = i > 0 && indices[i] == indices[i - 1];
       if (!continues) {
@@ -594,25 +636,14 @@ int Loader::texture_for(int gltf_texture) {
 
 Texture Loader::decode_texture(int image_index) const {
   const tinygltf::Image& image = model_.images[image_index];
-  const std::string label = "image " + std::to_string(image_index) + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " '" + image.uri + "'");
+  const bool named_file = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+  const std::string label = "image " + std::to_string(image_index) + (named_file ? " '" + image.uri + "'" : "");
   if (image.image.empty()) fail(label + " has no data (missing file or empty bufferView)");
-  if (image.image.size() > std::size_t(std::numeric_limits<int>::max())) fail(label + " is too large");
-  const auto size = static_cast<int>(image.image.size());
-  int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(image.image.data(), size, &width, &height, &channels))
-    fail(label + " cannot be decoded: " + stbi_failure_reason());
-  if (width <= 0 || height <= 0 || std::uint32_t(width) > options_.max_texture_size ||
-      std::uint32_t(height) > options_.max_texture_size)
-    fail(label + " is " + std::to_string(width) + " x " + std::to_string(height) + ", outside 1 to " +
-         std::to_string(options_.max_texture_size) + " per side");
-  unsigned char* pixels = stbi_load_from_memory(image.image.data(), size, &width, &height, &channels, 4);
-  if (pixels == nullptr) fail(label + " cannot be decoded: " + stbi_failure_reason());
   Texture texture;
-  texture.name = image.name.empty() ? image.uri.substr(0, 64) : image.name;
-  texture.width = std::uint32_t(width);
-  texture.height = std::uint32_t(height);
-  texture.rgba8.assign(pixels, pixels + std::size_t(width) * height * 4);
-  stbi_image_free(pixels);
+  texture.name = !image.name.empty() ? image.name : named_file ? image.uri : "image" + std::to_string(image_index);
+  std::string error;
+  if (!detail::decode_rgba8(image.image, options_.max_texture_size, texture, error))
+    fail(label + " cannot be decoded: " + error);
   return texture;
 }
 

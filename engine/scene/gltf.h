@@ -22,6 +22,9 @@ struct GltfOptions {
   bool allow_external_files = true;
   std::uint64_t max_file_bytes = 1ull << 31;  // per file read (the glTF, each .bin, each image)
   std::uint32_t max_texture_size = 16384;     // per side, checked before decoding
+  // Cap on vertices produced in total: node instancing multiplies mesh sizes,
+  // so a small file could otherwise ask for unbounded memory.
+  std::uint64_t max_vertices = 1ull << 27;
 };
 
 struct GltfAsset {
@@ -41,7 +44,9 @@ struct GltfAsset {
 // scenes). Throws LoadError naming the file for anything malformed: bad JSON or
 // GLB chunks, missing buffers or images, accessors out of their buffers, indices
 // out of range, non-finite positions, node cycles, unsupported required
-// extensions (e.g. Draco, mesh quantization), undecodable textures.
+// extensions (e.g. Draco, mesh quantization), undecodable textures, non-finite
+// normals. Zero-length normals (a known exporter bug) are replaced by smooth
+// normals at those vertices, with a warning.
 GltfAsset load_gltf(const std::filesystem::path& file, const GltfOptions& options = {});
 // Same from memory; `name` is used in messages and its folder for external files.
 GltfAsset parse_gltf(std::span<const std::byte> bytes, const std::filesystem::path& name,

@@ -61,6 +61,14 @@ CyHairHeader read_header(detail::ByteReader& reader) {
 
 // Strand offsets from the segments array, or from the default segment count.
 std::vector<std::uint32_t> read_strand_offsets(detail::ByteReader& reader, const CyHairHeader& header) {
+  // Bound both counts by the file size before allocating anything per strand:
+  // every strand has at least one point of 12 bytes.
+  if (header.point_count > reader.remaining() / sizeof(glm::vec3))
+    reader.fail("file is truncated: the header declares " + std::to_string(header.point_count) +
+                " points but only " + std::to_string(reader.remaining()) + " bytes follow it");
+  if (header.hair_count > header.point_count)
+    reader.fail("header declares " + std::to_string(header.hair_count) + " strands but only " +
+                std::to_string(header.point_count) + " points");
   std::vector<std::uint16_t> segments;
   if (header.arrays & kSegmentsBit) {
     segments = reader.read_array<std::uint16_t>(header.hair_count, "segments array");

@@ -41,7 +41,7 @@ enum class NormalGeneration { flat, smooth };
 // triangles are counter-clockwise seen from the front even under mirroring
 // transforms.
 struct Mesh {
-  std::string name;
+  std::string name;                 // the glTF node's name, else its mesh's; "#<primitive>" when several
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;   // unit length, one per position
   std::vector<glm::vec2> uvs;       // one per position, or empty when the primitive has none

@@ -3,6 +3,7 @@
 #include "scene/volume.h"
 
 #include "scene/load_error.h"
+#include "scene/vdb_layout.h"
 
 #include <nanovdb/util/OpenToNanoVDB.h>
 #include <openvdb/io/File.h>
@@ -18,7 +19,6 @@
 namespace avsm::scene {
 namespace {
 
-constexpr std::int64_t kVdbMagic = 0x56444220;  // OPENVDB_MAGIC, "VDB " at the start of every .vdb
 constexpr std::uint64_t kMaxMajorantBricks = 1ull << 26;
 
 void initialize_openvdb() {
@@ -26,26 +26,42 @@ void initialize_openvdb() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
-// Cheap checks before OpenVDB sees the file, so that the common mistakes get a
-// clear message rather than whatever OpenVDB's stream reader makes of them.
-void check_vdb_file(const std::filesystem::path& file, std::uint64_t max_bytes) {
+std::string grid_name_of(const detail::VdbGridRecord& record) {
+  return record.unique_name.substr(0, record.unique_name.find('\x1e'));  // OpenVDB's duplicate-name suffix
+}
+
+// Checks the file's framing before OpenVDB sees it (see vdb_layout.h) and that
+// the grid we want is there and holds floats.
+void check_vdb_file(const std::filesystem::path& file, const std::string& grid_name, std::uint64_t max_bytes) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
   if (error || !std::filesystem::exists(status)) throw LoadError(file, "file not found");
   if (!std::filesystem::is_regular_file(status)) throw LoadError(file, "not a regular file");
   const std::uint64_t size = std::filesystem::file_size(file, error);
   if (size > max_bytes) throw LoadError(file, "file is larger than the limit of " + std::to_string(max_bytes) + " bytes");
-  std::int64_t magic = 0;
   std::ifstream stream(file, std::ios::binary);
-  if (!stream.read(reinterpret_cast<char*>(&magic), sizeof magic) || magic != kVdbMagic)
-    throw LoadError(file, "not an OpenVDB file (no 'VDB ' magic number)");
+  if (!stream) throw LoadError(file, "cannot open it for reading");
+  const detail::VdbLayout layout = detail::read_vdb_layout(stream, size, file);
+
+  std::string names;
+  for (const detail::VdbGridRecord& record : layout.grids) {
+    if (grid_name_of(record) == grid_name) {
+      if (record.type.rfind("Tree_float_", 0) != 0)
+        throw LoadError(file, "grid '" + grid_name + "' holds " + record.type + " values, not float density");
+      return;
+    }
+    names += (names.empty() ? "'" : ", '") + grid_name_of(record) + "'";
+  }
+  throw LoadError(file, "no grid named '" + grid_name + "' (grids in the file: " + (names.empty() ? "none" : names) + ")");
 }
 
-std::string grid_names(openvdb::io::File& vdb) {
-  std::string names;
-  for (auto name = vdb.beginName(); name != vdb.endName(); ++name)
-    names += (names.empty() ? "'" : ", '") + name.gridName() + "'";
-  return names.empty() ? "none" : names;
+// OpenVDB writes the active voxel count it saved as metadata; a mismatch means
+// the topology did not survive the trip.
+void check_saved_voxel_count(const openvdb::FloatGrid& grid, const std::filesystem::path& file) {
+  const auto saved = grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+  if (saved && std::uint64_t(saved->value()) != grid.activeVoxelCount())
+    throw LoadError(file, "grid '" + grid.getName() + "' has " + std::to_string(grid.activeVoxelCount()) +
+                              " active voxels but the file says it saved " + std::to_string(saved->value()));
 }
 
 openvdb::FloatGrid::Ptr read_float_grid(const std::filesystem::path& file, const std::string& grid_name) {
@@ -53,8 +69,7 @@ openvdb::FloatGrid::Ptr read_float_grid(const std::filesystem::path& file, const
   try {
     openvdb::io::File vdb(file.string());
     vdb.open(/*delayLoad=*/false);  // read now: no lazy mmap reads that could fail later
-    if (!vdb.hasGrid(grid_name))
-      throw LoadError(file, "no grid named '" + grid_name + "' (grids in the file: " + grid_names(vdb) + ")");
+    if (!vdb.hasGrid(grid_name)) throw LoadError(file, "OpenVDB does not find grid '" + grid_name + "'");
     base = vdb.readGrid(grid_name);
     vdb.close();
   } catch (const LoadError&) {
@@ -71,6 +86,7 @@ openvdb::FloatGrid::Ptr read_float_grid(const std::filesystem::path& file, const
     throw LoadError(file, label + " has background " + std::to_string(grid->background()) +
                               "; a fog volume needs 0 outside its active voxels");
   if (!grid->transform().isLinear()) throw LoadError(file, label + " has a non-linear (frustum) transform");
+  check_saved_voxel_count(*grid, file);
   return grid;
 }
 
@@ -168,7 +184,7 @@ void convert_to_nanovdb(Volume& volume, const openvdb::FloatGrid& grid, const st
 Volume load_vdb_volume(const std::filesystem::path& file, const VolumeOptions& options) {
   if (options.majorant_brick_size < 2 || options.majorant_brick_size > 64)
     throw LoadError(file, "majorant brick size " + std::to_string(options.majorant_brick_size) + " is outside 2 to 64");
-  check_vdb_file(file, options.max_file_bytes);
+  check_vdb_file(file, options.grid_name, options.max_file_bytes);
   initialize_openvdb();
   const openvdb::FloatGrid::Ptr grid = read_float_grid(file, options.grid_name);
 

@@ -1,0 +1,238 @@
+// Scene files: what parses, and exact messages (file, JSON path, problem) for what does not.
+#include "support.h"
+
+#include "scene/description.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace avsm::scene {
+namespace {
+
+using testing::load_error_of;
+
+const std::filesystem::path kSceneFile = "/scenes/test/scene.json";
+
+SceneDescription parse(const std::string& text) { return parse_scene_description(text, kSceneFile); }
+
+std::string error_of(const std::string& text) {
+  return load_error_of([&] { parse(text); });
+}
+
+// A valid scene with one of everything; tests break one thing at a time.
+std::string full_scene(const std::string& replace_from = "", const std::string& replace_to = "") {
+  std::string text = R"({
+  "version": 1,
+  "description": "test",
+  "models": [ { "name": "room", "file": "room.glb", "missing_normals": "smooth",
+                "transform": { "translation": [1, 2, 3], "rotation_deg": [0, 90, 0], "scale": 2 } } ],
+  "volumes": [ { "file": "/abs/smoke.vdb", "grid": "density", "extinction_scale": 4.5,
+                 "albedo": [0.5, 0.6, 0.7], "majorant_brick_size": 16 } ],
+  "hair": [ { "name": "pony", "file": "../hair/pony.tfx", "width": 0.001, "opacity": 0.4, "color": [0.3, 0.2, 0.1] },
+            { "file": "curl.hair" } ],
+  "lights": [
+    { "name": "sun", "type": "directional", "direction": [0, -2, 0], "intensity": 2,
+      "shadow": { "technique": "dsm", "nodes": 4, "resolution": 512, "filter": "point", "sort": false } },
+    { "type": "spot", "position": [0, 5, 0], "target": [0, 0, 0], "inner_cone_deg": 20, "outer_cone_deg": 30,
+      "color": [1, 0.5, 0.25],
+      "shadow": { "technique": "avsm", "nodes": 16, "filter": "trilinear", "parameters": { "depth_bias": 0.002 } } }
+  ],
+  "cameras": [ { "name": "main", "position": [0, 1, 5], "target": [0, 1, 0], "vertical_fov_deg": 60, "near": 0.1, "far": 100 },
+               { "position": [5, 1, 0], "target": [0, 1, 0], "up": [0, 2, 0], "vertical_fov_deg": 30, "near": 1, "far": 10 } ]
+})";
+  if (!replace_from.empty()) {
+    const auto at = text.find(replace_from);
+    EXPECT_NE(at, std::string::npos) << "test bug: '" << replace_from << "' not in the scene";
+    if (at != std::string::npos) text.replace(at, replace_from.size(), replace_to);
+  }
+  return text;
+}
+
+TEST(SceneDescription, MinimalSceneNeedsOnlyVersionAndACamera) {
+  const SceneDescription scene =
+      parse(R"({"version": 1, "cameras": [{"position": [0,0,1], "target": [0,0,0], "vertical_fov_deg": 45, "near": 0.1, "far": 10}]})");
+  EXPECT_TRUE(scene.models.empty() && scene.volumes.empty() && scene.hair.empty() && scene.lights.empty());
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  EXPECT_EQ(scene.cameras[0].name, "camera0");
+  EXPECT_EQ(scene.cameras[0].up, glm::vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(scene.cameras[0].vertical_fov, glm::radians(45.0f));
+}
+
+TEST(SceneDescription, FullSceneParsesEveryField) {
+  const SceneDescription scene = parse(full_scene());
+  EXPECT_EQ(scene.description, "test");
+  ASSERT_EQ(scene.models.size(), 1u);
+  EXPECT_EQ(scene.models[0].file, "/scenes/test/room.glb");
+  EXPECT_EQ(scene.models[0].missing_normals, NormalGeneration::smooth);
+  // T * Rz * Ry * Rx * S: (1, 0, 0) -> scale 2 -> rotate 90 about Y -> (0, 0, -2) -> + (1, 2, 3).
+  const glm::vec3 moved = glm::vec3(scene.models[0].transform * glm::vec4(1, 0, 0, 1));
+  EXPECT_NEAR(moved.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(moved.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(moved.z, 1.0f, 1e-5f);
+
+  ASSERT_EQ(scene.volumes.size(), 1u);
+  EXPECT_EQ(scene.volumes[0].file, "/abs/smoke.vdb");
+  EXPECT_EQ(scene.volumes[0].name, "smoke");
+  EXPECT_FLOAT_EQ(scene.volumes[0].extinction_scale, 4.5f);
+  EXPECT_EQ(scene.volumes[0].albedo, glm::vec3(0.5f, 0.6f, 0.7f));
+  EXPECT_EQ(scene.volumes[0].majorant_brick_size, 16);
+
+  ASSERT_EQ(scene.hair.size(), 2u);
+  EXPECT_EQ(scene.hair[0].file, "/scenes/hair/pony.tfx");
+  EXPECT_FLOAT_EQ(*scene.hair[0].width, 0.001f);
+  EXPECT_FLOAT_EQ(*scene.hair[0].opacity, 0.4f);
+  EXPECT_EQ(scene.hair[1].name, "curl");
+  EXPECT_FALSE(scene.hair[1].width.has_value());
+
+  ASSERT_EQ(scene.lights.size(), 2u);
+  const Light& sun = scene.lights[0];
+  EXPECT_EQ(sun.type, LightType::directional);
+  EXPECT_EQ(sun.direction, glm::vec3(0, -1, 0));
+  EXPECT_EQ(sun.shadow.technique, ShadowTechnique::dsm);
+  EXPECT_EQ(sun.shadow.nodes, 4);
+  EXPECT_EQ(sun.shadow.resolution, 512);
+  EXPECT_EQ(sun.shadow.filter, ShadowFilter::point);
+  EXPECT_FALSE(sun.shadow.sort);
+  const Light& spot = scene.lights[1];
+  EXPECT_EQ(spot.name, "light1");
+  EXPECT_EQ(spot.type, LightType::spot);
+  EXPECT_EQ(spot.direction, glm::vec3(0, -1, 0));  // from position to target
+  EXPECT_FLOAT_EQ(spot.outer_cone_angle, glm::radians(30.0f));
+  EXPECT_FLOAT_EQ(spot.inner_cone_angle, glm::radians(20.0f));
+  EXPECT_EQ(spot.shadow.resolution, 1024);  // default
+  EXPECT_EQ(spot.shadow.filter, ShadowFilter::trilinear);
+  EXPECT_DOUBLE_EQ(spot.shadow.parameter("depth_bias", 0.0), 0.002);
+  EXPECT_DOUBLE_EQ(spot.shadow.parameter("absent", 7.0), 7.0);
+  EXPECT_EQ(to_string(spot.shadow.technique), "avsm");
+
+  ASSERT_EQ(scene.cameras.size(), 2u);
+  EXPECT_EQ(scene.cameras[1].up, glm::vec3(0, 1, 0));  // normalised
+  EXPECT_FLOAT_EQ(scene.cameras[1].far_plane, 10.0f);
+}
+
+TEST(SceneDescription, MatrixTransformIsColumnMajor) {
+  const SceneDescription scene = parse(full_scene(
+      R"("translation": [1, 2, 3], "rotation_deg": [0, 90, 0], "scale": 2)",
+      R"("matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 7,8,9,1])"));
+  EXPECT_EQ(glm::vec3(scene.models[0].transform[3]), glm::vec3(7, 8, 9));
+}
+
+// ---- every error names the file and the JSON path ----
+
+TEST(SceneDescriptionErrors, UnknownKeyNamesThePathAndSuggests) {
+  EXPECT_THAT(error_of(full_scene(R"("nodes": 16)", R"("nodez": 16)")),
+              StartsWith("/scenes/test/scene.json: lights[1].shadow.nodez: unknown key (did you mean 'nodes'?); allowed here: "
+                         "technique, nodes, resolution, filter, sort, parameters"));
+  EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 1, "colour": 2,)")),
+              HasSubstr("scene.json: colour: unknown key"));
+  EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", R"("grid": "density", "density_scale": 2,)")),
+              HasSubstr("volumes[0].density_scale: unknown key"));
+}
+
+TEST(SceneDescriptionErrors, MistypedValues) {
+  EXPECT_THAT(error_of(full_scene(R"("intensity": 2)", R"("intensity": "bright")")),
+              HasSubstr("scene.json: lights[0].intensity: expected a number, got a string"));
+  EXPECT_THAT(error_of(full_scene(R"("nodes": 4)", R"("nodes": 8.0)")),
+              HasSubstr("lights[0].shadow.nodes: expected a whole number, got a number with a fraction"));
+  EXPECT_THAT(error_of(full_scene(R"("sort": false)", R"("sort": 0)")),
+              HasSubstr("lights[0].shadow.sort: expected true or false, got an integer"));
+  EXPECT_THAT(error_of(full_scene(R"("albedo": [0.5, 0.6, 0.7])", R"("albedo": [0.5, 0.6])")),
+              HasSubstr("volumes[0].albedo: expected an array of 3 numbers, got an array of 2"));
+  EXPECT_THAT(error_of(full_scene(R"("target": [0, 1, 0], "vertical_fov_deg": 60)", R"("target": [0, "1", 0], "vertical_fov_deg": 60)")),
+              HasSubstr("cameras[0].target[1]: expected a number, got a string"));
+  EXPECT_THAT(error_of(full_scene(R"("hair": [)", R"("hair": {"x": 1}, "unused": [)")),
+              HasSubstr("hair: expected an array, got an object"));
+  EXPECT_THAT(error_of(R"([1, 2])"), HasSubstr("scene.json: top level: expected an object, got an array"));
+}
+
+TEST(SceneDescriptionErrors, OutOfRangeValues) {
+  EXPECT_THAT(error_of(full_scene(R"("nodes": 16)", R"("nodes": 10)")),
+              HasSubstr("lights[1].shadow.nodes: must be 4, 8, 12 or 16, got 10"));
+  EXPECT_THAT(error_of(full_scene(R"("technique": "dsm")", R"("technique": "vsm")")),
+              HasSubstr("lights[0].shadow.technique: 'vsm' is not one of avsm, uncompressed, dsm, osm, fom"));
+  EXPECT_THAT(error_of(full_scene(R"("filter": "point")", R"("filter": "cubic")")),
+              HasSubstr("lights[0].shadow.filter: 'cubic' is not one of point, bilinear, trilinear"));
+  EXPECT_THAT(error_of(full_scene(R"("resolution": 512)", R"("resolution": 8)")),
+              HasSubstr("lights[0].shadow.resolution: must be 16 to 16384 texels, got 8"));
+  EXPECT_THAT(error_of(full_scene(R"("outer_cone_deg": 30)", R"("outer_cone_deg": 95)")),
+              HasSubstr("lights[1].outer_cone_deg: must be between 0 and 90 degrees"));
+  EXPECT_THAT(error_of(full_scene(R"("inner_cone_deg": 20)", R"("inner_cone_deg": 40)")),
+              HasSubstr("lights[1].inner_cone_deg: must be between 0 and outer_cone_deg"));
+  EXPECT_THAT(error_of(full_scene(R"("near": 0.1, "far": 100)", R"("near": 0.1, "far": 0.05)")),
+              HasSubstr("cameras[0].far: must be greater than near"));
+  EXPECT_THAT(error_of(full_scene(R"("up": [0, 2, 0])", R"("up": [-1, 0, 0])")),
+              HasSubstr("cameras[1].up: is zero or parallel to the viewing direction"));
+  EXPECT_THAT(error_of(full_scene(R"("extinction_scale": 4.5)", R"("extinction_scale": -1)")),
+              HasSubstr("volumes[0].extinction_scale: must be >= 0"));
+  EXPECT_THAT(error_of(full_scene(R"("albedo": [0.5, 0.6, 0.7])", R"("albedo": [0.5, 1.6, 0.7])")),
+              HasSubstr("volumes[0].albedo: each component must be in [0, 1]"));
+  EXPECT_THAT(error_of(full_scene(R"("opacity": 0.4)", R"("opacity": 1.4)")), HasSubstr("hair[0].opacity: must be in [0, 1]"));
+  EXPECT_THAT(error_of(full_scene(R"("direction": [0, -2, 0])", R"("direction": [0, 0, 0])")),
+              HasSubstr("lights[0].direction: gives no direction (zero length)"));
+  EXPECT_THAT(error_of(full_scene(R"("majorant_brick_size": 16)", R"("majorant_brick_size": 100)")),
+              HasSubstr("volumes[0].majorant_brick_size: must be 2 to 64 voxels"));
+  EXPECT_THAT(error_of(full_scene(R"("scale": 2)", R"("scale": [1, 0, 1])")),
+              HasSubstr("models[0].transform: transform is singular"));
+  EXPECT_THAT(error_of(full_scene(R"("depth_bias": 0.002)", R"("depth_bias": "small")")),
+              HasSubstr("lights[1].shadow.parameters.depth_bias: expected a number, got a string"));
+}
+
+TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
+  EXPECT_THAT(error_of(full_scene(R"("version": 1,)", "")), HasSubstr("scene.json: version: required key is missing"));
+  EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 2,)")), HasSubstr("version: unsupported version 2"));
+  EXPECT_THAT(error_of(R"({"version": 1})"), HasSubstr("cameras: required key is missing"));
+  EXPECT_THAT(error_of(R"({"version": 1, "cameras": []})"), HasSubstr("cameras: a scene needs at least one camera"));
+  EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", "")), HasSubstr("volumes[0].grid: required key is missing"));
+  EXPECT_THAT(error_of(full_scene(R"("type": "spot", )", "")), HasSubstr("lights[1].type: required key is missing"));
+  EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "position": [1, 1, 1],)")),
+              HasSubstr("lights[0].position: only spot lights have this"));
+  EXPECT_THAT(error_of(full_scene(R"("target": [0, 0, 0], "inner)", R"("target": [0, 0, 0], "direction": [0, -1, 0], "inner)")),
+              HasSubstr("lights[1].direction: give exactly one of 'direction' and 'target'"));
+  EXPECT_THAT(error_of(full_scene(R"("scale": 2 })", R"("scale": 2, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1] })")),
+              HasSubstr("models[0].transform.translation: cannot be combined with 'matrix'"));
+  EXPECT_THAT(error_of(full_scene(R"("translation": [1, 2, 3], "rotation_deg": [0, 90, 0], "scale": 2)",
+                                  R"("matrix": [1,0,0,1, 0,1,0,0, 0,0,1,0, 0,0,0,1])")),
+              HasSubstr("models[0].transform.matrix: not an affine transform"));
+  EXPECT_THAT(error_of(full_scene(R"({ "position": [5, 1, 0])", R"({ "name": "main", "position": [5, 1, 0])")),
+              HasSubstr("cameras[1].name: 'main' is already used by cameras[0]; names must be unique"));
+}
+
+TEST(SceneDescriptionErrors, HairFilesNeedAKnownFormatAndWidthsWhereTheFileHasNone) {
+  EXPECT_THAT(error_of(full_scene(R"("width": 0.001, )", "")),
+              HasSubstr("hair[0].width: required for .tfx files, which store no absolute strand widths"));
+  EXPECT_THAT(error_of(full_scene(R"("curl.hair")", R"("curl.obj")")),
+              HasSubstr("hair[1].file: unknown hair format '.obj' (expected .tfx, .hair, .gltf or .glb)"));
+  EXPECT_THAT(error_of(full_scene(R"("curl.hair")", R"("")")), HasSubstr("hair[1].file: must not be empty"));
+}
+
+TEST(SceneDescriptionErrors, InvalidJsonAndDuplicateKeys) {
+  EXPECT_THAT(error_of("{\n  \"version\": 1,\n  \"cameras\": [,]\n}"),
+              AllOf(HasSubstr("scene.json: invalid JSON: parse error at line 3, column 15"), ::testing::Not(HasSubstr("json.exception"))));
+  EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "intensity": 3,)")),
+              HasSubstr("scene.json: lights[0].intensity: duplicate key"));
+  EXPECT_THAT(error_of(full_scene(R"("depth_bias": 0.002)", R"("depth_bias": 0.002, "depth_bias": 0.003)")),
+              HasSubstr("lights[1].shadow.parameters.depth_bias: duplicate key"));
+  EXPECT_THAT(error_of(""), HasSubstr("invalid JSON"));
+  // Found by the fuzzer: nlohmann reports number overflow as out_of_range, not parse_error.
+  EXPECT_THAT(error_of(R"({"version": 1e999})"), HasSubstr("scene.json: invalid JSON: number overflow parsing '1e999'"));
+}
+
+TEST(SceneDescriptionErrors, MissingSceneFile) {
+  EXPECT_THAT(load_error_of([] { read_scene_description("/nonexistent/scene.json"); }),
+              HasSubstr("/nonexistent/scene.json: file not found"));
+}
+
+TEST(SceneDescription, EveryExampleSceneParses) {
+  const auto examples = testing::project_content("examples");
+  AVSM_REQUIRE_FILE(examples);
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(examples)) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_NO_THROW(read_scene_description(entry.path())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 6);
+  EXPECT_NO_THROW(read_scene_description(testing::project_content("real_assets.scene.json")));
+}
+
+}  // namespace
+}  // namespace avsm::scene

@@ -1,0 +1,43 @@
+// avsm-make-content --out DIR: writes the default scene into DIR.
+#include "content.h"
+
+#include "scene/load_error.h"
+
+#include <cstring>
+#include <exception>
+#include <iostream>
+
+namespace {
+
+int usage(const char* problem) {
+  std::cerr << "avsm-make-content: " << problem << "\nusage: avsm-make-content --out DIR\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::filesystem::path out;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
+      out = argv[++i];
+    } else if (std::strcmp(argv[i], "--help") == 0) {
+      usage("writes the procedural default scene (scene.json, plume.vdb, curtain.hair, stage.gltf, stage.bin)");
+      return 0;
+    } else {
+      return usage((std::string("unknown option '") + argv[i] + "'").c_str());
+    }
+  }
+  if (out.empty()) return usage("--out is required");
+  try {
+    std::filesystem::create_directories(out);
+    avsm::content::write_plume_vdb(out / "plume.vdb");
+    avsm::content::write_curtain_hair(out / "curtain.hair");
+    avsm::content::write_stage_gltf(out / "stage.gltf", out / "stage.bin");
+    avsm::content::write_scene_json(out / "scene.json");
+  } catch (const std::exception& error) {
+    std::cerr << "avsm-make-content: " << error.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
