@@ -9,6 +9,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+# PNanoVDB.h compiles as GLSL: shaders include it as "nanovdb/PNanoVDB.h".
+find_path(NANOVDB_INCLUDE_DIR nanovdb/PNanoVDB.h REQUIRED)
 
 if(AVSM_BUILD_TESTS)
   find_package(GTest REQUIRED)

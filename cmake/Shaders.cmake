@@ -20,7 +20,7 @@ function(avsm_add_shaders target)
       OUTPUT "${out}"
       COMMAND ${CMAKE_COMMAND} -E make_directory "${out_dir}"
       COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -g
-              -I${AVSM_SHADER_INCLUDE_DIR} --depfile "${out}.d" -o "${out}" "${abs}"
+              -I${AVSM_SHADER_INCLUDE_DIR} $<$<BOOL:${NANOVDB_INCLUDE_DIR}>:-I${NANOVDB_INCLUDE_DIR}> --depfile "${out}.d" -o "${out}" "${abs}"
       DEPENDS "${abs}"
       DEPFILE "${out}.d"
       COMMENT "GLSL ${rel}"

@@ -20,8 +20,10 @@ void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const Col
   if (depth) {
     depth_info.imageView = depth->view;
     depth_info.imageLayout = depth->layout;
-    depth_info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth_info.storeOp = depth->store ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth_info.loadOp = depth->read_only ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth_info.storeOp = depth->read_only ? VK_ATTACHMENT_STORE_OP_NONE
+                         : depth->store   ? VK_ATTACHMENT_STORE_OP_STORE
+                                          : VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth_info.clearValue.depthStencil = {depth->clear, 0};
   }
   VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};

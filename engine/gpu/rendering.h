@@ -18,7 +18,8 @@ struct DepthTarget {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   float clear = 1.0f;
-  bool store = false;  // keep depth after the pass
+  bool store = false;      // keep depth after the pass
+  bool read_only = false;  // test against existing depth: load it, write nothing (store op NONE)
 };
 
 // flip_y: a negative-height viewport, so +y in clip space points up (GL-style

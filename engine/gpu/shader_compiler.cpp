@@ -13,6 +13,9 @@
 #ifndef AVSM_DEFAULT_SOURCE_DIR
 #define AVSM_DEFAULT_SOURCE_DIR "."
 #endif
+#ifndef AVSM_NANOVDB_INCLUDE_DIR
+#define AVSM_NANOVDB_INCLUDE_DIR "/usr/include"
+#endif
 #ifndef AVSM_DEFAULT_SPIRV_DIR
 #define AVSM_DEFAULT_SPIRV_DIR "spirv"
 #endif
@@ -163,7 +166,7 @@ ShaderLibrary::ShaderLibrary(Paths paths, bool compile_from_source)
 
 CompiledShader ShaderLibrary::compile(const std::string& relative_path) const {
   ShaderCompileOptions options;
-  options.include_dirs = {paths_.source_root / "shaders"};
+  options.include_dirs = {paths_.source_root / "shaders", AVSM_NANOVDB_INCLUDE_DIR};
   return compile_glsl_file(paths_.source_root / relative_path, options);
 }
 

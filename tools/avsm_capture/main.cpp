@@ -10,6 +10,8 @@ namespace {
 
 const char* kUsage =
     "usage: avsm-capture [options]\n"
+    "  --scene FILE     scene JSON (default: the generated default scene)\n"
+    "  --camera NAME    camera by name or index (default: the scene's first)\n"
     "  --out DIR        output folder (default out/capture)\n"
     "  --width N        image width (default 1280)\n"
     "  --height N       image height (default 720)\n"
@@ -48,6 +50,10 @@ int main(int argc, char** argv) {
     if (arg == "--help" || arg == "-h") {
       std::printf("%s", kUsage);
       return 0;
+    } else if (arg == "--scene") {
+      options.scene = value();
+    } else if (arg == "--camera") {
+      options.camera = value();
     } else if (arg == "--out") {
       options.out_dir = value();
     } else if (arg == "--width") {

@@ -1,0 +1,54 @@
+#include "renderer/scene_renderer.h"
+
+#include "passes/lights.h"
+
+namespace avsm::renderer {
+
+static gpu::Image output_image(gpu::Context& ctx, uint32_t width, uint32_t height, VkFormat format,
+                               VkImageUsageFlags usage, const char* name) {
+  gpu::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = format;
+  desc.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  desc.name = name;
+  return gpu::Image::create(ctx, desc);
+}
+
+SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const scene::Scene& scene,
+                             uint32_t width, uint32_t height)
+    : ctx_(ctx),
+      width_(width),
+      height_(height),
+      lights_(passes::upload_lights(ctx, scene.lights)),
+      light_count_(uint32_t(scene.lights.size())),
+      opaque_(ctx, shaders),
+      hair_(ctx, shaders),
+
+      tonemap_(ctx, shaders) {
+  opaque_.set_scene(scene);
+  hair_.set_scene(scene);
+
+  hdr_ = output_image(ctx, width, height, passes::OpaquePass::kColorFormat,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "hdr color");
+  ldr_ = output_image(ctx, width, height, passes::TonemapPass::kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT, "tonemapped");
+}
+
+rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passes::View& view) {
+  rg::Graph graph;
+  // Both outputs are read back after the frame, hence TransferSrc as their final state.
+  rg::TextureHandle hdr = graph.import_texture("hdr color", {width_, height_, 1, 1, 1, passes::OpaquePass::kColorFormat},
+                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
+  rg::TextureHandle ldr = graph.import_texture("tonemapped", {width_, height_, 1, 1, 1, passes::TonemapPass::kOutputFormat},
+                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
+  executor.bind(hdr, hdr_);
+  executor.bind(ldr, ldr_);
+
+  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_);
+  rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_);
+
+  tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
+  return graph;
+}
+
+}  // namespace avsm::renderer

@@ -1,0 +1,145 @@
+#include "passes/opaque_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/context.h"
+#include "gpu/rendering.h"
+#include "gpu/transfer.h"
+
+namespace avsm::passes {
+
+namespace {
+
+// std430 mirrors of shaders/passes/opaque.vert/.frag.
+struct GpuVertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+};
+struct GpuMaterial {
+  glm::vec4 base_color;
+  uint32_t alpha_mask;  // 1: discard below alpha_cutoff
+  float alpha_cutoff;
+  uint32_t has_texture;
+  float pad;
+};
+struct OpaquePush {
+  glm::mat4 view_projection;
+  glm::vec4 camera_position;
+  uint32_t material;
+  uint32_t light_count;
+};
+
+constexpr glm::vec4 kSkyColor{0.35f, 0.45f, 0.6f, 1.0f};
+
+gpu::Image upload_texture(gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
+                          const std::string& name) {
+  gpu::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R8G8B8A8_SRGB;  // glTF base colour textures are sRGB
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = name;
+  gpu::Image image = gpu::Image::create(ctx, desc);
+  gpu::upload_image(ctx, image, rgba8, VkDeviceSize(width) * height * 4, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  return image;
+}
+
+template <class T>
+gpu::Buffer storage_buffer(gpu::Context& ctx, const std::vector<T>& data, VkBufferUsageFlags usage,
+                           const std::string& name) {
+  return gpu::create_buffer_with_data(ctx, {0, usage, gpu::MemoryLocation::DeviceLocal, name}, data.data(),
+                                      data.size() * sizeof(T));
+}
+
+}  // namespace
+
+OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}) {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = "opaque";
+  desc.vertex = shaders.load("shaders/passes/opaque.vert");
+  desc.fragment = shaders.load("shaders/passes/opaque.frag");
+  desc.color_formats = {kColorFormat};
+  desc.depth_format = kDepthFormat;
+  desc.depth_test = desc.depth_write = true;
+  desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
+  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+  const uint8_t white[4] = {255, 255, 255, 255};
+  white_ = upload_texture(ctx, 1, 1, white, "white texture");
+}
+
+void OpaquePass::set_scene(const scene::Scene& scene) {
+  std::vector<GpuVertex> vertices;
+  std::vector<uint32_t> indices;
+  draws_.clear();
+  for (const scene::Mesh& mesh : scene.meshes) {
+    Draw draw{uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size()), mesh.material};
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0, 1, 0);
+      glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0);
+      const glm::vec3& p = mesh.positions[v];
+      vertices.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}});
+    }
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    if (draw.index_count > 0) draws_.push_back(draw);
+  }
+  std::vector<GpuMaterial> materials;
+  material_textures_.clear();
+  for (const scene::Material& m : scene.materials) {
+    materials.push_back({m.base_color_factor, m.alpha_mode == scene::AlphaMode::mask ? 1u : 0u, m.alpha_cutoff,
+                         m.base_color_texture >= 0 ? 1u : 0u, 0.0f});
+    material_textures_.push_back(m.base_color_texture);
+  }
+  if (materials.empty()) materials.push_back({glm::vec4(0.8f), 0, 0.5f, 0, 0});
+  if (vertices.empty()) vertices.push_back({});
+  if (indices.empty()) indices.push_back(0);
+  vertices_ = storage_buffer(ctx_, vertices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
+  indices_ = storage_buffer(ctx_, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
+  materials_ = storage_buffer(ctx_, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
+  textures_.clear();
+  for (const scene::Texture& t : scene.textures)
+    textures_.push_back(upload_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));
+}
+
+VkImageView OpaquePass::texture_view(int texture) const {
+  return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
+}
+
+OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view,
+                                             const gpu::Buffer& lights, uint32_t light_count) {
+  const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, Outputs& d) {
+        d.color = b.write(color, rg::Usage::ColorAttachment);
+        rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat};
+        d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
+      },
+      [this, view, &lights, light_count](const Outputs& d, rg::PassContext& c) { record(c, d, view, lights, light_count); });
+  return out;
+}
+
+void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
+                        uint32_t light_count) const {
+  VkCommandBuffer cmd = c.cmd();
+  gpu::ColorTarget color{c.view(targets.color), c.layout(targets.color),
+                         {{kSkyColor.r, kSkyColor.g, kSkyColor.b, kSkyColor.a}}};
+  gpu::DepthTarget depth{c.view(targets.depth), c.layout(targets.depth), 1.0f, /*store=*/true};
+  gpu::begin_rendering(cmd, {view.width, view.height}, {&color, 1}, &depth, /*flip_y=*/true);
+  pipeline_.bind(cmd);
+  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  for (const Draw& draw : draws_) {
+    int texture = draw.material < material_textures_.size() ? material_textures_[draw.material] : -1;
+    gpu::Bindings(ctx_, pipeline_)
+        .buffer(0, vertices_.handle())
+        .buffer(1, materials_.handle())
+        .buffer(2, lights.handle())
+        .image(3, texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle())
+        .push(cmd);
+    pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
+                                             draw.material, light_count});
+    vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+  }
+  vkCmdEndRendering(cmd);
+}
+
+}  // namespace avsm::passes

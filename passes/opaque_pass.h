@@ -1,0 +1,56 @@
+#pragma once
+// Opaque glTF geometry from the camera: depth + lit HDR colour. Lighting is
+// Lambert with a sky ambient term; every light is attenuated by
+// light_transmittance() (shaders/common/shadow_lookup.glsl), where the AVSM
+// lookup plugs in. All meshes share one vertex and one index buffer; a draw per
+// mesh pushes its material index and texture.
+#include <rendergraph/graph.h>
+
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "gpu/resources.h"
+#include "passes/view.h"
+#include "scene/scene.h"
+
+namespace avsm::passes {
+
+class OpaquePass {
+ public:
+  static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+  OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  void set_scene(const scene::Scene& scene);
+
+  struct Outputs {
+    rg::TextureHandle color;  // written as ColorAttachment
+    rg::TextureHandle depth;  // written as DepthAttachmentWrite
+  };
+  // Clears `color` to the sky colour and a new transient depth buffer to far,
+  // then draws every mesh.
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view, const gpu::Buffer& lights,
+                       uint32_t light_count);
+
+ private:
+  struct Draw {
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+    uint32_t material;
+  };
+  void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
+              uint32_t light_count) const;
+  VkImageView texture_view(int texture) const;
+
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler sampler_;
+  gpu::Buffer vertices_, indices_, materials_;
+  std::vector<gpu::Image> textures_;
+  gpu::Image white_;
+  std::vector<Draw> draws_;
+  std::vector<int> material_textures_;
+};
+
+}  // namespace avsm::passes

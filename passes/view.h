@@ -1,0 +1,23 @@
+#pragma once
+// The camera of a frame, as the passes need it.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+#include "scene/camera.h"
+
+namespace avsm::passes {
+
+struct View {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};       // Vulkan clip space (depth 0..1), +y up with a flipped viewport
+  glm::mat4 view_projection{1.0f};
+  glm::mat4 inverse_view_projection{1.0f};
+  glm::vec3 camera_position{0.0f};
+  uint32_t width = 1, height = 1;
+  float near_plane = 0.1f, far_plane = 100.0f;
+};
+
+View make_view(const scene::Camera& camera, uint32_t width, uint32_t height);
+
+}  // namespace avsm::passes
