@@ -11,6 +11,10 @@ set(AVSM_SHADER_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/shaders" CACHE INTERNAL "GLSL i
 function(avsm_add_shaders target)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
   set(outputs)
+  set(include_flags -I${AVSM_SHADER_INCLUDE_DIR})
+  if(NANOVDB_INCLUDE_DIR)
+    list(APPEND include_flags -I${NANOVDB_INCLUDE_DIR})
+  endif()
   foreach(src IN LISTS ARG_SOURCES)
     get_filename_component(abs "${src}" ABSOLUTE)
     file(RELATIVE_PATH rel "${CMAKE_SOURCE_DIR}" "${abs}")
@@ -20,7 +24,7 @@ function(avsm_add_shaders target)
       OUTPUT "${out}"
       COMMAND ${CMAKE_COMMAND} -E make_directory "${out_dir}"
       COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -g
-              -I${AVSM_SHADER_INCLUDE_DIR} $<$<BOOL:${NANOVDB_INCLUDE_DIR}>:-I${NANOVDB_INCLUDE_DIR}> --depfile "${out}.d" -o "${out}" "${abs}"
+              ${include_flags} --depfile "${out}.d" -o "${out}" "${abs}"
       DEPENDS "${abs}"
       DEPFILE "${out}.d"
       COMMENT "GLSL ${rel}"
