@@ -1,0 +1,123 @@
+// The AVSM core (Salvi et al., EGSR 2010), written once for GLSL and C++.
+//
+// A curve is a front-to-back sorted list of nodes (depth, transmittance) that
+// describes transmittance along one light ray, linear between nodes, 1 in front
+// of the first node and the last node's value behind it. Streaming insertion
+// composites one segment at a time and compresses back to `max_nodes` by
+// removing the interior node whose removal changes the area under the curve
+// least; the first and last nodes are never removed and no node ever moves.
+//
+// C++ includes this file through passes/avsm_core.h, which defines AVSM_INOUT
+// and brings GLSL's built-ins (min, max, abs, mix, exp, pow) in from GLM. Keep
+// to the common subset: no GLSL-only syntax, float literals with an f suffix.
+#ifndef AVSM_CORE_GLSL
+#define AVSM_CORE_GLSL
+
+#ifndef AVSM_INOUT
+#define AVSM_INOUT(T) inout T
+#endif
+
+// Room for the largest node count plus the two nodes one insertion adds.
+#define AVSM_MAX_NODES 16
+#define AVSM_CURVE_CAPACITY 18
+
+struct AvsmCurve {
+  float depth[AVSM_CURVE_CAPACITY];
+  float trans[AVSM_CURVE_CAPACITY];
+  int count;
+};
+
+// The cleared curve: one node at the far plane with transmittance 1 (the
+// course notes' "clear to (far, 1)").
+AvsmCurve avsm_clear(float far_depth) {
+  AvsmCurve c;
+  for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i) {
+    c.depth[i] = far_depth;
+    c.trans[i] = 1.0f;
+  }
+  c.count = 1;
+  return c;
+}
+
+// Transmittance of the curve at depth d with linear interpolation between nodes.
+float avsm_evaluate_linear(AvsmCurve c, float d) {
+  if (d <= c.depth[0]) return 1.0f;
+  for (int i = 1; i < c.count; ++i) {
+    if (d < c.depth[i]) {
+      float span = c.depth[i] - c.depth[i - 1];
+      float t = span > 0.0f ? (d - c.depth[i - 1]) / span : 1.0f;
+      return mix(c.trans[i - 1], c.trans[i], t);
+    }
+  }
+  return c.trans[c.count - 1];
+}
+
+// Inserts a node at depth d with the curve's current value there; returns its index.
+// The caller multiplies it (and the nodes behind it) by the segment's transmittance.
+int avsm_insert_node(AVSM_INOUT(AvsmCurve) c, float d) {
+  float value = avsm_evaluate_linear(c, d);
+  int at = c.count;
+  while (at > 0 && c.depth[at - 1] > d) {
+    c.depth[at] = c.depth[at - 1];
+    c.trans[at] = c.trans[at - 1];
+    --at;
+  }
+  c.depth[at] = d;
+  c.trans[at] = value;
+  c.count += 1;
+  return at;
+}
+
+// Area change of removing interior node i: twice the triangle (i-1, i, i+1),
+// the paper's |(d[i+1]-d[i-1])(t[i+1]-t[i]) - (d[i+1]-d[i])(t[i+1]-t[i-1])|.
+float avsm_removal_cost(AvsmCurve c, int i) {
+  return abs((c.depth[i + 1] - c.depth[i - 1]) * (c.trans[i + 1] - c.trans[i]) -
+             (c.depth[i + 1] - c.depth[i]) * (c.trans[i + 1] - c.trans[i - 1]));
+}
+
+void avsm_remove_node(AVSM_INOUT(AvsmCurve) c, int i) {
+  for (int k = i; k + 1 < c.count; ++k) {
+    c.depth[k] = c.depth[k + 1];
+    c.trans[k] = c.trans[k + 1];
+  }
+  c.count -= 1;
+}
+
+// Removes the cheapest interior node until at most max_nodes remain (ties: the
+// front-most, so results are deterministic).
+void avsm_compress(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
+  while (c.count > max_nodes && c.count > 2) {
+    int cheapest = 1;
+    float cheapest_cost = avsm_removal_cost(c, 1);
+    for (int i = 2; i + 1 < c.count; ++i) {
+      float cost = avsm_removal_cost(c, i);
+      if (cost < cheapest_cost) {
+        cheapest_cost = cost;
+        cheapest = i;
+      }
+    }
+    avsm_remove_node(c, cheapest);
+  }
+}
+
+// Composites one occluding segment [entry, exit] whose transmittance falls
+// linearly from 1 at entry to exit_trans at exit (the paper's segments; an
+// opaque blocker is a short segment with exit_trans 0), then compresses.
+void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth, float exit_trans, int max_nodes) {
+  float far_depth = c.depth[c.count - 1];
+  entry = min(entry, far_depth);
+  exit_depth = min(max(exit_depth, entry), far_depth);
+  int first = avsm_insert_node(c, entry);
+  int last = avsm_insert_node(c, exit_depth);
+  // Nodes inside the segment get the segment's value at their depth; nodes behind it its exit value.
+  float length = exit_depth - entry;
+  for (int i = first; i < c.count; ++i) {
+    float s = i >= last ? exit_trans
+                        : (length > 0.0f ? mix(1.0f, exit_trans, (c.depth[i] - entry) / length) : exit_trans);
+    if (i == first) s = 1.0f;
+    c.trans[i] *= s;
+  }
+  avsm_compress(c, max_nodes);
+}
+
+#endif
