@@ -24,10 +24,12 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
       light_count_(uint32_t(scene.lights.size())),
       opaque_(ctx, shaders),
       hair_(ctx, shaders),
+      volumes_(ctx, shaders),
 
       tonemap_(ctx, shaders) {
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
+  volumes_.set_volumes(scene.volumes);
 
   hdr_ = output_image(ctx, width, height, passes::OpaquePass::kColorFormat,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "hdr color");
@@ -46,6 +48,7 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
   passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_);
   rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_);
+  color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_);
 
   tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
   return graph;

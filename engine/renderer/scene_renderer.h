@@ -12,6 +12,7 @@
 #include "passes/opaque_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
+#include "passes/volume_pass.h"
 
 #include "scene/scene.h"
 
@@ -37,6 +38,7 @@ class SceneRenderer {
   uint32_t light_count_ = 0;
   passes::OpaquePass opaque_;
   passes::HairPass hair_;
+  passes::VolumePass volumes_;
 
   passes::TonemapPass tonemap_;
   gpu::Image hdr_, ldr_;

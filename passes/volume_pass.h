@@ -1,0 +1,97 @@
+#pragma once
+// Fog volumes seen from the camera: a compute pass that ray-marches every volume
+// for every pixel, up to the opaque depth, and composites onto the lit colour in place:
+//   color = color * T_camera + in-scattered light.
+// In-scattering at each sample is sigma_s * phase * sum over lights of
+// light_radiance() * light_transmittance() * T_camera so far, with an isotropic phase
+// function; light_transmittance() (shaders/common/shadow_lookup.glsl) is where the AVSM
+// shadow lookup plugs in.
+//
+// The volumes are read straight from their NanoVDB grids (PNanoVDB in GLSL, trilinear,
+// like scene::sample_density) with no dense 3D texture. All grids share one storage
+// buffer, each at its own 32-byte-aligned offset, so one dispatch can march every
+// volume per pixel in front-to-back order. The majorant bricks (max density per brick
+// of voxels) let the march skip empty space. Shaders: shaders/passes/volume_march.comp,
+// shaders/common/volume.glsl.
+#include <rendergraph/graph.h>
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/view.h"
+#include "scene/volume.h"
+
+namespace avsm::passes {
+
+// std430, 144 bytes; mirrors struct GpuVolume in shaders/common/volume.glsl.
+struct GpuVolume {
+  glm::mat4 index_from_world;
+  glm::vec3 support_min;        // index space: where the trilinear density can be non-zero
+  float step_length;            // world units between samples
+  glm::vec3 support_max;
+  float extinction_scale;       // sigma_t = extinction_scale * density, per world unit
+  glm::vec3 albedo;             // sigma_s = albedo * sigma_t
+  uint32_t grid_byte_offset;    // start of this volume's NanoVDB grid in the shared buffer
+  glm::ivec3 majorant_origin;   // index coordinate of the corner of brick (0, 0, 0)
+  int32_t brick_size;           // voxels per brick edge
+  glm::ivec3 majorant_dims;     // bricks per axis, x fastest
+  uint32_t majorant_offset;     // start of this volume's bricks in the shared majorant buffer
+};
+static_assert(sizeof(GpuVolume) == 144);
+static_assert(offsetof(GpuVolume, step_length) == 76 && offsetof(GpuVolume, grid_byte_offset) == 108 &&
+              offsetof(GpuVolume, majorant_offset) == 140);
+
+class VolumePass {
+ public:
+  static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+  // Sample spacing as a fraction of the volume's smallest voxel edge: the same spacing
+  // as the CPU reference (scene::optical_depth), fine enough that the midpoint rule
+  // agrees with it to well under 1% on real smoke.
+  static constexpr float kStepInVoxels = 0.25f;
+
+  VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // Uploads every volume: its NanoVDB bytes (all volumes in one storage buffer), its
+  // majorant grid, and its parameter block (transforms, bounds, extinction scale, albedo).
+  // Replaces what an earlier call uploaded (call it between frames: the old buffers go
+  // at once); an empty list turns the pass off. Throws std::invalid_argument naming the
+  // volume if one is not a usable NanoVDB float grid or has a malformed majorant grid.
+  void set_volumes(const std::vector<scene::Volume>& volumes);
+
+  // Marches the volumes from the camera for every pixel, stopping at the opaque depth,
+  // and composites onto `color` in place. Returns the written version of `color`, or
+  // `color` itself when there are no volumes (no pass is added). `lights` must hold at
+  // least max(light_count, 1) GpuLight entries (passes/lights.h) and outlive the frame.
+  rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color /*R16G16B16A16_SFLOAT, StorageReadWrite*/,
+                                 rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, const View& view,
+                                 const gpu::Buffer& lights, uint32_t light_count);
+
+  // Debug switch: march through empty bricks too. The image must not change; it only
+  // exists so tests can check that skipping never drops density.
+  void set_majorant_skipping(bool enabled) { majorant_skipping_ = enabled; }
+
+  uint32_t volume_count() const { return volume_count_; }
+
+ private:
+  static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
+  void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
+              const gpu::Buffer& lights, uint32_t light_count, bool majorant_skipping) const;
+
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler depth_sampler_;
+  gpu::Buffer grids_;       // every NanoVDB grid, 32-byte aligned
+  gpu::Buffer majorants_;   // every majorant grid, floats
+  gpu::Buffer parameters_;  // one GpuVolume per volume
+  uint32_t volume_count_ = 0;
+  bool majorant_skipping_ = true;
+};
+
+}  // namespace avsm::passes

@@ -1,0 +1,118 @@
+// Fog volumes on the GPU: the parameter block, NanoVDB density lookups and the
+// majorant grid. Mirrors passes/volume_pass.h (struct GpuVolume). Shared by every
+// pass that marches volumes (the camera march today, the AVSM shadow march later).
+//
+// Before including, define the bindings of the three storage buffers:
+//   AVSM_VOLUME_BINDING_NANOVDB    every volume's NanoVDB grid, one after another
+//   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid, one after another
+//   AVSM_VOLUME_BINDING_PARAMETERS one GpuVolume per volume
+#ifndef AVSM_VOLUME_GLSL
+#define AVSM_VOLUME_GLSL
+
+#extension GL_GOOGLE_include_directive : require
+
+// PNanoVDB reads its buffer through the global array `pnanovdb_buf_data` (32-bit
+// addressing: every grid must lie in the first 4 GiB of the buffer).
+layout(std430, binding = AVSM_VOLUME_BINDING_NANOVDB) readonly buffer VolumeNanoVdb { uint pnanovdb_buf_data[]; };
+#define PNANOVDB_GLSL
+#include "nanovdb/PNanoVDB.h"
+
+layout(std430, binding = AVSM_VOLUME_BINDING_MAJORANTS) readonly buffer VolumeMajorants { float volume_majorants[]; };
+
+struct GpuVolume {
+  mat4 index_from_world;
+  vec3 support_min;         // index space: where the trilinear density can be non-zero
+  float step_length;        // world units between samples (a fraction of the smallest voxel edge)
+  vec3 support_max;
+  float extinction_scale;   // sigma_t = extinction_scale * density, per world unit
+  vec3 albedo;              // sigma_s = albedo * sigma_t
+  uint grid_byte_offset;    // where this volume's NanoVDB grid starts in pnanovdb_buf_data
+  ivec3 majorant_origin;    // index coordinate of the corner of brick (0, 0, 0)
+  int brick_size;           // voxels per brick edge
+  ivec3 majorant_dims;      // bricks along x, y, z (x fastest in volume_majorants)
+  uint majorant_offset;     // where this volume's bricks start in volume_majorants
+};
+
+layout(std430, binding = AVSM_VOLUME_BINDING_PARAMETERS) readonly buffer VolumeParameters { GpuVolume volumes[]; };
+
+// ---- NanoVDB density ----
+
+// A cached tree walk for one volume; consecutive samples of a march mostly hit the
+// same leaf, so the accessor skips the root-to-leaf descent.
+struct DensityReader {
+  pnanovdb_buf_t buf;
+  pnanovdb_readaccessor_t accessor;
+};
+
+DensityReader make_density_reader(GpuVolume volume) {
+  DensityReader reader;
+  reader.buf.unused = 0u;
+  pnanovdb_grid_handle_t grid;
+  grid.address.byte_offset = volume.grid_byte_offset;
+  pnanovdb_root_handle_t root = pnanovdb_tree_get_root(reader.buf, pnanovdb_grid_get_tree(reader.buf, grid));
+  pnanovdb_readaccessor_init(reader.accessor, root);
+  return reader;
+}
+
+float read_voxel(inout DensityReader reader, ivec3 ijk) {
+  pnanovdb_address_t address =
+      pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, reader.buf, reader.accessor, ijk);
+  return pnanovdb_read_float(reader.buf, address);
+}
+
+// Trilinear density at an index-space position, clamped at 0 (negative densities
+// absorb nothing). Voxel centres sit at integer coordinates, as in OpenVDB and in the
+// CPU reference (nanovdb::SampleFromVoxels<1>). The eight corners are read in a loop
+// rather than unrolled: each read inlines NanoVDB's whole cached tree walk, and eight
+// copies of it made the shader ~8x larger and slow to compile (seconds on lavapipe).
+float sample_density(inout DensityReader reader, vec3 index_position) {
+  vec3 base = floor(index_position);
+  vec3 w = index_position - base;
+  ivec3 i = ivec3(base);
+  float density = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    ivec3 offset = ivec3(corner >> 2, (corner >> 1) & 1, corner & 1);
+    vec3 weights = mix(1.0 - w, w, vec3(offset));
+    density += weights.x * weights.y * weights.z * read_voxel(reader, i + offset);
+  }
+  return max(density, 0.0);
+}
+
+// ---- Majorants ----
+
+// Upper bound of the density in a brick; 0 means the whole brick is empty.
+float brick_majorant(GpuVolume volume, ivec3 brick) {
+  ivec3 d = volume.majorant_dims;
+  return volume_majorants[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
+}
+
+// ---- Rays ----
+
+// 1 / v with zero components replaced by a huge value of the same sign, so slab
+// tests and DDA steps need no special case for axis-parallel rays (and make no NaN).
+vec3 safe_reciprocal(vec3 v) {
+  const float kTiny = 1e-20;
+  return 1.0 / mix(v, mix(vec3(kTiny), vec3(-kTiny), lessThan(v, vec3(0.0))), lessThan(abs(v), vec3(kTiny)));
+}
+
+// The part [t_enter, t_exit] of origin + t * direction, t in [t_min, t_max], inside
+// the box [box_min, box_max]. False if the ray misses it.
+bool clip_ray_to_box(vec3 origin, vec3 direction, vec3 box_min, vec3 box_max, float t_min, float t_max,
+                     out float t_enter, out float t_exit) {
+  vec3 inverse_direction = safe_reciprocal(direction);
+  vec3 t_a = (box_min - origin) * inverse_direction;
+  vec3 t_b = (box_max - origin) * inverse_direction;
+  vec3 t_near = min(t_a, t_b), t_far = max(t_a, t_b);
+  t_enter = max(max(t_near.x, t_near.y), max(t_near.z, t_min));
+  t_exit = min(min(t_far.x, t_far.y), min(t_far.z, t_max));
+  return t_enter < t_exit;
+}
+
+// ---- Scattering ----
+
+// Isotropic phase function: smoke and fog scatter roughly equally in every
+// direction at this scale, and it needs no light direction. A Henyey-Greenstein
+// lobe can replace it here without touching the marchers.
+float phase_function(vec3 to_camera, vec3 to_light) { return 1.0 / (4.0 * 3.14159265358979); }
+
+#endif
