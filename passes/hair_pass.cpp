@@ -25,13 +25,6 @@ struct HairPush {
   float pad;
 };
 
-template <class T>
-gpu::Buffer storage_buffer(gpu::Context& ctx, std::vector<T> data, const std::string& name) {
-  if (data.empty()) data.push_back(T{});
-  return gpu::create_buffer_with_data(ctx, {0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal, name},
-                                      data.data(), data.size() * sizeof(T));
-}
-
 }  // namespace
 
 HairPass::HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
@@ -62,9 +55,9 @@ void HairPass::set_scene(const scene::Scene& scene) {
     }
   }
   segment_count_ = uint32_t(segments.size());
-  points_ = storage_buffer(ctx_, points, "hair points");
-  segments_ = storage_buffer(ctx_, segments, "hair segments");
-  strands_ = storage_buffer(ctx_, strands, "hair strands");
+  points_ = gpu::create_buffer_from(ctx_, std::move(points), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair points");
+  segments_ = gpu::create_buffer_from(ctx_, std::move(segments), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair segments");
+  strands_ = gpu::create_buffer_from(ctx_, std::move(strands), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair strands");
 }
 
 rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

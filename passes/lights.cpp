@@ -16,10 +16,8 @@ GpuLight to_gpu(const scene::Light& light) {
 gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {
   std::vector<GpuLight> data;
   for (const scene::Light& light : lights) data.push_back(to_gpu(light));
-  if (data.empty()) data.push_back({});  // radiance 0: lights nothing
-  return gpu::create_buffer_with_data(
-      ctx, {0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal, "scene lights"}, data.data(),
-      data.size() * sizeof(GpuLight));
+  // No lights: one zero-radiance entry, which lights nothing.
+  return gpu::create_buffer_from(ctx, std::move(data), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene lights");
 }
 
 }  // namespace avsm::passes

@@ -45,13 +45,6 @@ gpu::Image upload_texture(gpu::Context& ctx, uint32_t width, uint32_t height, co
   return image;
 }
 
-template <class T>
-gpu::Buffer storage_buffer(gpu::Context& ctx, const std::vector<T>& data, VkBufferUsageFlags usage,
-                           const std::string& name) {
-  return gpu::create_buffer_with_data(ctx, {0, usage, gpu::MemoryLocation::DeviceLocal, name}, data.data(),
-                                      data.size() * sizeof(T));
-}
-
 }  // namespace
 
 OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
@@ -91,12 +84,10 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
                          m.base_color_texture >= 0 ? 1u : 0u, 0.0f});
     material_textures_.push_back(m.base_color_texture);
   }
-  if (materials.empty()) materials.push_back({glm::vec4(0.8f), 0, 0.5f, 0, 0});
-  if (vertices.empty()) vertices.push_back({});
-  if (indices.empty()) indices.push_back(0);
-  vertices_ = storage_buffer(ctx_, vertices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
-  indices_ = storage_buffer(ctx_, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
-  materials_ = storage_buffer(ctx_, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
+  if (materials.empty()) materials.push_back({glm::vec4(0.8f), 0, 0.5f, 0, 0.0f});  // grey, for meshes without one
+  vertices_ = gpu::create_buffer_from(ctx_, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
+  indices_ = gpu::create_buffer_from(ctx_, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
+  materials_ = gpu::create_buffer_from(ctx_, std::move(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
   textures_.clear();
   for (const scene::Texture& t : scene.textures)
     textures_.push_back(upload_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));

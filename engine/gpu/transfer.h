@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gpu/resources.h"
@@ -16,6 +17,14 @@ class Context;
 
 // Creates a device-local buffer holding `bytes`.
 Buffer create_buffer_with_data(const Context& ctx, BufferDesc desc, const void* data, VkDeviceSize bytes);
+// A device-local buffer holding `data`; an empty vector gives one zeroed element,
+// so shaders always have something valid to bind.
+template <class T>
+Buffer create_buffer_from(const Context& ctx, std::vector<T> data, VkBufferUsageFlags usage, const std::string& name) {
+  if (data.empty()) data.push_back(T{});
+  return create_buffer_with_data(ctx, {0, usage, MemoryLocation::DeviceLocal, name}, data.data(), data.size() * sizeof(T));
+}
+
 void upload_buffer(const Context& ctx, const Buffer& dst, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
 
 std::vector<uint8_t> read_buffer_bytes(const Context& ctx, const Buffer& src);
