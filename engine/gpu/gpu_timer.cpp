@@ -92,17 +92,6 @@ struct SpinPush {
   uint32_t count;
 };
 
-// Clears a small color attachment through dynamic rendering. On lavapipe this
-// leaves a framebuffer bound in the driver, the state in which timestamps go late,
-// as they do in any real frame.
-static void render_something(VkCommandBuffer cmd, const Image& target) {
-  image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
-                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, kColorWrite);
-  ColorTarget color{target.view()};
-  begin_rendering(cmd, {target.desc().width, target.desc().height}, {&color, 1});
-  vkCmdEndRendering(cmd);
-}
-
 TimestampCalibration calibrate_timestamps(const Context& ctx, const ShaderLibrary& shaders) {
   TimestampCalibration result;
   const uint32_t invocations = 1u << 14;
@@ -121,7 +110,7 @@ TimestampCalibration calibrate_timestamps(const Context& ctx, const ShaderLibrar
   for (uint32_t iterations = 256; iterations <= (1u << 26); iterations *= 4) {
     auto start = std::chrono::steady_clock::now();
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-      render_something(cmd, target);
+      clear_with_rendering(cmd, target);  // timestamps go late only after rendering
       timer.begin_frame(cmd);
       uint32_t scope = timer.begin_scope(cmd, "spin");
       spin.bind(cmd);

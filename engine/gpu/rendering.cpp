@@ -2,6 +2,9 @@
 
 #include <vector>
 
+#include "gpu/barriers.h"
+#include "gpu/resources.h"
+
 namespace avsm::gpu {
 
 void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const ColorTarget> colors,
@@ -39,6 +42,14 @@ void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const Col
   VkRect2D scissor{{0, 0}, extent};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void clear_with_rendering(VkCommandBuffer cmd, const Image& target) {
+  image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, kColorWrite);
+  ColorTarget color{target.view()};
+  begin_rendering(cmd, {target.desc().width, target.desc().height}, {&color, 1});
+  vkCmdEndRendering(cmd);
 }
 
 }  // namespace avsm::gpu

@@ -27,4 +27,11 @@ struct DepthTarget {
 void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const ColorTarget> colors,
                      const DepthTarget* depth = nullptr, bool flip_y = false);
 
+class Image;
+
+// Clears a whole colour image (contents discarded, from UNDEFINED) with an empty
+// render pass, leaving it in COLOR_ATTACHMENT_OPTIMAL. On lavapipe this also
+// puts the driver in the state a real frame is in (see gpu_timer.h).
+void clear_with_rendering(VkCommandBuffer cmd, const Image& target);
+
 }  // namespace avsm::gpu

@@ -70,6 +70,16 @@ void MemoryHeap::release() {
   mapped_ = nullptr;
 }
 
+// A placed resource must be aligned, fit the heap and accept the heap's memory type.
+static void check_placement(const VkMemoryRequirements& reqs, const MemoryHeap& heap, VkDeviceSize offset,
+                            const std::string& what) {
+  bool fits = offset % reqs.alignment == 0 && offset + reqs.size <= heap.size() &&
+              (reqs.memoryTypeBits & (1u << heap.memory_type())) != 0;
+  if (!fits)
+    throw std::runtime_error(what + " cannot be placed at offset " + std::to_string(offset) + " in a heap of " +
+                             std::to_string(heap.size()) + " bytes");
+}
+
 // ---------------------------------------------------------------- Buffer
 
 static VkBufferCreateInfo buffer_info(const BufferDesc& desc) {
@@ -122,11 +132,7 @@ Buffer Buffer::create_placed(const Context& ctx, const BufferDesc& desc, const M
   b.buffer_ = create_buffer_handle(ctx, desc);
   VkMemoryRequirements reqs;
   vkGetBufferMemoryRequirements(ctx.device(), b.buffer_, &reqs);
-  if (offset % reqs.alignment != 0 || offset + reqs.size > heap.size() || !(reqs.memoryTypeBits & (1u << heap.memory_type()))) {
-    b.release();
-    throw std::runtime_error("buffer '" + desc.name + "' cannot be placed at offset " + std::to_string(offset) +
-                             " in a heap of " + std::to_string(heap.size()) + " bytes");
-  }
+  check_placement(reqs, heap, offset, "buffer '" + desc.name + "'");  // b's destructor cleans up on throw
   VK_CHECK(vkBindBufferMemory(ctx.device(), b.buffer_, heap.handle(), offset));
   if (heap.mapped()) b.mapped_ = static_cast<char*>(heap.mapped()) + offset;
   return b;
@@ -290,11 +296,7 @@ Image Image::create_placed(const Context& ctx, const ImageDesc& desc, const Memo
   img.create_image(ctx, desc);
   VkMemoryRequirements reqs;
   vkGetImageMemoryRequirements(ctx.device(), img.image_, &reqs);
-  if (offset % reqs.alignment != 0 || offset + reqs.size > heap.size() || !(reqs.memoryTypeBits & (1u << heap.memory_type()))) {
-    img.release();
-    throw std::runtime_error("image '" + desc.name + "' cannot be placed at offset " + std::to_string(offset) +
-                             " in a heap of " + std::to_string(heap.size()) + " bytes");
-  }
+  check_placement(reqs, heap, offset, "image '" + desc.name + "'");  // img's destructor cleans up on throw
   VK_CHECK(vkBindImageMemory(ctx.device(), img.image_, heap.handle(), offset));
   img.create_view();
   return img;

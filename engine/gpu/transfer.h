@@ -44,8 +44,8 @@ struct ImageRGBA32F {
   const float* at(uint32_t x, uint32_t y) const { return &pixels[(size_t(y) * width + x) * 4]; }
 };
 
-// The image must have TRANSFER_SRC usage; it is returned to `layout` afterwards.
-// `after` is how the image is used next, so the readback's copy is ordered before it.
+// The image must have TRANSFER_SRC usage and be in `layout`; it is returned to
+// `layout` afterwards (TRANSFER_SRC_OPTIMAL if it was UNDEFINED).
 ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout layout, uint32_t mip = 0,
                         uint32_t layer = 0);
 

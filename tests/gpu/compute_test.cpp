@@ -9,13 +9,8 @@
 namespace avsm {
 namespace {
 
+using testing::FillPush;
 using testing::GpuTest;
-
-struct FillPush {
-  float scale;
-  float offset;
-  uint32_t count;
-};
 
 TEST_F(GpuTest, ComputeDispatchWritesExpectedValues) {
   const uint32_t count = 1000;  // not a multiple of the workgroup size

@@ -38,14 +38,6 @@ uint32_t iterations_for(gpu::Context& ctx, const gpu::Pipeline& spin, const gpu:
   }
 }
 
-void clear_with_rendering(VkCommandBuffer cmd, const gpu::Image& target) {
-  gpu::image_barrier(cmd, target.handle(), target.full_range(), VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {}, gpu::kColorWrite);
-  gpu::ColorTarget color{target.view()};
-  gpu::begin_rendering(cmd, {target.desc().width, target.desc().height}, {&color, 1});
-  vkCmdEndRendering(cmd);
-}
-
 // Times one frame with a K-iteration pass and a 2K-iteration pass, in the given order.
 // Returns (time of K, time of 2K).
 std::pair<double, double> time_k_and_2k(gpu::Context& ctx, const gpu::Pipeline& spin, const gpu::Buffer& values,
@@ -53,7 +45,7 @@ std::pair<double, double> time_k_and_2k(gpu::Context& ctx, const gpu::Pipeline& 
   gpu::GpuTimer timer(ctx, 4, mode);
   std::vector<uint32_t> order = k_first ? std::vector<uint32_t>{k, 2 * k} : std::vector<uint32_t>{2 * k, k};
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    clear_with_rendering(cmd, target);  // like a real frame, where graphics work precedes compute
+    gpu::clear_with_rendering(cmd, target);  // like a real frame, where graphics work precedes compute
     timer.begin_frame(cmd);
     for (uint32_t iterations : order) {
       uint32_t scope = timer.begin_scope(cmd, "spin " + std::to_string(iterations));

@@ -8,13 +8,8 @@
 namespace avsm {
 namespace {
 
+using testing::FillPush;
 using testing::GpuTest;
-
-struct FillPush {
-  float scale;
-  float offset;
-  uint32_t count;
-};
 
 // A compute shader writes a buffer and a copy reads it. With `with_barrier`
 // false the copy races the shader: exactly what synchronization validation exists to catch.

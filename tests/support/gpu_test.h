@@ -9,6 +9,13 @@
 
 namespace avsm::testing {
 
+// Push constants of shaders/tests/fill.comp: values[i] = i * scale + offset.
+struct FillPush {
+  float scale;
+  float offset;
+  uint32_t count;
+};
+
 gpu::Context& test_context();
 const gpu::ShaderLibrary& test_shaders();
 
