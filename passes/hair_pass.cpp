@@ -6,6 +6,7 @@
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
 #include "passes/opaque_pass.h"
+#include "passes/shadow_maps.h"
 
 namespace avsm::passes {
 
@@ -61,7 +62,8 @@ void HairPass::set_scene(const scene::Scene& scene) {
 }
 
 rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                         const View& view, const gpu::Buffer& lights, uint32_t light_count) {
+                                         const View& view, const gpu::Buffer& lights, uint32_t light_count,
+                                         const ShadowInputs& shadows) {
   struct Targets {
     rg::TextureHandle color, depth;
   };
@@ -69,20 +71,22 @@ rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle col
       [&](rg::PassBuilder& b, Targets& d) {
         d.color = b.read_write(color, rg::Usage::ColorAttachment);
         d.depth = b.read(depth, rg::Usage::DepthAttachmentRead);
+        shadows.declare_reads(b);
       },
-      [this, view, &lights, light_count](const Targets& d, rg::PassContext& c) {
+      [this, view, &lights, light_count, shadows](const Targets& d, rg::PassContext& c) {
         if (segment_count_ == 0) return;
         VkCommandBuffer cmd = c.cmd();
         gpu::ColorTarget color_target{c.view(d.color), c.layout(d.color), {}, /*load=*/true};
         gpu::DepthTarget depth_target{c.view(d.depth), c.layout(d.depth), 1.0f, /*store=*/false, /*read_only=*/true};
         gpu::begin_rendering(cmd, {view.width, view.height}, {&color_target, 1}, &depth_target, /*flip_y=*/true);
         pipeline_.bind(cmd);
-        gpu::Bindings(ctx_, pipeline_)
-            .buffer(0, points_.handle())
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer(0, points_.handle())
             .buffer(1, segments_.handle())
             .buffer(2, strands_.handle())
-            .buffer(3, lights.handle())
-            .push(cmd);
+            .buffer(3, lights.handle());
+        shadows.bind(bindings, 4, c);
+        bindings.push(cmd);
         pipeline_.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                                glm::vec2(view.width, view.height), light_count, 0.0f});
         vkCmdDraw(cmd, segment_count_ * 6, 1, 0, 0);

@@ -4,12 +4,14 @@
 // pixel is widened to one pixel and its opacity scaled down by the same factor,
 // so thin strands keep their coverage instead of flickering. Strands are not
 // sorted: with low per-strand opacity the order-dependence is small, and the
-// shading term (Kajiya-Kay diffuse) is attenuated by light_transmittance().
+// shading term (Kajiya-Kay diffuse) is attenuated by the light's transmittance
+// map (self-shadowing included: the strands cast into it).
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/resources.h"
+#include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/scene.h"
 
@@ -20,10 +22,14 @@ class HairPass {
   HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   void set_scene(const scene::Scene& scene);
   uint32_t segment_count() const { return segment_count_; }
+  // The strands, shared with the light capture (passes/capture_hair_pass.h).
+  const gpu::Buffer& points() const { return points_; }
+  const gpu::Buffer& segments() const { return segments_; }
+  const gpu::Buffer& strands() const { return strands_; }
 
   // Draws onto `color` (loaded), testing against `depth`; returns the new colour version.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-                                 const gpu::Buffer& lights, uint32_t light_count);
+                                 const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows);
 
  private:
   gpu::Context& ctx_;

@@ -5,6 +5,7 @@
 #include "gpu/context.h"
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
+#include "passes/shadow_maps.h"
 
 namespace avsm::passes {
 
@@ -98,19 +99,23 @@ VkImageView OpaquePass::texture_view(int texture) const {
 }
 
 OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view,
-                                             const gpu::Buffer& lights, uint32_t light_count) {
+                                             const gpu::Buffer& lights, uint32_t light_count,
+                                             const ShadowInputs& shadows) {
   const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Outputs& d) {
         d.color = b.write(color, rg::Usage::ColorAttachment);
         rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat};
         d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
+        shadows.declare_reads(b);
       },
-      [this, view, &lights, light_count](const Outputs& d, rg::PassContext& c) { record(c, d, view, lights, light_count); });
+      [this, view, &lights, light_count, shadows](const Outputs& d, rg::PassContext& c) {
+        record(c, d, view, lights, light_count, shadows);
+      });
   return out;
 }
 
 void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
-                        uint32_t light_count) const {
+                        uint32_t light_count, const ShadowInputs& shadows) const {
   VkCommandBuffer cmd = c.cmd();
   gpu::ColorTarget color{c.view(targets.color), c.layout(targets.color),
                          {{kSkyColor.r, kSkyColor.g, kSkyColor.b, kSkyColor.a}}};
@@ -120,12 +125,13 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
   vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
   for (const Draw& draw : draws_) {
     int texture = draw.material < material_textures_.size() ? material_textures_[draw.material] : -1;
-    gpu::Bindings(ctx_, pipeline_)
-        .buffer(0, vertices_.handle())
+    gpu::Bindings bindings(ctx_, pipeline_);
+    bindings.buffer(0, vertices_.handle())
         .buffer(1, materials_.handle())
         .buffer(2, lights.handle())
-        .image(3, texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle())
-        .push(cmd);
+        .image(3, texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    shadows.bind(bindings, 4, c);
+    bindings.push(cmd);
     pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                              draw.material, light_count});
     vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);

@@ -1,8 +1,7 @@
 #pragma once
 // Opaque glTF geometry from the camera: depth + lit HDR colour. Lighting is
-// Lambert with a sky ambient term; every light is attenuated by
-// light_transmittance() (shaders/common/shadow_lookup.glsl), where the AVSM
-// lookup plugs in. All meshes share one vertex and one index buffer; a draw per
+// Lambert with a sky ambient term; every light is attenuated by its
+// transmittance map (shaders/common/shadow_lookup.glsl, passes/shadow_maps.h). All meshes share one vertex and one index buffer; a draw per
 // mesh pushes its material index and texture.
 #include <rendergraph/graph.h>
 
@@ -11,6 +10,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/resources.h"
+#include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/scene.h"
 
@@ -28,19 +28,24 @@ class OpaquePass {
     rg::TextureHandle color;  // written as ColorAttachment
     rg::TextureHandle depth;  // written as DepthAttachmentWrite
   };
-  // Clears `color` to the sky colour and a new transient depth buffer to far,
-  // then draws every mesh.
-  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view, const gpu::Buffer& lights,
-                       uint32_t light_count);
-
- private:
+  // The geometry, shared with the light captures (passes/capture_opaque_pass.h).
   struct Draw {
     uint32_t first_index, index_count;
     int32_t vertex_offset;
     uint32_t material;
   };
+  const gpu::Buffer& vertices() const { return vertices_; }
+  const gpu::Buffer& indices() const { return indices_; }
+  const std::vector<Draw>& draws() const { return draws_; }
+
+  // Clears `color` to the sky colour and a new transient depth buffer to far,
+  // then draws every mesh.
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view, const gpu::Buffer& lights,
+                       uint32_t light_count, const ShadowInputs& shadows);
+
+ private:
   void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
-              uint32_t light_count) const;
+              uint32_t light_count, const ShadowInputs& shadows) const;
   VkImageView texture_view(int texture) const;
 
   gpu::Context& ctx_;

@@ -13,6 +13,7 @@
 #include "gpu/context.h"
 #include "gpu/transfer.h"
 #include "passes/lights.h"
+#include "passes/shadow_maps.h"
 
 namespace avsm::passes {
 namespace {
@@ -144,7 +145,8 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
 }
 
 rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                           const View& view, const gpu::Buffer& lights, uint32_t light_count) {
+                                           const View& view, const gpu::Buffer& lights, uint32_t light_count,
+                                           const ShadowInputs& shadows) {
   if (volume_count_ == 0) return color;
   check_targets(graph, color, depth);
   const VkDeviceSize light_bytes = VkDeviceSize(std::max(light_count, 1u)) * sizeof(GpuLight);
@@ -159,9 +161,11 @@ rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle c
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
+        shadows.declare_reads(b);
       },
-      [this, view, &lights, light_count, skipping = majorant_skipping_](const Targets& d, rg::PassContext& c) {
-        record(c, d.color, d.depth, view, lights, light_count, skipping);
+      [this, view, &lights, light_count, shadows, skipping = majorant_skipping_](const Targets& d,
+                                                                                 rg::PassContext& c) {
+        record(c, d.color, d.depth, view, lights, light_count, shadows, skipping);
       });
   return targets.color;
 }
@@ -184,17 +188,19 @@ void VolumePass::check_targets(const rg::Graph& graph, rg::TextureHandle color, 
 }
 
 void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-                        const gpu::Buffer& lights, uint32_t light_count, bool majorant_skipping) const {
+                        const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
+                        bool majorant_skipping) const {
   const rg::TextureDesc& size = c.desc(color);
   pipeline_.bind(c.cmd());
-  gpu::Bindings(ctx_, pipeline_)
-      .image(0, c.view(color), c.layout(color))
+  gpu::Bindings bindings(ctx_, pipeline_);
+  bindings.image(0, c.view(color), c.layout(color))
       .image(1, c.view(depth), c.layout(depth), depth_sampler_.handle())
       .buffer(2, grids_.handle())
       .buffer(3, majorants_.handle())
       .buffer(4, parameters_.handle())
-      .buffer(5, lights.handle())
-      .push(c.cmd());
+      .buffer(5, lights.handle());
+  shadows.bind(bindings, 6, c);
+  bindings.push(c.cmd());
   Push push{view.inverse_view_projection, view.camera_position, volume_count_, {size.width, size.height},
             light_count, majorant_skipping ? 0u : kFlagNoMajorantSkipping};
   pipeline_.push_constants(c.cmd(), push);

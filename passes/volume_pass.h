@@ -4,8 +4,8 @@
 //   color = color * T_camera + in-scattered light.
 // In-scattering at each sample is sigma_s * phase * sum over lights of
 // light_radiance() * light_transmittance() * T_camera so far, with an isotropic phase
-// function; light_transmittance() (shaders/common/shadow_lookup.glsl) is where the AVSM
-// shadow lookup plugs in.
+// function; light_transmittance() (shaders/common/shadow_lookup.glsl) reads each
+// light's transmittance map, so smoke shadows itself and is shadowed by hair and meshes.
 //
 // The volumes are read straight from their NanoVDB grids (PNanoVDB in GLSL, trilinear,
 // like scene::sample_density) with no dense 3D texture. All grids share one storage
@@ -24,6 +24,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
+#include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/volume.h"
 
@@ -71,18 +72,23 @@ class VolumePass {
   // least max(light_count, 1) GpuLight entries (passes/lights.h) and outlive the frame.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color /*R16G16B16A16_SFLOAT, StorageReadWrite*/,
                                  rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, const View& view,
-                                 const gpu::Buffer& lights, uint32_t light_count);
+                                 const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows);
 
   // Debug switch: march through empty bricks too. The image must not change; it only
   // exists so tests can check that skipping never drops density.
   void set_majorant_skipping(bool enabled) { majorant_skipping_ = enabled; }
 
   uint32_t volume_count() const { return volume_count_; }
+  // The volumes, shared with the light capture (passes/capture_smoke_pass.h).
+  const gpu::Buffer& grids() const { return grids_; }
+  const gpu::Buffer& majorants() const { return majorants_; }
+  const gpu::Buffer& parameters() const { return parameters_; }
 
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
   void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-              const gpu::Buffer& lights, uint32_t light_count, bool majorant_skipping) const;
+              const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
+              bool majorant_skipping) const;
 
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -64,6 +66,68 @@ void write_json(const fs::path& path, const nlohmann::json& json) {
   out << json.dump(2) << "\n";
 }
 
+void apply_shadow_overrides(const CaptureOptions& options, scene::Scene& scene) {
+  for (scene::Light& light : scene.lights) {
+    scene::ShadowSettings& shadow = light.shadow;
+    if (options.technique) shadow.technique = *options.technique;
+    if (options.nodes) shadow.nodes = *options.nodes;
+    if (options.sort) shadow.sort = *options.sort;
+    if (options.filter) shadow.filter = *options.filter;
+    if (options.shadow_resolution) shadow.resolution = *options.shadow_resolution;
+  }
+}
+
+// A JSON array of [x, y, z] world positions.
+std::vector<glm::vec3> read_probe_points(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open the probe file");
+  nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) throw std::runtime_error(file.string() + ": not valid JSON");
+  if (!json.is_array()) throw std::runtime_error(file.string() + ": expected an array of [x, y, z] positions");
+  std::vector<glm::vec3> points;
+  for (size_t i = 0; i < json.size(); ++i) {
+    const nlohmann::json& p = json[i];
+    if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not [x, y, z] numbers");
+    points.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
+    if (!std::isfinite(points.back().x) || !std::isfinite(points.back().y) || !std::isfinite(points.back().z))
+      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not finite");
+  }
+  return points;
+}
+
+void write_probes(const fs::path& path, const scene::Scene& scene, const std::vector<glm::vec3>& points,
+                  const std::vector<std::vector<float>>& results) {
+  nlohmann::json positions = nlohmann::json::array();
+  for (const glm::vec3& p : points) positions.push_back({p.x, p.y, p.z});
+  nlohmann::json lights = nlohmann::json::array();
+  for (size_t i = 0; i < scene.lights.size() && i < results.size(); ++i) {
+    const scene::ShadowSettings& s = scene.lights[i].shadow;
+    lights.push_back({{"light", scene.lights[i].name},
+                      {"technique", scene::to_string(s.technique)},
+                      {"nodes", s.nodes},
+                      {"filter", scene::to_string(s.filter)},
+                      {"sort", s.sort},
+                      {"resolution", s.resolution},
+                      {"transmittance", results[i]}});
+  }
+  write_json(path, {{"points", positions}, {"lights", lights}});
+}
+
+nlohmann::json shadow_json(const passes::LightShadowStats& s) {
+  return {{"light", s.light},
+          {"technique", scene::to_string(s.technique)},
+          {"nodes", s.nodes},
+          {"resolution", s.resolution},
+          {"mip_levels", s.mip_levels},
+          {"map_bytes", s.map_bytes},
+          {"capture_bytes", s.capture_bytes},
+          {"capture_capacity_segments", s.capture_capacity},
+          {"capture_requested_segments", s.capture_requested},
+          {"capture_overflowed", s.overflowed},
+          {"next_capture_capacity_segments", s.next_capture_capacity}};
+}
+
 }  // namespace
 
 CaptureOutputs run_capture(const CaptureOptions& options) {
@@ -76,6 +140,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
 
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
+  apply_shadow_overrides(options, scene);
+  const std::vector<glm::vec3> probe_points =
+      options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   if (options.progress)
     std::fprintf(stderr, "scene %s: %zu meshes, %zu hair grooms, %zu volumes, %zu lights\n", options.scene.c_str(),
                  scene.meshes.size(), scene.hair.size(), scene.volumes.size(), scene.lights.size());
@@ -93,7 +160,18 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     std::fprintf(stderr, "avsm-capture: %s (%s), timestamps %s\n", ctx.info().name.c_str(),
                  ctx.info().driver_info.c_str(), gpu::to_string(calibration.mode));
 
-  renderer::SceneRenderer frame(ctx, shaders, scene, options.width, options.height);
+  passes::ShadowOptions shadow_options;
+  shadow_options.exponential_interpolation = options.exponential_interpolation;
+  std::unique_ptr<renderer::SceneRenderer> renderer_storage;
+  try {
+    renderer_storage = std::make_unique<renderer::SceneRenderer>(ctx, shaders, scene, options.width, options.height,
+                                                                 shadow_options);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(options.scene.string() + ": " + e.what());
+  }
+  renderer::SceneRenderer& frame = *renderer_storage;
+  if (!probe_points.empty()) frame.set_probes(probe_points);
+  uint64_t overflowed_frames = 0;
   passes::View view = passes::make_view(camera, options.width, options.height);
   rg::vulkan::Executor executor(ctx, calibration.mode);
   VkCommandBuffer cmd = ctx.allocate_command_buffer("frame");
@@ -111,6 +189,16 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     executor.record(graph, cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
     ctx.submit_and_wait(cmd);
+    frame.finish_frame();
+    for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
+      if (!light.overflowed) continue;
+      ++overflowed_frames;
+      std::fprintf(stderr,
+                   "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
+                   "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
+                   index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
+                   (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
+    }
     double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     bool warm_up = index == 0 && options.frames > 1;
     if (options.progress)
@@ -155,9 +243,14 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   write_text(options.out_dir / "graph.json", executor.plan().to_json());
   write_text(options.out_dir / "graph.dot", executor.plan().to_dot());
   const rg::PlanStats& stats = executor.plan().stats;
+  nlohmann::json lights = nlohmann::json::array();
+  for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) lights.push_back(shadow_json(light));
   write_json(options.out_dir / "memory.json", {{"transient_bytes_aliased", stats.transient_bytes_aliased},
                                                {"transient_bytes_unaliased", stats.transient_bytes_unaliased},
-                                               {"heaps", executor.plan().heaps.size()}});
+                                               {"heaps", executor.plan().heaps.size()},
+                                               {"lights", lights},
+                                               {"frames_with_capture_overflow", overflowed_frames}});
+  if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
   if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));

@@ -3,7 +3,10 @@
 // and EXR, and the per-pass GPU timings as JSON. What avsm-capture runs.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+
+#include "scene/light.h"
 
 namespace avsm::capture {
 
@@ -21,6 +24,17 @@ struct CaptureOptions {
   bool validation = false;
   std::string device;  // see gpu::ContextDesc::device
   bool progress = true;  // progress lines on stderr
+
+  // Shadow overrides applied to every light (unset: the scene's own settings).
+  std::optional<scene::ShadowTechnique> technique;
+  std::optional<int> nodes;
+  std::optional<bool> sort;
+  std::optional<scene::ShadowFilter> filter;
+  std::optional<int> shadow_resolution;
+  bool exponential_interpolation = false;
+  // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
+  // light's transmittance at each (empty: no probes).
+  std::filesystem::path probe_file;
 };
 
 struct CaptureOutputs {

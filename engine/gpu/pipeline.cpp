@@ -234,15 +234,19 @@ const DescriptorBinding& Pipeline::binding(uint32_t index) const {
 
 // ---------------------------------------------------------------- Bindings
 
-VkWriteDescriptorSet& Bindings::add(uint32_t binding) {
+VkWriteDescriptorSet& Bindings::add(uint32_t binding, uint32_t element) {
   if (writes_.size() == kMaxBindingsPerPush) throw std::runtime_error("too many bindings in one push");
   if (buffers_.capacity() < kMaxBindingsPerPush) {
     buffers_.reserve(kMaxBindingsPerPush);
     images_.reserve(kMaxBindingsPerPush);
   }
   const DescriptorBinding& b = pipeline_.binding(binding);
+  if (element >= b.count)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " has " +
+                             std::to_string(b.count) + " elements, not " + std::to_string(element + 1));
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstBinding = binding;
+  write.dstArrayElement = element;
   write.descriptorCount = 1;
   write.descriptorType = b.type;
   writes_.push_back(write);
@@ -250,7 +254,12 @@ VkWriteDescriptorSet& Bindings::add(uint32_t binding) {
 }
 
 Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
-  VkWriteDescriptorSet& write = add(binding);
+  return buffer_element(binding, 0, buffer, offset, range);
+}
+
+Bindings& Bindings::buffer_element(uint32_t binding, uint32_t element, VkBuffer buffer, VkDeviceSize offset,
+                                   VkDeviceSize range) {
+  VkWriteDescriptorSet& write = add(binding, element);
   if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && write.descriptorType != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
     throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not a buffer");
   buffers_.push_back({buffer, offset, range});
@@ -259,7 +268,12 @@ Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offse
 }
 
 Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding);
+  return image_element(binding, 0, view, layout, sampler);
+}
+
+Bindings& Bindings::image_element(uint32_t binding, uint32_t element, VkImageView view, VkImageLayout layout,
+                                  VkSampler sampler) {
+  VkWriteDescriptorSet& write = add(binding, element);
   if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && write.descriptorType != VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE &&
       write.descriptorType != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
     throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not an image");
@@ -272,7 +286,7 @@ Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layo
 }
 
 Bindings& Bindings::sampler(uint32_t binding, VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding);
+  VkWriteDescriptorSet& write = add(binding, 0);
   images_.push_back({sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
   write.pImageInfo = &images_.back();
   return *this;

@@ -87,10 +87,15 @@ class Bindings {
   // Sampled, storage or combined image; `sampler` only for combined image samplers.
   Bindings& image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
   Bindings& sampler(uint32_t binding, VkSampler sampler);
+  // One element of an array binding (every element a shader uses must be written).
+  Bindings& buffer_element(uint32_t binding, uint32_t element, VkBuffer buffer, VkDeviceSize offset = 0,
+                           VkDeviceSize range = VK_WHOLE_SIZE);
+  Bindings& image_element(uint32_t binding, uint32_t element, VkImageView view, VkImageLayout layout,
+                          VkSampler sampler = VK_NULL_HANDLE);
   void push(VkCommandBuffer cmd);
 
  private:
-  VkWriteDescriptorSet& add(uint32_t binding);
+  VkWriteDescriptorSet& add(uint32_t binding, uint32_t element);
   const Context& ctx_;
   const Pipeline& pipeline_;
   std::vector<VkWriteDescriptorSet> writes_;

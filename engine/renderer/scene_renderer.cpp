@@ -16,7 +16,7 @@ static gpu::Image output_image(gpu::Context& ctx, uint32_t width, uint32_t heigh
 }
 
 SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const scene::Scene& scene,
-                             uint32_t width, uint32_t height)
+                             uint32_t width, uint32_t height, const passes::ShadowOptions& shadow_options)
     : ctx_(ctx),
       width_(width),
       height_(height),
@@ -25,11 +25,13 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
       opaque_(ctx, shaders),
       hair_(ctx, shaders),
       volumes_(ctx, shaders),
-
+      shadows_(ctx, shaders),
+      shaders_(shaders),
       tonemap_(ctx, shaders) {
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
+  shadows_.set_scene(scene, shadow_options);
 
   hdr_ = output_image(ctx, width, height, passes::OpaquePass::kColorFormat,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "hdr color");
@@ -46,12 +48,23 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   executor.bind(hdr, hdr_);
   executor.bind(ldr, ldr_);
 
-  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_);
-  rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_);
-  color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_);
+  const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, opaque_, hair_, volumes_);
+  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_, shadows);
+  rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_, shadows);
+  color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_, shadows);
 
   tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
+  if (probes_) probes_->add_to_graph(graph, executor, shadows);
   return graph;
+}
+
+void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
+  if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  probes_->set_points(points, light_count_);
+}
+
+std::vector<std::vector<float>> SceneRenderer::probe_results() const {
+  return probes_ ? probes_->results() : std::vector<std::vector<float>>{};
 }
 
 }  // namespace avsm::renderer

@@ -1,6 +1,7 @@
 #pragma once
-// Renders a loaded scene through the frame graph: opaque geometry, hair, fog
-// volumes, tonemapping. Owns the per-scene GPU data and the frame's output
+// Renders a loaded scene through the frame graph: per light its transmittance
+// map (passes/shadow_maps.h), then opaque geometry, hair, fog volumes, all shaded
+// with those maps, then tonemapping. Owns the per-scene GPU data and the frame's output
 // images; each frame declares its passes anew (the executor reuses the plan).
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -10,6 +11,8 @@
 #include "gpu/resources.h"
 #include "passes/hair_pass.h"
 #include "passes/opaque_pass.h"
+#include "passes/shadow_maps.h"
+#include "passes/shadow_probe_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
 #include "passes/volume_pass.h"
@@ -21,10 +24,19 @@ namespace avsm::renderer {
 class SceneRenderer {
  public:
   SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const scene::Scene& scene, uint32_t width,
-                uint32_t height);
+                uint32_t height, const passes::ShadowOptions& shadow_options = {});
 
   // Declares this frame's passes and binds the output images to `executor`.
   rg::Graph build_frame(rg::vulkan::Executor& executor, const passes::View& view);
+
+  // Probes every light's transmittance at these points in each frame (after the
+  // camera passes); results in probe_results() once the frame completed.
+  void set_probes(const std::vector<glm::vec3>& points);
+  std::vector<std::vector<float>> probe_results() const;
+
+  // After the frame completed: reads the shadow capture counters (overflow, growth).
+  void finish_frame() { shadows_.finish_frame(); }
+  const passes::ShadowMaps& shadows() const { return shadows_; }
 
   // After the frame: linear HDR and tonemapped images, both in TRANSFER_SRC_OPTIMAL.
   const gpu::Image& hdr() const { return hdr_; }
@@ -39,6 +51,9 @@ class SceneRenderer {
   passes::OpaquePass opaque_;
   passes::HairPass hair_;
   passes::VolumePass volumes_;
+  passes::ShadowMaps shadows_;
+  std::unique_ptr<passes::ShadowProbePass> probes_;
+  const gpu::ShaderLibrary& shaders_;
 
   passes::TonemapPass tonemap_;
   gpu::Image hdr_, ldr_;

@@ -100,6 +100,15 @@ void avsm_compress(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
   }
 }
 
+// Transmittance of one occluding segment at depth d: 1 in front of `entry`,
+// falling linearly to `exit_trans` at `exit_depth`, `exit_trans` behind it.
+// The exact (uncompressed) curve of a list is the product of these.
+float avsm_segment_transmittance(float entry, float exit_depth, float exit_trans, float d) {
+  if (d <= entry) return 1.0f;
+  if (d >= exit_depth) return exit_trans;
+  return mix(1.0f, exit_trans, (d - entry) / (exit_depth - entry));
+}
+
 // Composites one occluding segment [entry, exit] whose transmittance falls
 // linearly from 1 at entry to exit_trans at exit (the paper's segments; an
 // opaque blocker is a short segment with exit_trans 0), then compresses.
@@ -109,15 +118,29 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
   exit_depth = min(max(exit_depth, entry), far_depth);
   int first = avsm_insert_node(c, entry);
   int last = avsm_insert_node(c, exit_depth);
-  // Nodes inside the segment get the segment's value at their depth; nodes behind it its exit value.
-  float length = exit_depth - entry;
-  for (int i = first; i < c.count; ++i) {
-    float s = i >= last ? exit_trans
-                        : (length > 0.0f ? mix(1.0f, exit_trans, (c.depth[i] - entry) / length) : exit_trans);
-    if (i == first) s = 1.0f;
-    c.trans[i] *= s;
+  // The entry node keeps its value (the segment starts at 1); nodes inside get
+  // the segment's value at their depth, nodes from the exit on its exit value.
+  for (int i = first + 1; i < c.count; ++i) {
+    c.trans[i] *= i >= last ? exit_trans : avsm_segment_transmittance(entry, exit_depth, exit_trans, c.depth[i]);
   }
   avsm_compress(c, max_nodes);
+}
+
+// Appends a node behind every other node and compresses: the streaming
+// simplification used to build a mip level from the merged curves of 2x2
+// texels. The newest node is the last one, so it is never the one removed.
+void avsm_append_node(AVSM_INOUT(AvsmCurve) c, float d, float t, int max_nodes) {
+  c.depth[c.count] = d;
+  c.trans[c.count] = t;
+  c.count += 1;
+  avsm_compress(c, max_nodes);
+}
+
+// Interpolation between two neighbouring nodes at fraction s: linear, or
+// exponential (linear in optical depth, exact inside a homogeneous medium).
+float avsm_interpolate(float t0, float t1, float s, bool exponential) {
+  if (!exponential || t0 <= 0.0f || t1 <= 0.0f) return mix(t0, t1, s);  // no log of 0: linear
+  return t0 * pow(t1 / t0, s);
 }
 
 #endif

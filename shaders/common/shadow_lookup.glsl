@@ -1,9 +1,164 @@
-// Transmittance from light `light_index` to world point `p`: the one place
-// every shading pass asks about shadows. Returns 1 (unshadowed) until the AVSM
-// passes land and this becomes the shadow-map lookup.
+// Transmittance from a light to a world point: the one place every camera pass
+// asks about shadows. Mirrors passes/shadow_maps.h (GpuShadow).
+//
+// Before including, define AVSM_SHADOW_BINDING: the per-light parameters are at
+// that binding, the AVSM maps at +1, and (uncompressed reference) the capture
+// list heads at +2 and nodes at +3, each an array of AVSM_MAX_SHADOWED_LIGHTS.
+//
+// AVSM map layout, per light, one vec4 array: mip levels one after another; in a
+// level, texels row by row; per texel N/4 vec4 of node depths, then N/4 vec4 of
+// node transmittances (a curve is 2N floats, contiguous). Texels with fewer than N
+// nodes repeat their last node. Lookups search the depths two levels deep (the
+// course notes' 4-stride search): the last depth of each vec4 first, then inside
+// the vec4 that holds the answer.
 #ifndef AVSM_SHADOW_LOOKUP_GLSL
 #define AVSM_SHADOW_LOOKUP_GLSL
 
-float light_transmittance(uint light_index, vec3 p) { return 1.0; }
+#extension GL_GOOGLE_include_directive : require
+#include "avsm/avsm_core.glsl"
+
+#define AVSM_MAX_SHADOWED_LIGHTS 4
+
+const uint kShadowNone = 0u;
+const uint kShadowAvsm = 1u;
+const uint kShadowUncompressed = 2u;
+const uint kFilterPoint = 0u;
+const uint kFilterBilinear = 1u;
+const uint kFilterTrilinear = 2u;
+
+struct GpuShadow {
+  mat4 light_from_world;  // world -> light clip; uv = clip.xy / clip.w * 0.5 + 0.5
+  vec4 depth_plane;       // light depth(p) = dot(xyz, p) + w
+  vec4 texel_camera;      // x, y: level-0 texel world size = x + y * depth; z: far depth; w: camera radians per pixel
+  vec4 camera_position;   // xyz; w: receivers' normal offset in texels
+  uint technique;         // kShadow*
+  uint node_count;        // N, a multiple of 4
+  uint resolution;        // level-0 texels per side
+  uint mip_count;
+  uint filter_mode;       // kFilter*
+  uint exponential;       // 1: exponential interpolation between nodes
+  uint slot;              // index into the map and list arrays
+  uint pad;
+};
+
+struct ShadowListNode {
+  float entry;
+  float exit_depth;
+  float exit_trans;
+  uint next;
+};
+
+layout(std430, binding = AVSM_SHADOW_BINDING) readonly buffer ShadowParameters { GpuShadow shadows[]; };
+layout(std430, binding = AVSM_SHADOW_BINDING + 1) readonly buffer AvsmMap { vec4 texels[]; }
+avsm_maps[AVSM_MAX_SHADOWED_LIGHTS];
+layout(binding = AVSM_SHADOW_BINDING + 2, r32ui) uniform readonly uimage2D shadow_list_heads[AVSM_MAX_SHADOWED_LIGHTS];
+layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { ShadowListNode nodes[]; }
+shadow_list_nodes[AVSM_MAX_SHADOWED_LIGHTS];
+
+float shadow_light_depth(GpuShadow s, vec3 p) { return dot(s.depth_plane.xyz, p) + s.depth_plane.w; }
+
+float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.texel_camera.y * depth; }
+
+// First vec4 of a texel's curve in its light's map.
+uint avsm_texel_base(GpuShadow s, uint level, ivec2 texel) {
+  uint vec4s_per_texel = s.node_count / 2u;
+  uint base = 0u;
+  for (uint l = 0u; l < level; ++l) {
+    uint size = max(s.resolution >> l, 1u);
+    base += size * size * vec4s_per_texel;
+  }
+  uint size = max(s.resolution >> level, 1u);
+  return base + (uint(texel.y) * size + uint(texel.x)) * vec4s_per_texel;
+}
+
+// One texel's stored curve at depth d; the same answer as avsm_evaluate_linear on
+// the curve the resolve built (the padding nodes are never "the first node behind d").
+float avsm_texel_transmittance(GpuShadow s, uint base, float d) {
+  uint slot = s.slot;
+  uint groups = s.node_count / 4u;
+  vec4 depths = vec4(0.0);
+  uint g = 0u;
+  for (; g < groups; ++g) {
+    depths = avsm_maps[slot].texels[base + g];
+    if (d < depths.w) break;
+  }
+  if (g == groups) return avsm_maps[slot].texels[base + 2u * groups - 1u].w;  // behind every node
+  uint k = d < depths.x ? 0u : (d < depths.y ? 1u : (d < depths.z ? 2u : 3u));
+  uint i = 4u * g + k;
+  if (i == 0u) return 1.0;  // in front of the first node
+  float d1 = depths[k];
+  float d0 = k > 0u ? depths[k - 1u] : avsm_maps[slot].texels[base + g - 1u].w;
+  float t1 = avsm_maps[slot].texels[base + groups + g][k];
+  float t0 = k > 0u ? avsm_maps[slot].texels[base + groups + g][k - 1u]
+                    : avsm_maps[slot].texels[base + groups + g - 1u].w;
+  float f = d1 > d0 ? (d - d0) / (d1 - d0) : 1.0;
+  return avsm_interpolate(t0, t1, f, s.exponential != 0u);
+}
+
+// The exact curve of one texel's capture list: the product of its segments.
+float list_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
+  uint slot = s.slot;
+  uint node = imageLoad(shadow_list_heads[slot], texel).r;
+  float t = 1.0;
+  uint previous = 0xffffffffu;
+  while (node < previous) {  // indices fall along a list; kListEnd ends it
+    ShadowListNode n = shadow_list_nodes[slot].nodes[node];
+    t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
+    previous = node;
+    node = n.next;
+  }
+  return t;
+}
+
+float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) {
+  if (s.technique == kShadowUncompressed) return list_texel_transmittance(s, texel, d);
+  return avsm_texel_transmittance(s, avsm_texel_base(s, level, texel), d);
+}
+
+// Point or bilinear lookup in one mip level. Bilinear filtering evaluates the four
+// nearest curves at d and weights the results (curves cannot be blended).
+float shadow_level_transmittance(GpuShadow s, uint level, vec2 uv, float d, bool bilinear) {
+  int size = int(max(s.resolution >> level, 1u));
+  if (!bilinear) return shadow_texel_transmittance(s, level, clamp(ivec2(uv * float(size)), ivec2(0), ivec2(size - 1)), d);
+  vec2 x = uv * float(size) - 0.5;
+  ivec2 t0 = ivec2(floor(x));
+  vec2 f = x - vec2(t0);
+  ivec2 lo = clamp(t0, ivec2(0), ivec2(size - 1)), hi = clamp(t0 + 1, ivec2(0), ivec2(size - 1));
+  float a = shadow_texel_transmittance(s, level, lo, d);
+  float b = shadow_texel_transmittance(s, level, ivec2(hi.x, lo.y), d);
+  float c = shadow_texel_transmittance(s, level, ivec2(lo.x, hi.y), d);
+  float e = shadow_texel_transmittance(s, level, hi, d);
+  return mix(mix(a, b, f.x), mix(c, e, f.x), f.y);
+}
+
+// Transmittance from light `light_index` to world point p.
+float light_transmittance(uint light_index, vec3 p) {
+  GpuShadow s = shadows[light_index];
+  if (s.technique == kShadowNone) return 1.0;
+  vec4 clip = s.light_from_world * vec4(p, 1.0);
+  if (clip.w <= 0.0) return 1.0;  // behind a spot light: it does not shine there
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  // Outside the map nothing was captured: the point is outside the caster bounds.
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+  float d = shadow_light_depth(s, p);
+  bool trilinear = s.filter_mode == kFilterTrilinear && s.technique == kShadowAvsm && s.mip_count > 1u;
+  if (!trilinear) return shadow_level_transmittance(s, 0u, uv, d, s.filter_mode != kFilterPoint);
+  // Level of detail: a camera pixel's footprint at p over a light texel's size there.
+  float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
+  float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0, float(s.mip_count - 1u));
+  uint level = uint(floor(lod));
+  float upper = shadow_level_transmittance(s, min(level + 1u, s.mip_count - 1u), uv, d, true);
+  return mix(shadow_level_transmittance(s, level, uv, d, true), upper, lod - float(level));
+}
+
+// For surfaces: the point moved along its normal (towards the light's side) by a
+// few texels, so a surface does not shadow itself through its own blocker segment.
+float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
+  GpuShadow s = shadows[light_index];
+  if (s.technique == kShadowNone) return 1.0;
+  vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
+  float offset = s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p));
+  return light_transmittance(light_index, p + n * offset);
+}
 
 #endif

@@ -6,6 +6,8 @@
 //   AVSM_VOLUME_BINDING_NANOVDB    every volume's NanoVDB grid, one after another
 //   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid, one after another
 //   AVSM_VOLUME_BINDING_PARAMETERS one GpuVolume per volume
+// and, to get the brick walk (walk_volume_bricks), AVSM_VOLUME_WALK_STATE: the
+// includer's per-ray state type, declared before the include.
 #ifndef AVSM_VOLUME_GLSL
 #define AVSM_VOLUME_GLSL
 
@@ -107,6 +109,77 @@ bool clip_ray_to_box(vec3 origin, vec3 direction, vec3 box_min, vec3 box_max, fl
   t_exit = min(min(t_far.x, t_far.y), min(t_far.z, t_max));
   return t_enter < t_exit;
 }
+
+// Where the world ray [0, t_max] enters and leaves volume v's support (index-space box).
+bool volume_interval(uint v, vec3 world_origin, vec3 world_direction, float t_max, out float t_enter,
+                     out float t_exit) {
+  GpuVolume volume = volumes[v];
+  vec3 index_origin = (volume.index_from_world * vec4(world_origin, 1.0)).xyz;
+  vec3 index_direction = mat3(volume.index_from_world) * world_direction;
+  return clip_ray_to_box(index_origin, index_direction, volume.support_min, volume.support_max, 0.0, t_max,
+                         t_enter, t_exit);
+}
+
+// ---- Brick walk ----
+#ifdef AVSM_VOLUME_WALK_STATE
+// Defined by the includer: called for each stretch [t_start, t_end] of the ray inside
+// one brick that may hold density (every brick when skip_empty is false); returns
+// false to stop the walk. AVSM_VOLUME_WALK_STATE is the includer's march state.
+bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 world_origin, vec3 world_direction,
+                           vec3 index_origin, vec3 index_direction, float t_start, float t_end,
+                           inout AVSM_VOLUME_WALK_STATE state);
+
+// Walks volume `v` over [t_enter, t_exit] of the world ray (already clipped to its
+// support) brick by brick: a 3D DDA over the majorant grid, in world-ray units t.
+void walk_volume_bricks(uint v, vec3 world_origin, vec3 world_direction, float t_enter, float t_exit, bool skip_empty,
+                        inout AVSM_VOLUME_WALK_STATE state) {
+  GpuVolume volume = volumes[v];
+  DensityReader reader = make_density_reader(volume);
+  vec3 index_origin = (volume.index_from_world * vec4(world_origin, 1.0)).xyz;
+  vec3 index_direction = mat3(volume.index_from_world) * world_direction;
+  // Brick space: brick b covers [b, b + 1) on each axis.
+  vec3 brick_origin = (index_origin - vec3(volume.majorant_origin)) / float(volume.brick_size);
+  vec3 brick_direction = index_direction / float(volume.brick_size);
+  vec3 inverse_direction = safe_reciprocal(brick_direction);
+
+  ivec3 brick = clamp(ivec3(floor(brick_origin + t_enter * brick_direction)), ivec3(0), volume.majorant_dims - 1);
+  ivec3 brick_step = ivec3(sign(brick_direction));
+  // t at which the ray crosses the next brick boundary on each axis, and per brick.
+  vec3 next_boundary = vec3(brick) + vec3(greaterThan(brick_direction, vec3(0.0)));
+  vec3 t_next = (next_boundary - brick_origin) * inverse_direction;
+  vec3 t_delta = abs(inverse_direction);
+  // An axis the ray runs parallel to is never crossed.
+  bvec3 parallel = equal(brick_step, ivec3(0));
+  t_next = mix(t_next, vec3(3.4e38), parallel);
+
+  float t = t_enter;
+  // Every step leaves one brick, so the walk ends within the sum of the dimensions
+  // (plus slack for a start brick that rounding put one off).
+  int max_bricks = volume.majorant_dims.x + volume.majorant_dims.y + volume.majorant_dims.z + 3;
+  for (int i = 0; i < max_bricks && t < t_exit; ++i) {
+    float t_leave = min(min(t_next.x, t_next.y), t_next.z);
+    float t_end = min(t_leave, t_exit);
+    if (t_end > t && (!skip_empty || brick_majorant(volume, brick) > 0.0)) {
+      if (!visit_volume_interval(volume, reader, world_origin, world_direction, index_origin, index_direction, t, t_end,
+                                 state))
+        return;
+    }
+    t = max(t, t_end);
+    // Step into the neighbour across the nearest boundary.
+    if (t_next.x <= t_next.y && t_next.x <= t_next.z) {
+      brick.x += brick_step.x;
+      t_next.x += t_delta.x;
+    } else if (t_next.y <= t_next.z) {
+      brick.y += brick_step.y;
+      t_next.y += t_delta.y;
+    } else {
+      brick.z += brick_step.z;
+      t_next.z += t_delta.z;
+    }
+    if (any(lessThan(brick, ivec3(0))) || any(greaterThanEqual(brick, volume.majorant_dims))) return;
+  }
+}
+#endif
 
 // ---- Scattering ----
 

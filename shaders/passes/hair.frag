@@ -2,6 +2,7 @@
 // Kajiya-Kay diffuse for fibres: light scatters by the sine of the angle to the tangent.
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
+#define AVSM_SHADOW_BINDING 4
 #include "common/shadow_lookup.glsl"
 
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };

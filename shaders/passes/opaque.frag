@@ -1,7 +1,8 @@
 #version 460
-// Lambert + sky ambient; each light attenuated by light_transmittance().
+// Lambert + sky ambient; each light attenuated by its transmittance map.
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
+#define AVSM_SHADOW_BINDING 4
 #include "common/shadow_lookup.glsl"
 
 struct Material {
@@ -41,7 +42,8 @@ void main() {
   for (uint i = 0u; i < pc.light_count; ++i) {
     vec3 to_light;
     vec3 radiance = light_radiance(lights[i], in_world, to_light);
-    lit += radiance * max(dot(n, to_light), 0.0) * light_transmittance(i, in_world);
+    float n_dot_l = dot(n, to_light);
+    if (n_dot_l > 0.0) lit += radiance * n_dot_l * surface_light_transmittance(i, in_world, n, to_light);
   }
   out_color = vec4(albedo.rgb * lit, 1.0);
 }

@@ -8,11 +8,17 @@
 // sampled at the midpoints of equal steps of at most GpuVolume::step_length.
 #extension GL_GOOGLE_include_directive : require
 
+struct MarchState {
+  float transmittance;  // camera to the current point
+  vec3 in_scattered;    // radiance scattered towards the camera so far
+};
+#define AVSM_VOLUME_WALK_STATE MarchState
 #define AVSM_VOLUME_BINDING_NANOVDB 2
 #define AVSM_VOLUME_BINDING_MAJORANTS 3
 #define AVSM_VOLUME_BINDING_PARAMETERS 4
 #include "common/volume.glsl"
 #include "common/lights.glsl"
+#define AVSM_SHADOW_BINDING 6
 #include "common/shadow_lookup.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -36,10 +42,6 @@ const uint kFlagNoMajorantSkipping = 1u;  // debug: march empty bricks too (resu
 // at most 1e-3 of the remaining light), so the march stops.
 const float kMinTransmittance = 1e-3;
 
-struct MarchState {
-  float transmittance;  // camera to the current point
-  vec3 in_scattered;    // radiance scattered towards the camera so far
-};
 
 // World position of a pixel at a depth-buffer value. Vulkan depth 0..1, and the
 // viewport is flipped so that +y is up: pixel row 0 is the top of the image.
@@ -87,65 +89,17 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
   }
 }
 
-// Marches volume `v` over [t_enter, t_exit] (already clipped to its support) brick by
-// brick: a 3D DDA over the majorant grid, in world-ray units t.
-void march_volume(uint v, vec3 world_origin, vec3 world_direction, float t_enter, float t_exit,
-                  inout MarchState state) {
-  GpuVolume volume = volumes[v];
-  DensityReader reader = make_density_reader(volume);
-  vec3 index_origin = (volume.index_from_world * vec4(world_origin, 1.0)).xyz;
-  vec3 index_direction = mat3(volume.index_from_world) * world_direction;
-  // Brick space: brick b covers [b, b + 1) on each axis.
-  vec3 brick_origin = (index_origin - vec3(volume.majorant_origin)) / float(volume.brick_size);
-  vec3 brick_direction = index_direction / float(volume.brick_size);
-  vec3 inverse_direction = safe_reciprocal(brick_direction);
-
-  ivec3 brick = clamp(ivec3(floor(brick_origin + t_enter * brick_direction)), ivec3(0), volume.majorant_dims - 1);
-  ivec3 brick_step = ivec3(sign(brick_direction));
-  // t at which the ray crosses the next brick boundary on each axis, and per brick.
-  vec3 next_boundary = vec3(brick) + vec3(greaterThan(brick_direction, vec3(0.0)));
-  vec3 t_next = (next_boundary - brick_origin) * inverse_direction;
-  vec3 t_delta = abs(inverse_direction);
-  // An axis the ray runs parallel to is never crossed.
-  bvec3 parallel = equal(brick_step, ivec3(0));
-  t_next = mix(t_next, vec3(3.4e38), parallel);
-  bool skip_empty = (pc.flags & kFlagNoMajorantSkipping) == 0u;
-
-  float t = t_enter;
-  // Every step leaves one brick, so the walk ends within the sum of the dimensions
-  // (plus slack for a start brick that rounding put one off).
-  int max_bricks = volume.majorant_dims.x + volume.majorant_dims.y + volume.majorant_dims.z + 3;
-  for (int i = 0; i < max_bricks && t < t_exit; ++i) {
-    float t_leave = min(min(t_next.x, t_next.y), t_next.z);
-    float t_end = min(t_leave, t_exit);
-    if (t_end > t && (!skip_empty || brick_majorant(volume, brick) > 0.0)) {
-      march_segment(volume, reader, world_origin, world_direction, index_origin, index_direction, t, t_end, state);
-      if (state.transmittance < kMinTransmittance) return;
-    }
-    t = max(t, t_end);
-    // Step into the neighbour across the nearest boundary.
-    if (t_next.x <= t_next.y && t_next.x <= t_next.z) {
-      brick.x += brick_step.x;
-      t_next.x += t_delta.x;
-    } else if (t_next.y <= t_next.z) {
-      brick.y += brick_step.y;
-      t_next.y += t_delta.y;
-    } else {
-      brick.z += brick_step.z;
-      t_next.z += t_delta.z;
-    }
-    if (any(lessThan(brick, ivec3(0))) || any(greaterThanEqual(brick, volume.majorant_dims))) return;
-  }
+// The brick walk calls this for each non-empty stretch of the ray.
+bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 world_origin, vec3 world_direction,
+                           vec3 index_origin, vec3 index_direction, float t_start, float t_end, inout MarchState state) {
+  march_segment(volume, reader, world_origin, world_direction, index_origin, index_direction, t_start, t_end, state);
+  return state.transmittance >= kMinTransmittance;
 }
 
-// Where this pixel's ray [0, t_max] enters and leaves volume v's support (index-space box).
-bool volume_interval(uint v, vec3 world_origin, vec3 world_direction, float t_max, out float t_enter,
-                     out float t_exit) {
-  GpuVolume volume = volumes[v];
-  vec3 index_origin = (volume.index_from_world * vec4(world_origin, 1.0)).xyz;
-  vec3 index_direction = mat3(volume.index_from_world) * world_direction;
-  return clip_ray_to_box(index_origin, index_direction, volume.support_min, volume.support_max, 0.0, t_max,
-                         t_enter, t_exit);
+void march_volume(uint v, vec3 world_origin, vec3 world_direction, float t_enter, float t_exit,
+                  inout MarchState state) {
+  walk_volume_bricks(v, world_origin, world_direction, t_enter, t_exit, (pc.flags & kFlagNoMajorantSkipping) == 0u,
+                     state);
 }
 
 // The volume hit next after (previous_enter, previous_index) in (entry distance, index)

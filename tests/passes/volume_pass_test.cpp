@@ -24,6 +24,7 @@
 #include "gpu/transfer.h"
 #include "passes/lights.h"
 #include "passes/view.h"
+#include "passes/shadow_maps.h"
 #include "passes/volume_pass.h"
 #include "scene/volume.h"
 #include "support/gpu_test.h"
@@ -211,7 +212,9 @@ gpu::ImageRGBA32F render(gpu::Context& ctx, passes::VolumePass& pass, const pass
   const rg::TextureHandle depth_handle =
       graph.import_texture("depth", {kWidth, kHeight, 1, 1, 1, passes::VolumePass::kDepthFormat},
                            uploaded(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), rg::ImportState::none());
-  pass.add_to_graph(graph, color_handle, depth_handle, view, light_buffer, uint32_t(lights.lights.size()));
+  const passes::UnshadowedInputs unshadowed(ctx);
+  pass.add_to_graph(graph, color_handle, depth_handle, view, light_buffer, uint32_t(lights.lights.size()),
+                    unshadowed.inputs());
 
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
   executor.bind(color_handle, color);

@@ -19,6 +19,15 @@ const char* kUsage =
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
+    "shadow overrides, for every light (default: the scene file's settings):\n"
+    "  --technique T    avsm | uncompressed (the exact reference)\n"
+    "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
+    "  --sort on|off    sort each texel's segments before the resolve\n"
+    "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
+    "  --shadow-res R   transmittance map texels per side\n"
+    "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
+    "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
+    "                   transmittance at every point\n"
     "  --help           this text\n";
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -35,6 +44,12 @@ uint32_t parse_count(const std::string& flag, const std::string& value) {
   } catch (const std::exception&) {
     usage_error(flag + " expects a positive whole number, got '" + value + "'");
   }
+}
+
+bool parse_on_off(const std::string& flag, const std::string& value) {
+  if (value == "on") return true;
+  if (value == "off") return false;
+  usage_error(flag + " expects on or off, got '" + value + "'");
 }
 
 }  // namespace
@@ -68,6 +83,31 @@ int main(int argc, char** argv) {
       options.validation = true;
     } else if (arg == "--quiet") {
       options.progress = false;
+    } else if (arg == "--technique") {
+      const std::string name = value();
+      options.technique = avsm::scene::shadow_technique_from_string(name);
+      if (!options.technique) usage_error("--technique expects avsm or uncompressed, got '" + name + "'");
+    } else if (arg == "--nodes") {
+      const uint32_t n = parse_count(arg, value());
+      if (n != 4 && n != 8 && n != 12 && n != 16) usage_error("--nodes expects 4, 8, 12 or 16");
+      options.nodes = int(n);
+    } else if (arg == "--sort") {
+      options.sort = parse_on_off(arg, value());
+    } else if (arg == "--filter") {
+      const std::string name = value();
+      options.filter = avsm::scene::shadow_filter_from_string(name);
+      if (!options.filter) usage_error("--filter expects point, bilinear or trilinear, got '" + name + "'");
+    } else if (arg == "--shadow-res") {
+      const uint32_t r = parse_count(arg, value());
+      if (r > 16384) usage_error("--shadow-res expects at most 16384");
+      options.shadow_resolution = int(r);
+    } else if (arg == "--interpolation") {
+      const std::string name = value();
+      if (name != "linear" && name != "exponential")
+        usage_error("--interpolation expects linear or exponential, got '" + name + "'");
+      options.exponential_interpolation = name == "exponential";
+    } else if (arg == "--probe") {
+      options.probe_file = value();
     } else {
       usage_error("unknown option '" + arg + "'");
     }

@@ -260,14 +260,14 @@ void write_scene_json(const std::filesystem::path& file) {
       "name": "sun", "type": "directional",
       "direction": [0.35, -1.0, 0.25],
       "color": [1.0, 0.96, 0.9], "intensity": 3.0,
-      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 2048, "filter": "bilinear", "sort": true }
+      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "bilinear", "sort": true }
     },
     {
       "name": "key_spot", "type": "spot",
       "position": [3.0, 3.6, 2.4], "target": [0.2, 0.9, -0.2],
       "inner_cone_deg": 24.0, "outer_cone_deg": 32.0,
       "color": [1.0, 0.9, 0.8], "intensity": 40.0,
-      "shadow": { "technique": "avsm", "nodes": 16, "resolution": 1024, "filter": "trilinear", "sort": true }
+      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "trilinear", "sort": true }
     }
   ],
   "cameras": [

@@ -1,0 +1,26 @@
+#pragma once
+// AVSM mip chain: each level from the one above by merging the curves of 2x2
+// texels (their mean transmittance at every child node depth) and re-compressing
+// to N nodes. One pass per light, one dispatch per level with a barrier between.
+// Shader: shaders/passes/avsm_mips.comp.
+#include <rendergraph/graph.h>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "passes/avsm_map_layout.h"
+
+namespace avsm::passes {
+
+class AvsmMipsPass {
+ public:
+  AvsmMipsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  // Adds "<prefix> avsm mips" when layout.levels > 1; returns the map's new version.
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
+                                const AvsmMapLayout& layout) const;
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace avsm::passes

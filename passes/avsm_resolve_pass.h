@@ -1,0 +1,26 @@
+#pragma once
+// AVSM resolve: per light texel, streams the capture list through the AVSM core
+// (insert each segment, compress to N nodes by the smallest-area rule) and
+// writes level 0 of the light's map. Shader: shaders/passes/avsm_resolve.comp.
+#include <rendergraph/graph.h>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "passes/avsm_map_layout.h"
+#include "passes/capture_lists.h"
+
+namespace avsm::passes {
+
+class AvsmResolvePass {
+ public:
+  AvsmResolvePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  // Adds "<prefix> avsm resolve"; `map` must hold at least layout.bytes(). Returns the written map.
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                rg::BufferHandle map, const AvsmMapLayout& layout, float far_depth) const;
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace avsm::passes

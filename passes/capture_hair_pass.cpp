@@ -1,0 +1,62 @@
+#include "passes/capture_hair_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/rendering.h"
+
+namespace avsm::passes {
+namespace {
+
+// Mirrors shaders/passes/capture_hair.frag: hair.vert's block, then the capture's.
+struct Push {
+  glm::mat4 view_projection;
+  glm::vec4 camera_position;  // where ribbons face: the light
+  glm::vec2 viewport;
+  uint32_t light_count;
+  float pad;
+  glm::vec4 depth_plane;
+  glm::vec4 texel_size;
+};
+static_assert(sizeof(Push) == 128);
+
+// The point ribbons turn to face: the spot light itself, or for a directional
+// light a point far back along its direction (so ribbons face along it).
+glm::vec3 ribbon_facing_point(const LightView& light) {
+  if (light.perspective) return light.eye;
+  return light.eye - glm::vec3(light.depth_plane) * (1e3f * light.far_depth);
+}
+
+}  // namespace
+
+CaptureHairPass::CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = "capture hair";
+  desc.vertex = shaders.load("shaders/passes/hair.vert");
+  desc.fragment = shaders.load("shaders/passes/capture_hair.frag");
+  desc.cull_mode = VK_CULL_MODE_NONE;
+  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+}
+
+CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                           const LightView& light, const HairPass& hair) const {
+  if (hair.segment_count() == 0) return lists;
+  return graph.add_pass<CaptureLists>(prefix + " capture hair", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
+      [this, light, &hair](const CaptureLists& d, rg::PassContext& c) {
+        VkCommandBuffer cmd = c.cmd();
+        gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
+        pipeline_.bind(cmd);
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer(0, hair.points().handle()).buffer(1, hair.segments().handle()).buffer(2, hair.strands().handle());
+        bind_capture_lists(bindings, 3, c, d);
+        bindings.push(cmd);
+        const float resolution = float(light.resolution);
+        pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(ribbon_facing_point(light), 1.0f),
+                                           {resolution, resolution}, 0, 0.0f, light.depth_plane,
+                                           {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
+        vkCmdDraw(cmd, hair.segment_count() * 6, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+      });
+}
+
+}  // namespace avsm::passes

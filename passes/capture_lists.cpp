@@ -1,0 +1,44 @@
+#include "passes/capture_lists.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/pipeline.h"
+
+namespace avsm::passes {
+
+CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
+                                    uint64_t node_capacity, rg::BufferHandle counter) {
+  const CaptureLists& lists = graph.add_pass<CaptureLists>(prefix + " clear lists", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, CaptureLists& d) {
+        d.heads = b.write(b.create_texture(prefix + " list heads", {resolution, resolution, 1, 1, 1, kCaptureHeadFormat}),
+                          rg::Usage::TransferDst);
+        // Only the first node is cleared: appends overwrite nodes whole, and the
+        // graph must see the buffer written before the captures read-modify it.
+        d.nodes = b.write(b.create_buffer(prefix + " list nodes", {node_capacity * kCaptureSegmentBytes}),
+                          rg::Usage::TransferDst);
+        d.counter = b.write(counter, rg::Usage::TransferDst);
+      },
+      [](const CaptureLists& d, rg::PassContext& c) {
+        const VkClearColorValue end_of_list{.uint32 = {~0u, 0, 0, 0}};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(c.cmd(), c.image(d.heads), c.layout(d.heads), &end_of_list, 1, &all);
+        vkCmdFillBuffer(c.cmd(), c.buffer(d.nodes), 0, kCaptureSegmentBytes, ~0u);
+        vkCmdFillBuffer(c.cmd(), c.buffer(d.counter), 0, 4, 0);
+      });
+  return lists;
+}
+
+CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists) {
+  return {builder.read_write(lists.heads, rg::Usage::StorageReadWrite),
+          builder.read_write(lists.nodes, rg::Usage::StorageReadWrite),
+          builder.read_write(lists.counter, rg::Usage::StorageReadWrite)};
+}
+
+void bind_capture_lists(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context,
+                        const CaptureLists& lists) {
+  bindings.image(first_binding, context.view(lists.heads), context.layout(lists.heads))
+      .buffer(first_binding + 1, context.buffer(lists.nodes))
+      .buffer(first_binding + 2, context.buffer(lists.counter), 0, 4);
+}
+
+}  // namespace avsm::passes

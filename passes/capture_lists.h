@@ -1,0 +1,42 @@
+#pragma once
+// A light's capture lists in the frame graph: the head-pointer image (one list
+// per light texel), the node buffer every capture pass appends segments to, and
+// the persistent counter the CPU reads after the frame to see how many nodes were
+// asked for (shaders/common/capture_lists.glsl). Heads and nodes are transient:
+// the graph places them in its heaps, and one light's lists alias the previous
+// light's once that light is resolved.
+#include <rendergraph/graph.h>
+
+#include <cstdint>
+#include <string>
+
+namespace avsm::gpu {
+class Bindings;
+}
+
+namespace avsm::passes {
+
+inline constexpr uint64_t kCaptureSegmentBytes = 16;  // struct CaptureSegment
+inline constexpr VkFormat kCaptureHeadFormat = VK_FORMAT_R32_UINT;
+
+struct CaptureLists {
+  rg::TextureHandle heads;   // R32_UINT, resolution x resolution
+  rg::BufferHandle nodes;    // node_capacity CaptureSegments
+  rg::BufferHandle counter;  // one uint: nodes asked for, including those that did not fit
+};
+
+// Declares "<prefix> clear lists": creates the heads and nodes, clears every head
+// to the end-of-list value and the counter to 0. `counter` is an imported buffer
+// of at least 4 bytes.
+CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
+                                    uint64_t node_capacity, rg::BufferHandle counter);
+
+// For a pass that appends: declares read-write access to all three and returns
+// the new versions.
+CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists);
+
+// Binds heads, nodes, counter at first_binding, +1, +2 (AVSM_CAPTURE_BINDING).
+void bind_capture_lists(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context,
+                        const CaptureLists& lists);
+
+}  // namespace avsm::passes

@@ -1,0 +1,50 @@
+#include "passes/capture_opaque_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/rendering.h"
+
+namespace avsm::passes {
+namespace {
+
+// Mirrors shaders/passes/capture_opaque.vert/.frag.
+struct Push {
+  glm::mat4 light_from_world;
+  glm::vec4 depth_plane;
+  glm::vec2 texel_size;
+};
+
+}  // namespace
+
+CaptureOpaquePass::CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = "capture opaque";
+  desc.vertex = shaders.load("shaders/passes/capture_opaque.vert");
+  desc.fragment = shaders.load("shaders/passes/capture_opaque.frag");
+  desc.cull_mode = VK_CULL_MODE_NONE;
+  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+}
+
+CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                             const LightView& light, const OpaquePass& meshes) const {
+  if (meshes.draws().empty()) return lists;
+  return graph.add_pass<CaptureLists>(prefix + " capture opaque", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
+      [this, light, &meshes](const CaptureLists& d, rg::PassContext& c) {
+        VkCommandBuffer cmd = c.cmd();
+        gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
+        pipeline_.bind(cmd);
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer(0, meshes.vertices().handle());
+        bind_capture_lists(bindings, 1, c, d);
+        bindings.push(cmd);
+        pipeline_.push_constants(cmd, Push{light.light_from_world, light.depth_plane,
+                                           {light.texel_size_base, light.texel_size_per_depth}});
+        vkCmdBindIndexBuffer(cmd, meshes.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+        for (const OpaquePass::Draw& draw : meshes.draws())
+          vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+        vkCmdEndRendering(cmd);
+      });
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,33 @@
+#pragma once
+// Light-space capture of smoke: one compute thread per light texel marches every
+// fog volume along the texel's ray (NanoVDB, majorant bricks skip empty space) and
+// appends segments with their exact transmittance exp(-optical depth), one per
+// `samples_per_segment` march samples. Shader: shaders/passes/capture_smoke.comp.
+#include <rendergraph/graph.h>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "passes/capture_lists.h"
+#include "passes/light_view.h"
+#include "passes/volume_pass.h"
+
+namespace avsm::passes {
+
+class CaptureSmokePass {
+ public:
+  // 16 samples = 4 voxels at the march's quarter-voxel step: short enough that a
+  // segment's linear fall is close to the exponential, long enough to keep lists short.
+  static constexpr uint32_t kDefaultSamplesPerSegment = 16;
+
+  CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  // Adds "<prefix> capture smoke" when there are volumes; returns the lists' new versions.
+  CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                            const LightView& light, const VolumePass& volumes,
+                            uint32_t samples_per_segment = kDefaultSamplesPerSegment) const;
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace avsm::passes

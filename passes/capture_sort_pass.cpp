@@ -1,0 +1,29 @@
+#include "passes/capture_sort_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+namespace avsm::passes {
+
+CaptureSortPass::CaptureSortPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/capture_sort.comp"), "capture sort")) {}
+
+CaptureLists CaptureSortPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                           uint32_t resolution) const {
+  return graph.add_pass<CaptureLists>(prefix + " sort lists", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, CaptureLists& d) {
+        d = lists;
+        d.heads = b.read(lists.heads, rg::Usage::StorageRead);
+        d.nodes = b.read_write(lists.nodes, rg::Usage::StorageReadWrite);
+      },
+      [this, resolution](const CaptureLists& d, rg::PassContext& c) {
+        pipeline_.bind(c.cmd());
+        gpu::Bindings(ctx_, pipeline_)
+            .image(0, c.view(d.heads), c.layout(d.heads))
+            .buffer(1, c.buffer(d.nodes))
+            .push(c.cmd());
+        pipeline_.push_constants(c.cmd(), resolution);
+        pipeline_.dispatch_threads(c.cmd(), resolution, resolution);
+      });
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,212 @@
+#include "passes/shadow_maps.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "gpu/transfer.h"
+
+namespace avsm::passes {
+namespace {
+
+uint32_t technique_code(scene::ShadowTechnique technique) {
+  return technique == scene::ShadowTechnique::uncompressed ? 2u : 1u;
+}
+
+uint32_t filter_code(scene::ShadowFilter filter) {
+  switch (filter) {
+    case scene::ShadowFilter::point: return 0u;
+    case scene::ShadowFilter::bilinear: return 1u;
+    case scene::ShadowFilter::trilinear: return 2u;
+  }
+  return 1u;
+}
+
+void check_settings(const scene::Light& light, size_t index) {
+  const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
+  const scene::ShadowSettings& s = light.shadow;
+  if (s.technique != scene::ShadowTechnique::avsm && s.technique != scene::ShadowTechnique::uncompressed)
+    throw std::invalid_argument(who + ": shadow technique '" + std::string(scene::to_string(s.technique)) +
+                                "' is not available in this build; use avsm or uncompressed");
+  if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
+    throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
+  if (s.resolution < 1 || s.resolution > 16384)
+    throw std::invalid_argument(who + ": shadow resolution " + std::to_string(s.resolution) + " is outside 1..16384");
+}
+
+uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple - 1) / multiple * multiple; }
+
+}  // namespace
+
+void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
+  for (uint32_t slot = 0; slot < kMaxShadowedLights; ++slot) {
+    if (maps[slot].valid()) builder.read(maps[slot], rg::Usage::StorageRead);
+    if (heads[slot].valid()) builder.read(heads[slot], rg::Usage::StorageRead);
+    if (nodes[slot].valid()) builder.read(nodes[slot], rg::Usage::StorageRead);
+  }
+}
+
+void ShadowInputs::bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const {
+  bindings.buffer(first_binding, parameters);
+  for (uint32_t slot = 0; slot < kMaxShadowedLights; ++slot) {
+    bindings.buffer_element(first_binding + 1, slot, maps[slot].valid() ? context.buffer(maps[slot]) : unused_buffer);
+    if (heads[slot].valid())
+      bindings.image_element(first_binding + 2, slot, context.view(heads[slot]), context.layout(heads[slot]));
+    else
+      bindings.image_element(first_binding + 2, slot, unused_heads, VK_IMAGE_LAYOUT_GENERAL);
+    bindings.buffer_element(first_binding + 3, slot, nodes[slot].valid() ? context.buffer(nodes[slot]) : unused_buffer);
+  }
+}
+
+UnshadowedInputs::UnshadowedInputs(gpu::Context& ctx) {
+  parameters_ = gpu::create_buffer_from(ctx, std::vector<GpuShadow>(kMaxLights, GpuShadow{}),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "unshadowed parameters");
+  gpu::ImageDesc desc;
+  desc.format = kCaptureHeadFormat;
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "unused list heads";
+  heads_ = gpu::Image::create(ctx, desc);
+  const uint32_t end_of_list = ~0u;
+  gpu::upload_image(ctx, heads_, &end_of_list, sizeof(end_of_list), VK_IMAGE_LAYOUT_GENERAL);
+}
+
+ShadowInputs UnshadowedInputs::inputs() const {
+  ShadowInputs inputs;
+  inputs.parameters = parameters_.handle();
+  inputs.unused_buffer = parameters_.handle();
+  inputs.unused_heads = heads_.view();
+  return inputs;
+}
+
+ShadowMaps::ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx),
+      capture_opaque_(ctx, shaders),
+      capture_hair_(ctx, shaders),
+      capture_smoke_(ctx, shaders),
+      sort_(ctx, shaders),
+      resolve_(ctx, shaders),
+      mips_(ctx, shaders),
+      unshadowed_(ctx) {}
+
+void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& options) {
+  if (scene.lights.size() > kMaxShadowedLights)
+    throw std::invalid_argument(scene.file.string() + ": " + std::to_string(scene.lights.size()) +
+                                " lights; at most " + std::to_string(kMaxShadowedLights) + " can cast shadows");
+  options_ = options;
+  views_.clear();
+  lights_.clear();
+  stats_.clear();
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scene::Light& light = scene.lights[i];
+    check_settings(light, i);
+    const uint32_t resolution = uint32_t(light.shadow.resolution);
+    views_.push_back(make_light_view(light, scene.bounds, resolution));
+    LightState state;
+    state.settings = light.shadow;
+    state.layout.resolution = resolution;
+    state.layout.nodes = uint32_t(light.shadow.nodes);
+    state.layout.levels =
+        light.shadow.filter == scene::ShadowFilter::trilinear ? AvsmMapLayout::full_mip_count(resolution) : 1;
+    const std::string name = "light " + std::to_string(i);
+    if (light.shadow.technique == scene::ShadowTechnique::avsm)
+      state.map = gpu::Buffer::create(ctx_, {state.layout.bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                             gpu::MemoryLocation::DeviceLocal, name + " avsm map"});
+    state.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                               gpu::MemoryLocation::HostReadback, name + " capture counter"});
+    // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
+    state.capacity = std::min<uint64_t>(uint64_t(resolution) * resolution * 8,
+                                        options_.capture_limit_bytes / kCaptureSegmentBytes);
+    lights_.push_back(std::move(state));
+    LightShadowStats stats;
+    stats.light = light.name.empty() ? name : light.name;
+    stats_.push_back(stats);
+  }
+  parameters_ = gpu::Buffer::create(
+      ctx_, {std::max<uint64_t>(lights_.size(), 1) * sizeof(GpuShadow), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+             gpu::MemoryLocation::HostUpload, "shadow parameters"});
+}
+
+GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
+  const LightView& v = views_[light];
+  const LightState& s = lights_[light];
+  GpuShadow g{};
+  g.light_from_world = v.light_from_world;
+  g.depth_plane = v.depth_plane;
+  // A camera pixel spans about 2 tan(fov/2) / height radians; tan(fov/2) = 1 / |P[1][1]|.
+  const float radians_per_pixel = 2.0f / (std::abs(camera.projection[1][1]) * float(std::max(camera.height, 1u)));
+  g.texel_camera = glm::vec4(v.texel_size_base, v.texel_size_per_depth, v.far_depth, radians_per_pixel);
+  g.camera_position = glm::vec4(camera.camera_position, options_.normal_offset_texels);
+  g.technique = technique_code(s.settings.technique);
+  g.node_count = s.layout.nodes;
+  g.resolution = s.layout.resolution;
+  g.mip_count = s.layout.levels;
+  g.filter_mode = filter_code(s.settings.filter);
+  g.exponential = options_.exponential_interpolation ? 1u : 0u;
+  g.slot = light;
+  return g;
+}
+
+ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
+                                      const OpaquePass& meshes, const HairPass& hair, const VolumePass& volumes) {
+  ShadowInputs inputs = unshadowed_inputs();
+  if (lights_.empty()) return inputs;
+  inputs.parameters = parameters_.handle();
+  auto* parameters = static_cast<GpuShadow*>(parameters_.mapped());
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
+    parameters[i] = gpu_shadow(i, camera);
+    LightState& light = lights_[i];
+    const LightView& view = views_[i];
+    const std::string prefix = "light " + std::to_string(i);
+
+    rg::BufferHandle counter = graph.import_buffer(prefix + " capture counter", {light.counter.size()},
+                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+    executor.bind(counter, light.counter);
+    CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, light.capacity, counter);
+    lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, meshes);
+    lists = capture_hair_.add_to_graph(graph, prefix, lists, view, hair);
+    lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, volumes, options_.smoke_samples_per_segment);
+    if (light.settings.sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
+
+    if (light.settings.technique == scene::ShadowTechnique::uncompressed) {
+      inputs.heads[i] = lists.heads;
+      inputs.nodes[i] = lists.nodes;
+      continue;
+    }
+    rg::BufferHandle map = graph.import_buffer(prefix + " avsm map", {light.map.size()}, rg::ImportState::none(),
+                                               rg::ImportState::of(rg::Usage::StorageRead));
+    executor.bind(map, light.map);
+    map = resolve_.add_to_graph(graph, prefix, lists, map, light.layout, view.far_depth);
+    inputs.maps[i] = mips_.add_to_graph(graph, prefix, map, light.layout);
+  }
+  return inputs;
+}
+
+void ShadowMaps::finish_frame() {
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    LightState& light = lights_[i];
+    LightShadowStats& stats = stats_[i];
+    uint32_t requested = 0;
+    std::memcpy(&requested, light.counter.mapped(), sizeof(requested));
+    stats.technique = light.settings.technique;
+    stats.nodes = light.layout.nodes;
+    stats.resolution = light.layout.resolution;
+    stats.mip_levels = light.layout.levels;
+    stats.map_bytes = light.map ? light.map.size() : 0;
+    stats.capture_capacity = light.capacity;
+    stats.capture_requested = requested;
+    stats.capture_bytes = light.capacity * kCaptureSegmentBytes + uint64_t(light.layout.resolution) * light.layout.resolution * 4;
+    stats.overflowed = requested > light.capacity;
+    if (stats.overflowed) {
+      const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
+      light.capacity = std::min(limit, round_up(requested + requested / 4, 1024));
+    }
+    stats.next_capture_capacity = light.capacity;
+  }
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,156 @@
+#pragma once
+// Adaptive volumetric shadow maps for every light of a scene, as frame-graph
+// passes (Salvi et al., EGSR 2010). Per light and frame:
+//   clear lists -> capture opaque -> capture hair -> capture smoke -> [sort lists]
+//   -> avsm resolve -> avsm mips            (technique avsm)
+// or the capture lists themselves, read exactly by the camera passes (technique
+// uncompressed, the ground truth). The lists are transient graph resources, so
+// lights alias each other's capture memory; the map and the capture counter are
+// persistent and imported.
+//
+// Capture overflow: the node buffer of each light holds a fixed number of
+// segments. Segments beyond it are counted and dropped (never written out of
+// bounds), so an overflowed frame has lighter shadows where the dropped segments
+// were; frame_stats() reports it, and the next frame's buffer grows to fit (25%
+// headroom) up to capture_limit_bytes.
+#include <rendergraph/graph.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/avsm_map_layout.h"
+#include "passes/avsm_mips_pass.h"
+#include "passes/avsm_resolve_pass.h"
+#include "passes/capture_hair_pass.h"
+#include "passes/capture_opaque_pass.h"
+#include "passes/capture_smoke_pass.h"
+#include "passes/capture_sort_pass.h"
+#include "passes/light_view.h"
+#include "passes/view.h"
+#include "scene/scene.h"
+
+namespace avsm::passes {
+
+inline constexpr uint32_t kMaxShadowedLights = 4;  // AVSM_MAX_SHADOWED_LIGHTS in shadow_lookup.glsl
+
+// std430, 144 bytes; mirrors struct GpuShadow in shaders/common/shadow_lookup.glsl.
+struct GpuShadow {
+  glm::mat4 light_from_world;
+  glm::vec4 depth_plane;
+  glm::vec4 texel_camera;     // x + y * depth: texel world size; z: far depth; w: camera radians per pixel
+  glm::vec4 camera_position;  // w: receivers' normal offset in texels
+  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed
+  uint32_t node_count;
+  uint32_t resolution;
+  uint32_t mip_count;
+  uint32_t filter_mode;       // 0 point, 1 bilinear, 2 trilinear
+  uint32_t exponential;
+  uint32_t slot;
+  uint32_t pad;
+};
+static_assert(sizeof(GpuShadow) == 144);
+
+// What a camera pass reads to look shadows up (bindings AVSM_SHADOW_BINDING .. +3).
+struct ShadowInputs {
+  VkBuffer parameters = VK_NULL_HANDLE;  // one GpuShadow per scene light
+  std::array<rg::BufferHandle, kMaxShadowedLights> maps{};
+  std::array<rg::TextureHandle, kMaxShadowedLights> heads{};
+  std::array<rg::BufferHandle, kMaxShadowedLights> nodes{};
+  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound to slots without a map or lists
+  VkImageView unused_heads = VK_NULL_HANDLE;
+
+  // Declares the reads in a camera pass's setup.
+  void declare_reads(rg::PassBuilder& builder) const;
+  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const;
+};
+
+// Stand-ins bound where a light has no map or lists, and the parameter block of
+// all-unshadowed lights: camera passes rendered without shadow maps use these.
+class UnshadowedInputs {
+ public:
+  static constexpr uint32_t kMaxLights = 64;
+  explicit UnshadowedInputs(gpu::Context& ctx);
+  ShadowInputs inputs() const;
+
+ private:
+  gpu::Buffer parameters_;  // kMaxLights zeroed GpuShadows (technique 0)
+  gpu::Image heads_;        // 1x1 R32_UINT, one empty list, GENERAL layout
+};
+
+// Per-light figures of the last frame (after finish_frame()).
+struct LightShadowStats {
+  std::string light;
+  scene::ShadowTechnique technique = scene::ShadowTechnique::avsm;
+  uint32_t nodes = 0, resolution = 0, mip_levels = 0;
+  uint64_t map_bytes = 0;               // persistent AVSM map (0 for uncompressed)
+  uint64_t capture_capacity = 0;        // segments the node buffer held this frame
+  uint64_t capture_requested = 0;       // segments the captures asked for
+  uint64_t capture_bytes = 0;           // heads + node buffer this frame
+  bool overflowed = false;              // requested > capacity: segments were dropped
+  uint64_t next_capture_capacity = 0;   // after growth
+};
+
+struct ShadowOptions {
+  bool exponential_interpolation = false;
+  float normal_offset_texels = 2.0f;           // receivers move this many texels along their normal
+  uint64_t capture_limit_bytes = 128ull << 20;  // node buffer growth limit (lavapipe's maxStorageBufferRange)
+  uint32_t smoke_samples_per_segment = CaptureSmokePass::kDefaultSamplesPerSegment;
+};
+
+class ShadowMaps {
+ public:
+  ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // Every scene light casts (at most kMaxShadowedLights; more is an error naming
+  // the scene), with its ShadowSettings. Throws std::invalid_argument for
+  // settings this build cannot render (a technique of a later issue, bad N).
+  void set_scene(const scene::Scene& scene, const ShadowOptions& options = {});
+
+  // Declares this frame's shadow passes for every light and binds their
+  // persistent resources to `executor`. The casters are the camera passes'
+  // geometry. Returns what the camera passes need to read the maps.
+  ShadowInputs add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
+                            const OpaquePass& meshes, const HairPass& hair, const VolumePass& volumes);
+
+  // Inputs that leave every light unshadowed (for camera passes used without maps).
+  ShadowInputs unshadowed_inputs() const { return unshadowed_.inputs(); }
+
+  // After the frame completed: reads the capture counters, reports overflow,
+  // grows the node buffers for the next frame.
+  void finish_frame();
+  const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
+  const std::vector<LightView>& light_views() const { return views_; }
+  const gpu::Buffer& parameters() const { return parameters_; }
+  uint32_t light_count() const { return uint32_t(views_.size()); }
+
+ private:
+  struct LightState {
+    scene::ShadowSettings settings;
+    AvsmMapLayout layout;
+    gpu::Buffer map;      // AVSM nodes, all levels (technique avsm)
+    gpu::Buffer counter;  // host-readable capture counter
+    uint64_t capacity = 0;
+  };
+  GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
+
+  gpu::Context& ctx_;
+  CaptureOpaquePass capture_opaque_;
+  CaptureHairPass capture_hair_;
+  CaptureSmokePass capture_smoke_;
+  CaptureSortPass sort_;
+  AvsmResolvePass resolve_;
+  AvsmMipsPass mips_;
+  ShadowOptions options_;
+  std::vector<LightView> views_;
+  std::vector<LightState> lights_;
+  std::vector<LightShadowStats> stats_;
+  gpu::Buffer parameters_;  // HostUpload, GpuShadow per light
+  UnshadowedInputs unshadowed_;
+};
+
+}  // namespace avsm::passes

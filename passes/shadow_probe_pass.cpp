@@ -1,0 +1,60 @@
+#include "passes/shadow_probe_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "gpu/transfer.h"
+
+namespace avsm::passes {
+
+ShadowProbePass::ShadowProbePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_probe.comp"), "shadow probes")) {}
+
+void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t light_count) {
+  std::vector<glm::vec4> padded;
+  for (const glm::vec3& p : points) padded.emplace_back(p, 1.0f);
+  if (padded.empty()) padded.emplace_back(0.0f);  // a buffer cannot be empty
+  point_count_ = uint32_t(points.size());
+  light_count_ = light_count;
+  points_ = gpu::create_buffer_from(ctx_, std::move(padded), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
+  results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                                        "probe results"});
+}
+
+void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& shadows) {
+  if (point_count_ == 0 || light_count_ == 0) return;
+  struct Data {
+    rg::BufferHandle results;
+  };
+  rg::BufferHandle results = graph.import_buffer("probe results", {results_.size()}, rg::ImportState::none(),
+                                                 rg::ImportState::of(rg::Usage::HostRead));
+  executor.bind(results, results_);
+  graph.add_pass<Data>("shadow probes", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& d) {
+        d.results = b.write(results, rg::Usage::StorageWrite);
+        shadows.declare_reads(b);
+      },
+      [this, shadows](const Data& d, rg::PassContext& c) {
+        pipeline_.bind(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer(0, points_.handle()).buffer(1, c.buffer(d.results));
+        shadows.bind(bindings, 2, c);
+        bindings.push(c.cmd());
+        const uint32_t push[2] = {point_count_, light_count_};
+        pipeline_.push_constants(c.cmd(), push, sizeof(push));
+        pipeline_.dispatch_threads(c.cmd(), point_count_);
+      });
+}
+
+std::vector<std::vector<float>> ShadowProbePass::results() const {
+  std::vector<std::vector<float>> out(light_count_, std::vector<float>(point_count_));
+  const auto* values = static_cast<const float*>(results_.mapped());
+  for (uint32_t light = 0; light < light_count_; ++light)
+    std::memcpy(out[light].data(), values + size_t(light) * point_count_, point_count_ * sizeof(float));
+  return out;
+}
+
+}  // namespace avsm::passes

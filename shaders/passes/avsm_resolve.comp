@@ -1,0 +1,32 @@
+#version 460
+// AVSM resolve: per light texel, stream the texel's capture list through the
+// AVSM core (shaders/avsm/avsm_core.glsl) — clear to (far, 1), composite each
+// segment, compress to N nodes by the smallest-area rule — and store the N nodes
+// in level 0 of the light's map (layout: shaders/common/shadow_lookup.glsl).
+#extension GL_GOOGLE_include_directive : require
+#define AVSM_CAPTURE_BINDING 0
+#include "common/capture_lists.glsl"
+#include "avsm/avsm_core.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 2) writeonly buffer AvsmMap { vec4 map_texels[]; };
+#include "avsm/avsm_map.glsl"
+
+// Mirrors AvsmResolvePass's push constants (passes/avsm_resolve_pass.cpp).
+layout(push_constant) uniform Push {
+  uint resolution;
+  uint node_count;  // N: 4, 8, 12 or 16
+  float far_depth;
+} pc;
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
+  int n = int(pc.node_count);
+  AvsmCurve curve = avsm_clear(pc.far_depth);
+  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
+    CaptureSegment s = capture_nodes[node];
+    avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, n);
+  }
+  avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(n / 2), curve, n);
+}

@@ -1,0 +1,29 @@
+#version 460
+// Every hair fragment a light sees (the ribbons of shaders/passes/hair.vert, built
+// facing the light) becomes a short segment with the strand's opacity: the
+// transmittance of one strand crossing.
+#extension GL_GOOGLE_include_directive : require
+#define AVSM_CAPTURE_APPEND
+#define AVSM_CAPTURE_BINDING 3
+#include "common/capture_lists.glsl"
+
+// The first 96 bytes mirror hair.vert's block; the rest is the capture's.
+layout(push_constant) uniform Push {
+  mat4 view_projection;
+  vec4 camera_position;
+  vec2 viewport;
+  uint light_count;
+  float pad;
+  vec4 depth_plane;  // light depth(p) = dot(xyz, p) + w
+  vec4 texel_size;   // world size of a texel at depth d: x + y * d
+} pc;
+
+layout(location = 0) in vec3 in_world;
+layout(location = 1) in vec3 in_tangent;
+layout(location = 2) flat in vec4 in_color_opacity;
+
+void main() {
+  float depth = dot(pc.depth_plane.xyz, in_world) + pc.depth_plane.w;
+  float thickness = pc.texel_size.x + pc.texel_size.y * depth;
+  capture_append(ivec2(gl_FragCoord.xy), depth, depth + thickness, 1.0 - clamp(in_color_opacity.a, 0.0, 1.0));
+}
