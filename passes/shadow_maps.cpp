@@ -52,15 +52,19 @@ void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
 }
 
 void ShadowInputs::bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const {
-  bindings.buffer(first_binding, parameters);
+  std::array<VkBuffer, kMaxShadowedLights> map_buffers, node_buffers;
+  std::array<VkImageView, kMaxShadowedLights> head_views;
+  std::array<VkImageLayout, kMaxShadowedLights> head_layouts;
   for (uint32_t slot = 0; slot < kMaxShadowedLights; ++slot) {
-    bindings.buffer_element(first_binding + 1, slot, maps[slot].valid() ? context.buffer(maps[slot]) : unused_buffer);
-    if (heads[slot].valid())
-      bindings.image_element(first_binding + 2, slot, context.view(heads[slot]), context.layout(heads[slot]));
-    else
-      bindings.image_element(first_binding + 2, slot, unused_heads, VK_IMAGE_LAYOUT_GENERAL);
-    bindings.buffer_element(first_binding + 3, slot, nodes[slot].valid() ? context.buffer(nodes[slot]) : unused_buffer);
+    map_buffers[slot] = maps[slot].valid() ? context.buffer(maps[slot]) : unused_buffer;
+    node_buffers[slot] = nodes[slot].valid() ? context.buffer(nodes[slot]) : unused_buffer;
+    head_views[slot] = heads[slot].valid() ? context.view(heads[slot]) : unused_heads;
+    head_layouts[slot] = heads[slot].valid() ? context.layout(heads[slot]) : VK_IMAGE_LAYOUT_GENERAL;
   }
+  bindings.buffer(first_binding, parameters)
+      .buffer_array(first_binding + 1, map_buffers)
+      .image_array(first_binding + 2, head_views, head_layouts)
+      .buffer_array(first_binding + 3, node_buffers);
 }
 
 UnshadowedInputs::UnshadowedInputs(gpu::Context& ctx) {

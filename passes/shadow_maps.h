@@ -126,6 +126,9 @@ class ShadowMaps {
   const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
   const std::vector<LightView>& light_views() const { return views_; }
   const gpu::Buffer& parameters() const { return parameters_; }
+  // Light `light`'s AVSM map (layout: map_layout(light)); empty for uncompressed lights.
+  const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
+  const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).layout; }
   uint32_t light_count() const { return uint32_t(views_.size()); }
 
  private:

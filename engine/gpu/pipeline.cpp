@@ -10,6 +10,7 @@ namespace avsm::gpu {
 
 static constexpr uint32_t kPushConstantBytes = 128;
 static constexpr size_t kMaxBindingsPerPush = 32;
+static constexpr size_t kMaxInfosPerPush = 64;
 
 static VkShaderModule create_module(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -234,59 +235,79 @@ const DescriptorBinding& Pipeline::binding(uint32_t index) const {
 
 // ---------------------------------------------------------------- Bindings
 
-VkWriteDescriptorSet& Bindings::add(uint32_t binding, uint32_t element) {
+// Infos are stored in vectors reserved up front, so the pointers the writes keep stay valid.
+VkWriteDescriptorSet& Bindings::add(uint32_t binding, uint32_t count) {
   if (writes_.size() == kMaxBindingsPerPush) throw std::runtime_error("too many bindings in one push");
-  if (buffers_.capacity() < kMaxBindingsPerPush) {
-    buffers_.reserve(kMaxBindingsPerPush);
-    images_.reserve(kMaxBindingsPerPush);
+  if (buffers_.capacity() < kMaxInfosPerPush) {
+    buffers_.reserve(kMaxInfosPerPush);
+    images_.reserve(kMaxInfosPerPush);
   }
+  if (buffers_.size() + images_.size() + count > kMaxInfosPerPush)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': too many descriptors in one push");
   const DescriptorBinding& b = pipeline_.binding(binding);
-  if (element >= b.count)
+  if (count != b.count)
     throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " has " +
-                             std::to_string(b.count) + " elements, not " + std::to_string(element + 1));
+                             std::to_string(b.count) + " elements, " + std::to_string(count) + " given");
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstBinding = binding;
-  write.dstArrayElement = element;
-  write.descriptorCount = 1;
+  write.descriptorCount = count;
   write.descriptorType = b.type;
   writes_.push_back(write);
   return writes_.back();
 }
 
-Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
-  return buffer_element(binding, 0, buffer, offset, range);
+void Bindings::check_buffer_type(uint32_t binding, VkDescriptorType type) const {
+  if (type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not a buffer");
 }
 
-Bindings& Bindings::buffer_element(uint32_t binding, uint32_t element, VkBuffer buffer, VkDeviceSize offset,
-                                   VkDeviceSize range) {
-  VkWriteDescriptorSet& write = add(binding, element);
-  if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && write.descriptorType != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not a buffer");
+void Bindings::check_image_type(uint32_t binding, VkDescriptorType type, bool has_sampler) const {
+  if (type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && type != VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE &&
+      type != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not an image");
+  if ((type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) != has_sampler)
+    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) +
+                             (has_sampler ? " takes no sampler" : " needs a sampler"));
+}
+
+Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
+  VkWriteDescriptorSet& write = add(binding, 1);
+  check_buffer_type(binding, write.descriptorType);
   buffers_.push_back({buffer, offset, range});
   write.pBufferInfo = &buffers_.back();
   return *this;
 }
 
-Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler) {
-  return image_element(binding, 0, view, layout, sampler);
+// One write for the whole array: lavapipe (Mesa 22.3) ignores dstArrayElement in
+// pushed descriptor writes, so element-by-element writes all landed on element 0.
+Bindings& Bindings::buffer_array(uint32_t binding, std::span<const VkBuffer> buffers) {
+  VkWriteDescriptorSet& write = add(binding, uint32_t(buffers.size()));
+  check_buffer_type(binding, write.descriptorType);
+  write.pBufferInfo = buffers_.data() + buffers_.size();
+  for (VkBuffer buffer : buffers) buffers_.push_back({buffer, 0, VK_WHOLE_SIZE});
+  return *this;
 }
 
-Bindings& Bindings::image_element(uint32_t binding, uint32_t element, VkImageView view, VkImageLayout layout,
-                                  VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding, element);
-  if (write.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && write.descriptorType != VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE &&
-      write.descriptorType != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not an image");
-  if ((write.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) != (sampler != VK_NULL_HANDLE))
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) +
-                             (sampler ? " takes no sampler" : " needs a sampler"));
+Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler) {
+  VkWriteDescriptorSet& write = add(binding, 1);
+  check_image_type(binding, write.descriptorType, sampler != VK_NULL_HANDLE);
   images_.push_back({sampler, view, layout});
   write.pImageInfo = &images_.back();
   return *this;
 }
 
+Bindings& Bindings::image_array(uint32_t binding, std::span<const VkImageView> views,
+                                std::span<const VkImageLayout> layouts) {
+  if (views.size() != layouts.size()) throw std::invalid_argument("image_array: one layout per view");
+  VkWriteDescriptorSet& write = add(binding, uint32_t(views.size()));
+  check_image_type(binding, write.descriptorType, false);
+  write.pImageInfo = images_.data() + images_.size();
+  for (size_t i = 0; i < views.size(); ++i) images_.push_back({VK_NULL_HANDLE, views[i], layouts[i]});
+  return *this;
+}
+
 Bindings& Bindings::sampler(uint32_t binding, VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding, 0);
+  VkWriteDescriptorSet& write = add(binding, 1);
   images_.push_back({sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
   write.pImageInfo = &images_.back();
   return *this;

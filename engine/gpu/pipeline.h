@@ -87,15 +87,15 @@ class Bindings {
   // Sampled, storage or combined image; `sampler` only for combined image samplers.
   Bindings& image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
   Bindings& sampler(uint32_t binding, VkSampler sampler);
-  // One element of an array binding (every element a shader uses must be written).
-  Bindings& buffer_element(uint32_t binding, uint32_t element, VkBuffer buffer, VkDeviceSize offset = 0,
-                           VkDeviceSize range = VK_WHOLE_SIZE);
-  Bindings& image_element(uint32_t binding, uint32_t element, VkImageView view, VkImageLayout layout,
-                          VkSampler sampler = VK_NULL_HANDLE);
+  // Every element of an array binding (whole buffers; storage or sampled images).
+  Bindings& buffer_array(uint32_t binding, std::span<const VkBuffer> buffers);
+  Bindings& image_array(uint32_t binding, std::span<const VkImageView> views, std::span<const VkImageLayout> layouts);
   void push(VkCommandBuffer cmd);
 
  private:
-  VkWriteDescriptorSet& add(uint32_t binding, uint32_t element);
+  VkWriteDescriptorSet& add(uint32_t binding, uint32_t count);
+  void check_buffer_type(uint32_t binding, VkDescriptorType type) const;
+  void check_image_type(uint32_t binding, VkDescriptorType type, bool has_sampler) const;
   const Context& ctx_;
   const Pipeline& pipeline_;
   std::vector<VkWriteDescriptorSet> writes_;

@@ -143,4 +143,48 @@ float avsm_interpolate(float t0, float t1, float s, bool exponential) {
   return t0 * pow(t1 / t0, s);
 }
 
+// Curve c (n nodes, sorted) at depth d, given `consumed`: how many of its nodes
+// lie at or in front of d. The same value as avsm_evaluate_linear, in O(1) for a
+// caller that walks depths front to back.
+float avsm_evaluate_at_cursor(AvsmCurve c, int consumed, float d) {
+  if (consumed == 0) return 1.0f;
+  if (consumed >= c.count) return c.trans[c.count - 1];
+  float span = c.depth[consumed] - c.depth[consumed - 1];
+  float t = span > 0.0f ? (d - c.depth[consumed - 1]) / span : 1.0f;
+  return mix(c.trans[consumed - 1], c.trans[consumed], t);
+}
+
+// One mip texel from its 2x2 children: the mean of the four curves, taken at
+// every child node depth front to back (a 4-way merge) and streamed into a new
+// curve compressed to max_nodes as it grows. Repeated depths (padding, shared
+// nodes) are taken once.
+AvsmCurve avsm_mip_merge(AvsmCurve c0, AvsmCurve c1, AvsmCurve c2, AvsmCurve c3, int max_nodes) {
+  AvsmCurve merged = avsm_clear(0.0f);
+  merged.count = 0;
+  int k0 = 0, k1 = 0, k2 = 0, k3 = 0;
+  float previous = -3.4e38f;
+  int total = c0.count + c1.count + c2.count + c3.count;
+  for (int step = 0; step < total; ++step) {
+    // The next node: the smallest unconsumed depth (ties: the lowest child).
+    float d = 3.4e38f;
+    int pick = -1;
+    if (k0 < c0.count && c0.depth[k0] < d) { d = c0.depth[k0]; pick = 0; }
+    if (k1 < c1.count && c1.depth[k1] < d) { d = c1.depth[k1]; pick = 1; }
+    if (k2 < c2.count && c2.depth[k2] < d) { d = c2.depth[k2]; pick = 2; }
+    if (k3 < c3.count && c3.depth[k3] < d) { d = c3.depth[k3]; pick = 3; }
+    // Consume every node at this depth, so each child is evaluated behind it.
+    while (k0 < c0.count && c0.depth[k0] <= d) ++k0;
+    while (k1 < c1.count && c1.depth[k1] <= d) ++k1;
+    while (k2 < c2.count && c2.depth[k2] <= d) ++k2;
+    while (k3 < c3.count && c3.depth[k3] <= d) ++k3;
+    if (pick < 0) break;
+    if (d <= previous) continue;
+    previous = d;
+    float t = 0.25f * (avsm_evaluate_at_cursor(c0, k0, d) + avsm_evaluate_at_cursor(c1, k1, d) +
+                       avsm_evaluate_at_cursor(c2, k2, d) + avsm_evaluate_at_cursor(c3, k3, d));
+    avsm_append_node(merged, d, t, max_nodes);
+  }
+  return merged;
+}
+
 #endif

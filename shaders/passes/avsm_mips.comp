@@ -1,8 +1,7 @@
 #version 460
-// One AVSM mip level from the one above: per texel, the mean of the four child
-// curves (2x2 texels, clamped at odd edges) evaluated at every child node depth,
-// streamed front to back into a new curve that is compressed to N nodes as it
-// grows (avsm_append_node). Levels sit one after another in the light's map.
+// One AVSM mip level from the one above: per texel, avsm_mip_merge of its 2x2
+// children (clamped at odd edges): their mean transmittance at every child node
+// depth, re-compressed to N nodes. Levels sit one after another in the light's map.
 #extension GL_GOOGLE_include_directive : require
 #include "avsm/avsm_core.glsl"
 
@@ -39,32 +38,9 @@ void main() {
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.target_size)))) return;
   int n = int(pc.node_count);
   int last = int(pc.source_size) - 1;
-  AvsmCurve children[4];
-  for (int i = 0; i < 4; ++i)
-    children[i] = load_curve(min(2 * texel + ivec2(i & 1, i >> 1), ivec2(last)), n);
-
-  // Merge the children's node depths in order (each child is sorted): a 4-way merge.
-  AvsmCurve merged = avsm_clear(0.0f);
-  merged.count = 0;
-  int cursor[4] = int[](0, 0, 0, 0);
-  float previous = -3.4e38;
-  for (int step = 0; step < 4 * n; ++step) {
-    int pick = -1;
-    float d = 3.4e38;
-    for (int i = 0; i < 4; ++i) {
-      if (cursor[i] < n && children[i].depth[cursor[i]] < d) {
-        d = children[i].depth[cursor[i]];
-        pick = i;
-      }
-    }
-    if (pick < 0) break;
-    cursor[pick] += 1;
-    if (d <= previous) continue;  // repeated depth (padding or a shared node)
-    previous = d;
-    float t = 0.25f * (avsm_evaluate_linear(children[0], d) + avsm_evaluate_linear(children[1], d) +
-                       avsm_evaluate_linear(children[2], d) + avsm_evaluate_linear(children[3], d));
-    avsm_append_node(merged, d, t, n);
-  }
-
+  AvsmCurve merged = avsm_mip_merge(load_curve(min(2 * texel, ivec2(last)), n),
+                                    load_curve(min(2 * texel + ivec2(1, 0), ivec2(last)), n),
+                                    load_curve(min(2 * texel + ivec2(0, 1), ivec2(last)), n),
+                                    load_curve(min(2 * texel + ivec2(1, 1), ivec2(last)), n), n);
   avsm_map_store(pc.target_offset + (uint(texel.y) * pc.target_size + uint(texel.x)) * uint(n / 2), merged, n);
 }

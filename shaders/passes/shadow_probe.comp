@@ -17,15 +17,5 @@ void main() {
   uint point = gl_GlobalInvocationID.x;
   if (point >= pc.point_count) return;
   for (uint light = 0u; light < pc.light_count; ++light)
-  {
-    GpuShadow s = shadows[light];
-    vec3 p = points[point].xyz;
-    vec4 clip = s.light_from_world * vec4(p, 1.0);
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    ivec2 texel = clamp(ivec2(uv * float(s.resolution)), ivec2(0), ivec2(int(s.resolution) - 1));
-    uint node = imageLoad(shadow_list_heads[s.slot], texel).r;
-    float first_entry = node == 0xffffffffu ? -1.0 : shadow_list_nodes[s.slot].nodes[node].entry;
-    float v = point == 0u ? shadow_light_depth(s, p) : point == 1u ? uv.x : point == 2u ? uv.y : point == 3u ? float(node) : point == 4u ? first_entry : float(s.technique);
-    results[light * pc.point_count + point] = v;
-  }
+    results[light * pc.point_count + point] = light_transmittance(light, points[point].xyz);
 }

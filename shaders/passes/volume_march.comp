@@ -63,6 +63,18 @@ vec3 incoming_light(vec3 p, vec3 to_camera) {
   return sum;
 }
 
+// How many march steps share one in-scattering evaluation: one per shadow-map texel
+// along the ray. Finer sampling cannot see more of the maps, and a filtered map
+// lookup costs as much as many density samples.
+int lighting_stride(vec3 p, float dt) {
+  float spacing = 3.4e38;
+  for (uint i = 0u; i < pc.light_count; ++i) {
+    GpuShadow s = shadows[i];
+    if (s.technique != kShadowNone) spacing = min(spacing, shadow_texel_size(s, shadow_light_depth(s, p)));
+  }
+  return spacing >= 3.4e38 ? 1 : clamp(int(spacing / dt), 1, 64);
+}
+
 // Midpoint rule over [t_start, t_end] of the world ray, in steps of at most step_length.
 // Each step attenuates by exp(-sigma_t dt) and adds the light scattered in it with the
 // energy-conserving form T * albedo * (1 - exp(-sigma_t dt)) * L_in (the exact integral
@@ -74,15 +86,21 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
   int steps = max(1, int(ceil((t_end - t_start) / volume.step_length)));
   float dt = (t_end - t_start) / float(steps);
   bool scatters = pc.light_count > 0u && any(greaterThan(volume.albedo, vec3(0.0)));
+  int stride = scatters ? lighting_stride(world_origin + t_start * world_direction, dt) : 1;
+  vec3 light_in = vec3(0.0);
+  int light_block = -1;
   for (int i = 0; i < steps; ++i) {
     float t = t_start + (float(i) + 0.5) * dt;
     float sigma_t = volume.extinction_scale * sample_density(reader, index_origin + t * index_direction);
     if (sigma_t <= 0.0) continue;
     float step_transmittance = exp(-sigma_t * dt);
     if (scatters) {
-      vec3 p = world_origin + t * world_direction;
-      state.in_scattered += state.transmittance * volume.albedo * (1.0 - step_transmittance) *
-                            incoming_light(p, -world_direction);
+      if (i / stride != light_block) {  // lit at the middle of each block of `stride` steps
+        light_block = i / stride;
+        float t_light = min(t_start + (float(light_block * stride) + 0.5 * float(stride)) * dt, t_end);
+        light_in = incoming_light(world_origin + t_light * world_direction, -world_direction);
+      }
+      state.in_scattered += state.transmittance * volume.albedo * (1.0 - step_transmittance) * light_in;
     }
     state.transmittance *= step_transmittance;
     if (state.transmittance < kMinTransmittance) return;
