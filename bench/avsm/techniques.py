@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""AVSM-4/8/12/16 against the uncompressed reference, measured in one run.
+
+Renders the default scene once per technique with avsm-capture, reads the
+per-pass GPU timings (timings.json) and probes every light's transmittance at a
+grid of points through the scene (probes.json), then prints per technique:
+capture, sort, resolve, mips, camera (shading with lookups) and frame ms, the
+map memory, and the mean/max transmittance error against the uncompressed lists
+at the receivers: grid points whose reference transmittance is strictly between
+0 and 1 (partially shadowed: where a compressed curve can be wrong).
+
+usage: bench/avsm/techniques.py [--build DIR] [--width W] [--height H] [--frames K]
+                                [--shadow-res R] [--filter F] [--scene FILE]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def grid_points(lo, hi, counts):
+    points = []
+    for i in range(counts[0]):
+        for j in range(counts[1]):
+            for k in range(counts[2]):
+                points.append([lo[a] + (hi[a] - lo[a]) * (idx + 0.5) / counts[a]
+                               for a, idx in enumerate((i, j, k))])
+    return points
+
+
+def stage(name):
+    if "capture" in name or "clear lists" in name:
+        return "capture"
+    if "sort" in name:
+        return "sort"
+    if "resolve" in name:
+        return "resolve"
+    if "mips" in name:
+        return "mips"
+    if name in ("opaque", "hair", "volumes"):
+        return "camera"
+    return "other"
+
+
+def run(capture, scene, out, args, technique, nodes, probe_file):
+    cmd = [capture, "--out", out, "--width", str(args.width), "--height", str(args.height),
+           "--frames", str(args.frames), "--shadow-res", str(args.shadow_res), "--quiet",
+           "--technique", technique, "--probe", probe_file, "--filter", args.filter]
+    if scene:
+        cmd += ["--scene", scene]
+    if nodes:
+        cmd += ["--nodes", str(nodes)]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    timings = json.load(open(os.path.join(out, "timings.json")))
+    memory = json.load(open(os.path.join(out, "memory.json")))
+    probes = json.load(open(os.path.join(out, "probes.json")))
+    ms = {}
+    for p in timings["passes"]:
+        ms[stage(p["name"])] = ms.get(stage(p["name"]), 0.0) + p["gpu_ms"]["median"]
+    ms["frame"] = timings["frame_gpu_ms"]["median"]
+    map_bytes = sum(light["map_bytes"] for light in memory["lights"])
+    capture_bytes = sum(light["capture_bytes"] for light in memory["lights"])
+    values = [light["transmittance"] for light in probes["lights"]]
+    return ms, map_bytes, capture_bytes, values
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--scene", default="")
+    parser.add_argument("--width", type=int, default=1280)
+    parser.add_argument("--height", type=int, default=720)
+    parser.add_argument("--frames", type=int, default=3)
+    parser.add_argument("--shadow-res", type=int, default=256)
+    # Bilinear everywhere by default, so the errors are those of compression alone
+    # (trilinear reads AVSM mips, which the uncompressed reference does not have).
+    parser.add_argument("--filter", default="bilinear", choices=["point", "bilinear", "trilinear"])
+    args = parser.parse_args()
+    capture = os.path.join(args.build, "tools", "avsm-capture")
+    if not os.path.exists(capture):
+        sys.exit(f"{capture} not found: build first (cmake --build {args.build})")
+    os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
+
+    # Receivers for the default scene: a grid over the stage, the plume and the curtain.
+    points = grid_points([-3.5, 0.02, -2.5], [3.5, 3.5, 2.5], [20, 12, 16])
+    work = tempfile.mkdtemp(prefix="avsm-bench-")
+    probe_file = os.path.join(work, "probes.json")
+    json.dump(points, open(probe_file, "w"))
+
+    rows = [("uncompressed", None)] + [("avsm", n) for n in (4, 8, 12, 16)]
+    results = {}
+    for technique, nodes in rows:
+        label = "uncompressed" if nodes is None else f"AVSM-{nodes}"
+        print(f"rendering {label} ...", file=sys.stderr)
+        results[label] = run(capture, args.scene, os.path.join(work, label), args, technique, nodes, probe_file)
+
+    reference = results["uncompressed"][3]
+    receivers = sum(1 for light in reference for r in light if 0.0 < r < 1.0)
+    print(f"\nscene: {args.scene or 'default'}  {args.width}x{args.height}, shadow maps {args.shadow_res}^2, "
+          f"{args.filter} lookups, GPU ms medians over {max(args.frames - 1, 1)} frames; receivers: {len(points)} grid points x "
+          f"{len(reference)} lights, errors over partially shadowed ones")
+    header = (f"{'technique':<13}{'capture':>9}{'sort':>8}{'resolve':>9}{'mips':>8}{'camera':>9}{'frame':>9}"
+              f"{'map MiB':>9}{'lists MiB':>10}{'mean err':>10}{'max err':>9}{'frame/AVSM-8':>13}")
+    print(header)
+    print("-" * len(header))
+    avsm8_frame = results["AVSM-8"][0]["frame"]
+    for label, (ms, map_bytes, capture_bytes, values) in results.items():
+        errors = []
+        for light_values, light_reference in zip(values, reference):
+            for v, r in zip(light_values, light_reference):
+                if 0.0 < r < 1.0:
+                    errors.append(abs(v - r))
+        mean = sum(errors) / len(errors) if errors else 0.0
+        worst = max(errors) if errors else 0.0
+        print(f"{label:<13}{ms.get('capture', 0):>9.1f}{ms.get('sort', 0):>8.1f}{ms.get('resolve', 0):>9.1f}"
+              f"{ms.get('mips', 0):>8.1f}{ms.get('camera', 0):>9.1f}{ms['frame']:>9.1f}"
+              f"{map_bytes / 2**20:>9.2f}{capture_bytes / 2**20:>10.2f}{mean:>10.4f}{worst:>9.4f}"
+              f"{ms['frame'] / avsm8_frame:>13.2f}")
+    print(f"\nerror receivers: {receivers} (light, point) pairs with 0 < T_ref < 1; outputs in {work}")
+
+
+if __name__ == "__main__":
+    main()
