@@ -117,8 +117,10 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
     state.layout.levels =
         light.shadow.filter == scene::ShadowFilter::trilinear ? AvsmMapLayout::full_mip_count(resolution) : 1;
     const std::string name = "light " + std::to_string(i);
+    // TRANSFER_SRC: avsm_map() is read back by tests and tools (gpu::read_buffer).
     if (light.shadow.technique == scene::ShadowTechnique::avsm)
-      state.map = gpu::Buffer::create(ctx_, {state.layout.bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+      state.map = gpu::Buffer::create(ctx_, {state.layout.bytes(),
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                              gpu::MemoryLocation::DeviceLocal, name + " avsm map"});
     state.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                gpu::MemoryLocation::HostReadback, name + " capture counter"});
