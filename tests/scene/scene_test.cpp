@@ -59,7 +59,12 @@ TEST(Scene, DefaultSceneLoadsWithEveryKindOfContent) {
   ASSERT_EQ(scene.lights.size(), 2u);
   EXPECT_EQ(scene.lights[0].type, LightType::directional);
   EXPECT_EQ(scene.lights[1].type, LightType::spot);
-  EXPECT_EQ(scene.lights[1].shadow.nodes, 16);
+  // The frame the project's targets are measured on: 256^2 AVSM-8 for both lights.
+  for (const Light& light : scene.lights) {
+    EXPECT_EQ(light.shadow.nodes, 8);
+    EXPECT_EQ(light.shadow.resolution, 256);
+  }
+  EXPECT_EQ(scene.lights[1].shadow.filter, ShadowFilter::trilinear);
   ASSERT_EQ(scene.cameras.size(), 1u);
   EXPECT_TRUE(inside(Bounds{glm::vec3(-4.1f, -0.1f, -4.1f), glm::vec3(4.1f, 3.5f, 4.1f)}, scene.bounds, 0.0f));
 }
