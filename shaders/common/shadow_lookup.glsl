@@ -115,23 +115,12 @@ float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) 
   return avsm_texel_transmittance(s, avsm_texel_base(s, level, texel), d);
 }
 
-// Point or bilinear lookup in one mip level. Bilinear filtering evaluates the four
-// nearest curves at d and weights the results (curves cannot be blended).
-float shadow_level_transmittance(GpuShadow s, uint level, vec2 uv, float d, bool bilinear) {
-  int size = int(max(s.resolution >> level, 1u));
-  if (!bilinear) return shadow_texel_transmittance(s, level, clamp(ivec2(uv * float(size)), ivec2(0), ivec2(size - 1)), d);
-  vec2 x = uv * float(size) - 0.5;
-  ivec2 t0 = ivec2(floor(x));
-  vec2 f = x - vec2(t0);
-  ivec2 lo = clamp(t0, ivec2(0), ivec2(size - 1)), hi = clamp(t0 + 1, ivec2(0), ivec2(size - 1));
-  float a = shadow_texel_transmittance(s, level, lo, d);
-  float b = shadow_texel_transmittance(s, level, ivec2(hi.x, lo.y), d);
-  float c = shadow_texel_transmittance(s, level, ivec2(lo.x, hi.y), d);
-  float e = shadow_texel_transmittance(s, level, hi, d);
-  return mix(mix(a, b, f.x), mix(c, e, f.x), f.y);
-}
-
-// Transmittance from light `light_index` to world point p.
+// Transmittance from light `light_index` to world point p. Point: the nearest
+// texel of level 0. Bilinear: the four nearest curves evaluated at the point's
+// depth and their results weighted (curves cannot be blended). Trilinear: bilinear
+// in the two mip levels around the level of detail, blended. The taps run in one
+// loop so the texel evaluation is compiled once: inlined per tap, it made the
+// shaders that call this (the smoke march above all) several times slower on lavapipe.
 float light_transmittance(uint light_index, vec3 p) {
   GpuShadow s = shadows[light_index];
   if (s.technique == kShadowNone) return 1.0;
@@ -141,14 +130,38 @@ float light_transmittance(uint light_index, vec3 p) {
   // Outside the map nothing was captured: the point is outside the caster bounds.
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
   float d = shadow_light_depth(s, p);
-  bool trilinear = s.filter_mode == kFilterTrilinear && s.technique == kShadowAvsm && s.mip_count > 1u;
-  if (!trilinear) return shadow_level_transmittance(s, 0u, uv, d, s.filter_mode != kFilterPoint);
-  // Level of detail: a camera pixel's footprint at p over a light texel's size there.
-  float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
-  float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0, float(s.mip_count - 1u));
-  uint level = uint(floor(lod));
-  float upper = shadow_level_transmittance(s, min(level + 1u, s.mip_count - 1u), uv, d, true);
-  return mix(shadow_level_transmittance(s, level, uv, d, true), upper, lod - float(level));
+
+  uint level = 0u;
+  int levels = 1;
+  float level_blend = 0.0;
+  if (s.filter_mode == kFilterTrilinear && s.technique == kShadowAvsm && s.mip_count > 1u) {
+    // Level of detail: a camera pixel's footprint at p over a light texel's size there.
+    float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
+    float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
+                      float(s.mip_count - 1u));
+    level = uint(floor(lod));
+    level_blend = lod - float(level);
+    levels = level + 1u < s.mip_count ? 2 : 1;
+  }
+  bool bilinear = s.filter_mode != kFilterPoint;
+  float result = 0.0;
+  for (int l = 0; l < levels; ++l) {
+    uint current = level + uint(l);
+    int size = int(max(s.resolution >> current, 1u));
+    vec2 x = bilinear ? uv * float(size) - 0.5 : uv * float(size);
+    ivec2 base = ivec2(floor(x));
+    vec2 f = bilinear ? x - vec2(base) : vec2(0.0);
+    int taps = bilinear ? 4 : 1;
+    float level_value = 0.0;
+    for (int tap = 0; tap < taps; ++tap) {
+      ivec2 offset = ivec2(tap & 1, tap >> 1);
+      vec2 w = mix(1.0 - f, f, vec2(offset));
+      ivec2 texel = clamp(base + offset, ivec2(0), ivec2(size - 1));
+      level_value += w.x * w.y * shadow_texel_transmittance(s, current, texel, d);
+    }
+    result += (levels == 1 ? 1.0 : (l == 0 ? 1.0 - level_blend : level_blend)) * level_value;
+  }
+  return result;
 }
 
 // For surfaces: the point moved along its normal (towards the light's side) by a

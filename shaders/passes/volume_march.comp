@@ -86,23 +86,27 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
   int steps = max(1, int(ceil((t_end - t_start) / volume.step_length)));
   float dt = (t_end - t_start) / float(steps);
   bool scatters = pc.light_count > 0u && any(greaterThan(volume.albedo, vec3(0.0)));
-  int stride = scatters ? lighting_stride(world_origin + t_start * world_direction, dt) : 1;
-  vec3 light_in = vec3(0.0);
-  int light_block = -1;
-  for (int i = 0; i < steps; ++i) {
-    float t = t_start + (float(i) + 0.5) * dt;
-    float sigma_t = volume.extinction_scale * sample_density(reader, index_origin + t * index_direction);
-    if (sigma_t <= 0.0) continue;
-    float step_transmittance = exp(-sigma_t * dt);
-    if (scatters) {
-      if (i / stride != light_block) {  // lit at the middle of each block of `stride` steps
-        light_block = i / stride;
-        float t_light = min(t_start + (float(light_block * stride) + 0.5 * float(stride)) * dt, t_end);
-        light_in = incoming_light(world_origin + t_light * world_direction, -world_direction);
-      }
-      state.in_scattered += state.transmittance * volume.albedo * (1.0 - step_transmittance) * light_in;
+  int stride = scatters ? lighting_stride(world_origin + t_start * world_direction, dt) : steps;
+  // Blocks of `stride` steps share one in-scattering evaluation at their middle. The
+  // inner loop only gathers the block's weight (sum of T * albedo * (1 - exp(-sigma dt)));
+  // keeping the map lookups out of it keeps the hot density loop small (on lavapipe a
+  // lookup inside it slowed every sample, looked up or not, about fourfold).
+  for (int block_start = 0; block_start < steps; block_start += stride) {
+    int block_end = min(block_start + stride, steps);
+    vec3 weight = vec3(0.0);
+    for (int i = block_start; i < block_end; ++i) {
+      float t = t_start + (float(i) + 0.5) * dt;
+      float sigma_t = volume.extinction_scale * sample_density(reader, index_origin + t * index_direction);
+      if (sigma_t <= 0.0) continue;
+      float step_transmittance = exp(-sigma_t * dt);
+      weight += state.transmittance * volume.albedo * (1.0 - step_transmittance);
+      state.transmittance *= step_transmittance;
+      if (state.transmittance < kMinTransmittance) break;
     }
-    state.transmittance *= step_transmittance;
+    if (scatters && any(greaterThan(weight, vec3(0.0)))) {
+      float t_light = t_start + 0.5 * float(block_start + block_end) * dt;
+      state.in_scattered += weight * incoming_light(world_origin + t_light * world_direction, -world_direction);
+    }
     if (state.transmittance < kMinTransmittance) return;
   }
 }
