@@ -10,6 +10,7 @@ PACKAGES=(
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev
   libgtest-dev assimp-testmodels
   clang libclang-rt-14-dev
+  chromium
 )
 
 missing=()

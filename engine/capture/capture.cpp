@@ -11,6 +11,7 @@
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
+#include "capture/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
@@ -19,6 +20,7 @@
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
 #include "passes/view.h"
+#include "capture/trace.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 
@@ -114,6 +116,59 @@ void write_probes(const fs::path& path, const scene::Scene& scene, const std::ve
   write_json(path, {{"points", positions}, {"lights", lights}});
 }
 
+// Warns about every light whose capture overflowed. Returns true when one of them
+// has a bigger buffer for the next frame (re-rendering will then do better).
+bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
+  bool overflowed = false, grew = false;
+  for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
+    if (!light.overflowed) continue;
+    overflowed = true;
+    grew = grew || light.next_capture_capacity > light.capture_capacity;
+    std::fprintf(stderr,
+                 "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
+                 "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
+                 index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
+                 (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
+  }
+  if (overflowed) ++overflowed_frames;
+  return grew;
+}
+
+// One frame on the trace: CPU slices (build, record with a slice per pass, submit and
+// wait) and, per queue type, the passes' GPU times laid end to end from the submit.
+void add_frame_to_trace(TraceWriter& trace, uint32_t index, double start, double built, double recorded,
+                        double completed, const std::vector<rg::vulkan::PassTiming>& passes) {
+  const std::string frame = "frame " + std::to_string(index + 1);
+  trace.add("CPU", frame, start, completed - start, "frame");
+  trace.add("CPU", "build graph", start, built - start, "cpu");
+  trace.add("CPU", "record", built, recorded - built, "cpu");
+  trace.add("CPU", "submit + wait", recorded, completed - recorded, "cpu");
+  double record_at = built, gpu_at = recorded;
+  for (const rg::vulkan::PassTiming& pass : passes) {
+    trace.add("CPU record", pass.name, record_at, pass.cpu_record_ms, "cpu");
+    record_at += pass.cpu_record_ms;
+    trace.add(std::string("GPU ") + rg::to_string(pass.queue) + " queue", pass.name, gpu_at, pass.gpu_ms, "gpu");
+    gpu_at += pass.gpu_ms;
+  }
+}
+
+nlohmann::json frame_samples_json(const std::vector<double>& gpu, const std::vector<double>& wall,
+                                  const std::vector<double>& submit) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (size_t i = 0; i < gpu.size(); ++i)
+    frames.push_back({{"gpu_ms", gpu[i]}, {"wall_ms", wall[i]}, {"submit_wall_ms", submit[i]}});
+  return frames;
+}
+
+// light<i>_transmittance.png: each light's map as grey levels (passes/shadow_debug_pass.h).
+void write_light_images(gpu::Context& ctx, const renderer::SceneRenderer& frame, const scene::Scene& scene,
+                        const fs::path& out_dir) {
+  const std::vector<gpu::Image>& images = frame.light_images();
+  for (size_t i = 0; i < images.size() && i < scene.lights.size(); ++i)
+    io::write_png_raw(out_dir / ("light" + std::to_string(i) + "_transmittance.png"),
+                      gpu::read_image(ctx, images[i], passes::ShadowDebugPass::kOutputLayout));
+}
+
 nlohmann::json shadow_json(const passes::LightShadowStats& s) {
   return {{"light", s.light},
           {"technique", scene::to_string(s.technique)},
@@ -171,6 +226,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   }
   renderer::SceneRenderer& frame = *renderer_storage;
   if (!probe_points.empty()) frame.set_probes(probe_points);
+  frame.enable_light_images();
   uint64_t overflowed_frames = 0;
   passes::View view = passes::make_view(camera, options.width, options.height);
   rg::vulkan::Executor executor(ctx, calibration.mode);
@@ -180,32 +236,56 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   std::map<std::string, rg::QueueType> queues;
   std::vector<double> frame_gpu_ms, frame_wall_ms;
 
-  for (uint32_t index = 0; index < options.frames; ++index) {
-    auto start = std::chrono::steady_clock::now();
+  // Times in ms from the start of the first frame, for the trace.
+  const auto capture_start = std::chrono::steady_clock::now();
+  auto since_start = [&](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(t - capture_start).count();
+  };
+  TraceWriter trace;
+  std::vector<double> frame_submit_ms;
+  constexpr uint32_t kMaxOverflowRetries = 4;
+
+  struct FrameClock {
+    std::chrono::steady_clock::time_point start, built, recorded, completed;
+  };
+  auto render_frame = [&]() {
+    FrameClock clock;
+    clock.start = std::chrono::steady_clock::now();
     rg::Graph graph = frame.build_frame(executor, view);
+    clock.built = std::chrono::steady_clock::now();
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     executor.record(graph, cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
+    clock.recorded = std::chrono::steady_clock::now();
     ctx.submit_and_wait(cmd);
+    clock.completed = std::chrono::steady_clock::now();
     frame.finish_frame();
-    for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
-      if (!light.overflowed) continue;
-      ++overflowed_frames;
-      std::fprintf(stderr,
-                   "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
-                   "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
-                   index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
-                   (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
+    return clock;
+  };
+
+  for (uint32_t index = 0; index < options.frames; ++index) {
+    FrameClock clock = render_frame();
+    // A frame whose capture overflowed lacks segments; when the buffers could grow,
+    // render it again rather than keep it (a few times at most: growth has headroom).
+    for (uint32_t retry = 0; report_overflow(frame, index, overflowed_frames) && retry < kMaxOverflowRetries; ++retry) {
+      if (options.progress) std::fprintf(stderr, "frame %u: capture buffers grown, rendering it again\n", index + 1);
+      clock = render_frame();
     }
-    double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    bool warm_up = index == 0 && options.frames > 1;
+    const auto [start, built, recorded, completed] = clock;
+    const double wall = since_start(std::chrono::steady_clock::now()) - since_start(start);
+    const double submit_wall = since_start(completed) - since_start(recorded);
+    const bool warm_up = index == 0 && options.frames > 1;
     if (options.progress)
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", index + 1, options.frames, wall, warm_up ? " (warm-up)" : "");
+
+    const std::vector<rg::vulkan::PassTiming> timings = executor.read_timings();
+    add_frame_to_trace(trace, index, since_start(start), since_start(built), since_start(recorded),
+                       since_start(completed), timings);
     if (warm_up) continue;
     double total = 0;
-    for (const rg::vulkan::PassTiming& pass : executor.read_timings()) {
+    for (const rg::vulkan::PassTiming& pass : timings) {
       if (!samples.count(pass.name)) pass_order.push_back(pass.name);
       samples[pass.name].gpu_ms.push_back(pass.gpu_ms);
       samples[pass.name].cpu_record_ms.push_back(pass.cpu_record_ms);
@@ -214,6 +294,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     }
     frame_gpu_ms.push_back(total);
     frame_wall_ms.push_back(wall);
+    frame_submit_ms.push_back(submit_wall);
   }
 
   CaptureOutputs out{options.out_dir / "frame.png", options.out_dir / "frame.exr", options.out_dir / "timings.json"};
@@ -238,8 +319,13 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       {"passes", passes},
       {"frame_gpu_ms", to_json(stats_of(frame_gpu_ms))},
       {"frame_wall_ms", to_json(stats_of(frame_wall_ms))},
+      // Submit to completion on the CPU clock: what the GPU times of a frame add up to.
+      {"frame_submit_wall_ms", to_json(stats_of(frame_submit_ms))},
+      {"frames", frame_samples_json(frame_gpu_ms, frame_wall_ms, frame_submit_ms)},
   };
   write_json(out.timings, timings);
+  trace.write(options.out_dir / "trace.json");
+  write_light_images(ctx, frame, scene, options.out_dir);
   write_text(options.out_dir / "graph.json", executor.plan().to_json());
   write_text(options.out_dir / "graph.dot", executor.plan().to_dot());
   const rg::PlanStats& stats = executor.plan().stats;
@@ -249,8 +335,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                                {"transient_bytes_unaliased", stats.transient_bytes_unaliased},
                                                {"heaps", executor.plan().heaps.size()},
                                                {"lights", lights},
+                                               {"scene_bounds", {{"min", {scene.bounds.min.x, scene.bounds.min.y, scene.bounds.min.z}},
+                                                                 {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}}},
                                                {"frames_with_capture_overflow", overflowed_frames}});
   if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
+  if (options.report) write_report(options.out_dir, options.out_dir / "report.html");
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
   if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));

@@ -35,6 +35,9 @@ struct CaptureOptions {
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).
   std::filesystem::path probe_file;
+  // Also write report.html into out_dir: one self-contained page with the images,
+  // timings, memory figures and frame graph (see report.h).
+  bool report = false;
 };
 
 struct CaptureOutputs {

@@ -55,12 +55,23 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
   tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
   if (probes_) probes_->add_to_graph(graph, executor, shadows);
+  if (light_images_) light_images_->add_to_graph(graph, executor, shadows);
   return graph;
 }
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
   if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
   probes_->set_points(points, light_count_);
+}
+
+void SceneRenderer::enable_light_images() {
+  if (!light_images_) light_images_ = std::make_unique<passes::ShadowDebugPass>(ctx_, shaders_);
+  light_images_->set_lights(shadows_);
+}
+
+const std::vector<gpu::Image>& SceneRenderer::light_images() const {
+  static const std::vector<gpu::Image> none;
+  return light_images_ ? light_images_->images() : none;
 }
 
 std::vector<std::vector<float>> SceneRenderer::probe_results() const {

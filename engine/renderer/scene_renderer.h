@@ -12,6 +12,7 @@
 #include "passes/hair_pass.h"
 #include "passes/opaque_pass.h"
 #include "passes/shadow_maps.h"
+#include "passes/shadow_debug_pass.h"
 #include "passes/shadow_probe_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
@@ -34,6 +35,11 @@ class SceneRenderer {
   void set_probes(const std::vector<glm::vec3>& points);
   std::vector<std::vector<float>> probe_results() const;
 
+  // Renders a picture of every light's transmittance map in each frame
+  // (passes/shadow_debug_pass.h); light_images() after the frame completed.
+  void enable_light_images();
+  const std::vector<gpu::Image>& light_images() const;
+
   // After the frame completed: reads the shadow capture counters (overflow, growth).
   void finish_frame() { shadows_.finish_frame(); }
   const passes::ShadowMaps& shadows() const { return shadows_; }
@@ -53,6 +59,7 @@ class SceneRenderer {
   passes::VolumePass volumes_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
+  std::unique_ptr<passes::ShadowDebugPass> light_images_;
   const gpu::ShaderLibrary& shaders_;
 
   passes::TonemapPass tonemap_;

@@ -19,6 +19,8 @@ const char* kUsage =
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
+    "  --report         also write report.html: one self-contained page with the images,\n"
+    "                   pass timings, memory figures and frame graph\n"
     "shadow overrides, for every light (default: the scene file's settings):\n"
     "  --technique T    avsm | uncompressed (the exact reference)\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
@@ -83,6 +85,8 @@ int main(int argc, char** argv) {
       options.validation = true;
     } else if (arg == "--quiet") {
       options.progress = false;
+    } else if (arg == "--report") {
+      options.report = true;
     } else if (arg == "--technique") {
       const std::string name = value();
       options.technique = avsm::scene::shadow_technique_from_string(name);
@@ -115,6 +119,7 @@ int main(int argc, char** argv) {
   try {
     avsm::capture::CaptureOutputs out = avsm::capture::run_capture(options);
     std::printf("image:   %s\nhdr:     %s\ntimings: %s\n", out.png.c_str(), out.exr.c_str(), out.timings.c_str());
+    if (options.report) std::printf("report:  %s\n", (options.out_dir / "report.html").c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "avsm-capture: error: %s\n", e.what());

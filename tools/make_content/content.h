@@ -24,6 +24,9 @@ void write_stage_gltf(const std::filesystem::path& gltf_file, const std::filesys
 // The scene file referencing the three assets above.
 void write_scene_json(const std::filesystem::path& file);
 
+// The benchmark scenes (bench_*.scene.json) into `dir`, next to the default scene's assets.
+void write_bench_scenes(const std::filesystem::path& dir);
+
 // Integer hash to [0, 1): deterministic "random" numbers.
 float hash01(std::uint32_t a, std::uint32_t b = 0, std::uint32_t c = 0);
 

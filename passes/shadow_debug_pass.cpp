@@ -1,0 +1,53 @@
+#include "passes/shadow_debug_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <string>
+
+namespace avsm::passes {
+
+ShadowDebugPass::ShadowDebugPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_debug.comp"), "shadow debug")) {}
+
+void ShadowDebugPass::set_lights(const ShadowMaps& shadows) {
+  images_.clear();
+  for (uint32_t light = 0; light < shadows.light_count(); ++light) {
+    gpu::ImageDesc desc;
+    desc.width = desc.height = shadows.light_views()[light].resolution;
+    desc.format = kFormat;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.name = "light " + std::to_string(light) + " debug image";
+    images_.push_back(gpu::Image::create(ctx_, desc));
+  }
+}
+
+void ShadowDebugPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& inputs) {
+  for (uint32_t light = 0; light < images_.size(); ++light) {
+    gpu::Image& image = images_[light];
+    const std::string name = "light " + std::to_string(light) + " debug image";
+    rg::TextureHandle handle =
+        graph.import_texture(name, {image.desc().width, image.desc().height, 1, 1, 1, kFormat},
+                             rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
+    executor.bind(handle, image);
+    struct Data {
+      rg::TextureHandle image;
+    };
+    graph.add_pass<Data>(name, rg::QueueType::Compute,
+        [&](rg::PassBuilder& b, Data& d) {
+          d.image = b.write(handle, rg::Usage::StorageWrite);
+          inputs.declare_reads(b);
+        },
+        [this, inputs, light](const Data& d, rg::PassContext& c) {
+          pipeline_.bind(c.cmd());
+          gpu::Bindings bindings(ctx_, pipeline_);
+          bindings.image(0, c.view(d.image), c.layout(d.image));
+          inputs.bind(bindings, 1, c);
+          bindings.push(c.cmd());
+          pipeline_.push_constants(c.cmd(), light);
+          const rg::TextureDesc& size = c.desc(d.image);
+          pipeline_.dispatch_threads(c.cmd(), size.width, size.height);
+        });
+  }
+}
+
+}  // namespace avsm::passes
