@@ -132,9 +132,10 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
     stats.light = light.name.empty() ? name : light.name;
     stats_.push_back(stats);
   }
-  parameters_ = gpu::Buffer::create(
-      ctx_, {std::max<uint64_t>(lights_.size(), 1) * sizeof(GpuShadow), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-             gpu::MemoryLocation::HostUpload, "shadow parameters"});
+  const uint64_t entries = lights_.size() * (options_.keep_reference ? 2 : 1);
+  parameters_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
+                                           "shadow parameters"});
 }
 
 GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
@@ -154,6 +155,7 @@ GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
   g.filter_mode = filter_code(s.settings.filter);
   g.exponential = options_.exponential_interpolation ? 1u : 0u;
   g.slot = light;
+  g.reference = options_.keep_reference ? light_count() + light : kNoReference;
   return g;
 }
 
@@ -165,6 +167,12 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
   auto* parameters = static_cast<GpuShadow*>(parameters_.mapped());
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     parameters[i] = gpu_shadow(i, camera);
+    if (options_.keep_reference) {
+      GpuShadow& reference = parameters[light_count() + i];
+      reference = parameters[i];
+      reference.technique = technique_code(scene::ShadowTechnique::uncompressed);
+      reference.reference = kNoReference;
+    }
     LightState& light = lights_[i];
     const LightView& view = views_[i];
     const std::string prefix = "light " + std::to_string(i);
@@ -178,11 +186,11 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
     lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, volumes, options_.smoke_samples_per_segment);
     if (light.settings.sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
 
-    if (light.settings.technique == scene::ShadowTechnique::uncompressed) {
+    if (light.settings.technique == scene::ShadowTechnique::uncompressed || options_.keep_reference) {
       inputs.heads[i] = lists.heads;
       inputs.nodes[i] = lists.nodes;
-      continue;
     }
+    if (light.settings.technique == scene::ShadowTechnique::uncompressed) continue;
     rg::BufferHandle map = graph.import_buffer(prefix + " avsm map", {light.map.size()}, rg::ImportState::none(),
                                                rg::ImportState::of(rg::Usage::StorageRead));
     executor.bind(map, light.map);

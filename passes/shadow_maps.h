@@ -51,9 +51,10 @@ struct GpuShadow {
   uint32_t filter_mode;       // 0 point, 1 bilinear, 2 trilinear
   uint32_t exponential;
   uint32_t slot;
-  uint32_t pad;
+  uint32_t reference;         // index of this light's exact-reference entry, or kNoReference
 };
 static_assert(sizeof(GpuShadow) == 144);
+inline constexpr uint32_t kNoReference = ~0u;
 
 // What a camera pass reads to look shadows up (bindings AVSM_SHADOW_BINDING .. +3).
 struct ShadowInputs {
@@ -100,6 +101,12 @@ struct ShadowOptions {
   float normal_offset_texels = 2.0f;           // receivers move this many texels along their normal
   uint64_t capture_limit_bytes = 128ull << 20;  // node buffer growth limit (lavapipe's maxStorageBufferRange)
   uint32_t smoke_samples_per_segment = CaptureSmokePass::kDefaultSamplesPerSegment;
+  // Keep every light's capture lists to the end of the frame, so passes can look up
+  // the exact (uncompressed) transmittance next to the technique's: GpuShadow entries
+  // light_count() .. 2 * light_count() - 1 are the lights' exact references
+  // (reference_light_transmittance() in shaders/common/shadow_lookup.glsl). Costs the
+  // lists' memory for the whole frame (no aliasing between lights).
+  bool keep_reference = false;
 };
 
 class ShadowMaps {
@@ -130,6 +137,7 @@ class ShadowMaps {
   const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
   const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).layout; }
   uint32_t light_count() const { return uint32_t(views_.size()); }
+  bool has_reference() const { return options_.keep_reference; }
 
  private:
   struct LightState {

@@ -38,8 +38,9 @@ struct GpuShadow {
   uint filter_mode;       // kFilter*
   uint exponential;       // 1: exponential interpolation between nodes
   uint slot;              // index into the map and list arrays
-  uint pad;
+  uint reference;         // index of this light's exact-reference entry in shadows[], or kNoReference
 };
+const uint kNoReference = 0xffffffffu;
 
 struct ShadowListNode {
   float entry;
@@ -164,14 +165,24 @@ float light_transmittance(uint light_index, vec3 p) {
   return result;
 }
 
+// The exact transmittance (the light's capture lists, all nodes) when the frame
+// kept them (ShadowOptions::keep_reference), else the technique's own.
+float reference_light_transmittance(uint light_index, vec3 p) {
+  uint reference = shadows[light_index].reference;
+  return light_transmittance(reference == kNoReference ? light_index : reference, p);
+}
+
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
-float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
+vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
   GpuShadow s = shadows[light_index];
-  if (s.technique == kShadowNone) return 1.0;
   vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
-  float offset = s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p));
-  return light_transmittance(light_index, p + n * offset);
+  return p + n * (s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p)));
+}
+
+float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
+  if (shadows[light_index].technique == kShadowNone) return 1.0;
+  return light_transmittance(light_index, surface_lookup_point(light_index, p, normal, to_light));
 }
 
 #endif
