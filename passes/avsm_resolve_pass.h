@@ -8,6 +8,7 @@
 #include "gpu/shader_compiler.h"
 #include "passes/avsm_map_layout.h"
 #include "passes/capture_lists.h"
+#include "passes/map_build_pass.h"
 
 namespace avsm::passes {
 
@@ -19,8 +20,7 @@ class AvsmResolvePass {
                                 rg::BufferHandle map, const AvsmMapLayout& layout, float far_depth) const;
 
  private:
-  gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  MapBuildPass build_;
 };
 
 }  // namespace avsm::passes

@@ -15,7 +15,29 @@ namespace avsm::passes {
 namespace {
 
 uint32_t technique_code(scene::ShadowTechnique technique) {
-  return technique == scene::ShadowTechnique::uncompressed ? 2u : 1u;
+  switch (technique) {
+    case scene::ShadowTechnique::avsm: return 1u;
+    case scene::ShadowTechnique::uncompressed: return 2u;
+    case scene::ShadowTechnique::osm: return 3u;
+    case scene::ShadowTechnique::fom: return 4u;
+    case scene::ShadowTechnique::dsm: break;
+  }
+  return 0u;
+}
+
+// Planes of an opacity shadow map (`slices`, default 32) or terms of a Fourier
+// opacity map (`terms`, default 16); the AVSM node count otherwise.
+uint32_t technique_count(const scene::ShadowSettings& s) {
+  if (s.technique == scene::ShadowTechnique::osm) return uint32_t(s.parameter("slices", 32));
+  if (s.technique == scene::ShadowTechnique::fom) return uint32_t(s.parameter("terms", 16));
+  return uint32_t(s.nodes);
+}
+
+// Bytes per texel of a technique's map (level 0).
+uint64_t technique_texel_bytes(const scene::ShadowSettings& s) {
+  if (s.technique == scene::ShadowTechnique::osm) return technique_count(s) * 4ull;
+  if (s.technique == scene::ShadowTechnique::fom) return technique_count(s) * 8ull;
+  return uint64_t(s.nodes) * 8;
 }
 
 uint32_t filter_code(scene::ShadowFilter filter) {
@@ -30,9 +52,16 @@ uint32_t filter_code(scene::ShadowFilter filter) {
 void check_settings(const scene::Light& light, size_t index) {
   const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
   const scene::ShadowSettings& s = light.shadow;
-  if (s.technique != scene::ShadowTechnique::avsm && s.technique != scene::ShadowTechnique::uncompressed)
+  if (s.technique == scene::ShadowTechnique::dsm)
     throw std::invalid_argument(who + ": shadow technique '" + std::string(scene::to_string(s.technique)) +
-                                "' is not available in this build; use avsm or uncompressed");
+                                "' is not available in this build; use avsm, uncompressed, osm or fom");
+  const double slices = s.parameter("slices", 32), terms = s.parameter("terms", 16);
+  if (s.technique == scene::ShadowTechnique::osm && (slices < 4 || slices > 64 || std::fmod(slices, 4.0) != 0.0))
+    throw std::invalid_argument(who + ": osm parameter slices = " + std::to_string(slices) +
+                                "; use a multiple of 4 from 4 to 64");
+  if (s.technique == scene::ShadowTechnique::fom && (terms < 2 || terms > 32 || std::fmod(terms, 2.0) != 0.0))
+    throw std::invalid_argument(who + ": fom parameter terms = " + std::to_string(terms) +
+                                "; use an even number from 2 to 32");
   if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
     throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
   if (s.resolution < 1 || s.resolution > 16384)
@@ -95,6 +124,8 @@ ShadowMaps::ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
       sort_(ctx, shaders),
       resolve_(ctx, shaders),
       mips_(ctx, shaders),
+      osm_build_(ctx, shaders, "shaders/passes/osm_build.comp", "osm build"),
+      fom_build_(ctx, shaders, "shaders/passes/fom_build.comp", "fom build"),
       unshadowed_(ctx) {}
 
 void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& options) {
@@ -114,14 +145,19 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
     state.settings = light.shadow;
     state.layout.resolution = resolution;
     state.layout.nodes = uint32_t(light.shadow.nodes);
-    state.layout.levels =
-        light.shadow.filter == scene::ShadowFilter::trilinear ? AvsmMapLayout::full_mip_count(resolution) : 1;
+    // Mips exist for AVSM only (trilinear falls back to bilinear for the other techniques).
+    const bool avsm = light.shadow.technique == scene::ShadowTechnique::avsm;
+    state.layout.levels = avsm && light.shadow.filter == scene::ShadowFilter::trilinear
+                              ? AvsmMapLayout::full_mip_count(resolution)
+                              : 1;
     const std::string name = "light " + std::to_string(i);
-    // TRANSFER_SRC: avsm_map() is read back by tests and tools (gpu::read_buffer).
-    if (light.shadow.technique == scene::ShadowTechnique::avsm)
-      state.map = gpu::Buffer::create(ctx_, {state.layout.bytes(),
-                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                             gpu::MemoryLocation::DeviceLocal, name + " avsm map"});
+    const uint64_t map_bytes = avsm ? state.layout.bytes()
+                                    : uint64_t(resolution) * resolution * technique_texel_bytes(light.shadow);
+    // Transfer source too, so tests and tools can read a map back.
+    if (light.shadow.technique != scene::ShadowTechnique::uncompressed)
+      state.map = gpu::Buffer::create(
+          ctx_, {map_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                 gpu::MemoryLocation::DeviceLocal, name + " " + std::string(scene::to_string(light.shadow.technique)) + " map"});
     state.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                gpu::MemoryLocation::HostReadback, name + " capture counter"});
     // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
@@ -149,7 +185,13 @@ GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
   g.texel_camera = glm::vec4(v.texel_size_base, v.texel_size_per_depth, v.far_depth, radians_per_pixel);
   g.camera_position = glm::vec4(camera.camera_position, options_.normal_offset_texels);
   g.technique = technique_code(s.settings.technique);
-  g.node_count = s.layout.nodes;
+  // Opacity and Fourier maps smear a surface's own blocker over a slice (1/K of the
+  // range): receivers look up `depth_bias` slices in front of themselves (default 1).
+  const bool sliced = s.settings.technique == scene::ShadowTechnique::osm || s.settings.technique == scene::ShadowTechnique::fom;
+  const float slice = (v.far_depth - v.near_depth) / float(std::max(technique_count(s.settings), 1u));
+  const float bias = sliced ? float(s.settings.parameter("depth_bias", 1.0)) * slice : 0.0f;
+  g.depth_range = glm::vec4(v.near_depth, v.far_depth, bias, 0.0f);
+  g.node_count = technique_count(s.settings);
   g.resolution = s.layout.resolution;
   g.mip_count = s.layout.levels;
   g.filter_mode = filter_code(s.settings.filter);
@@ -191,11 +233,19 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
       inputs.nodes[i] = lists.nodes;
     }
     if (light.settings.technique == scene::ShadowTechnique::uncompressed) continue;
-    rg::BufferHandle map = graph.import_buffer(prefix + " avsm map", {light.map.size()}, rg::ImportState::none(),
-                                               rg::ImportState::of(rg::Usage::StorageRead));
+    const std::string technique(scene::to_string(light.settings.technique));
+    rg::BufferHandle map = graph.import_buffer(prefix + " " + technique + " map", {light.map.size()},
+                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::StorageRead));
     executor.bind(map, light.map);
-    map = resolve_.add_to_graph(graph, prefix, lists, map, light.layout, view.far_depth);
-    inputs.maps[i] = mips_.add_to_graph(graph, prefix, map, light.layout);
+    const MapBuildParameters build{view.resolution, technique_count(light.settings), view.near_depth, view.far_depth,
+                                   0.0f};
+    switch (light.settings.technique) {
+      case scene::ShadowTechnique::osm: inputs.maps[i] = osm_build_.add_to_graph(graph, prefix, lists, map, build); break;
+      case scene::ShadowTechnique::fom: inputs.maps[i] = fom_build_.add_to_graph(graph, prefix, lists, map, build); break;
+      default:
+        map = resolve_.add_to_graph(graph, prefix, lists, map, light.layout, view.far_depth);
+        inputs.maps[i] = mips_.add_to_graph(graph, prefix, map, light.layout);
+    }
   }
   return inputs;
 }

@@ -3,8 +3,10 @@
 // passes (Salvi et al., EGSR 2010). Per light and frame:
 //   clear lists -> capture opaque -> capture hair -> capture smoke -> [sort lists]
 //   -> avsm resolve -> avsm mips            (technique avsm)
+//   -> osm build                            (opacity shadow maps, K planes)
+//   -> fom build                            (Fourier opacity maps, K terms)
 // or the capture lists themselves, read exactly by the camera passes (technique
-// uncompressed, the ground truth). The lists are transient graph resources, so
+// uncompressed, the ground truth). All techniques share the capture. The lists are transient graph resources, so
 // lights alias each other's capture memory; the map and the capture counter are
 // persistent and imported.
 //
@@ -31,6 +33,7 @@
 #include "passes/capture_smoke_pass.h"
 #include "passes/capture_sort_pass.h"
 #include "passes/light_view.h"
+#include "passes/map_build_pass.h"
 #include "passes/view.h"
 #include "scene/scene.h"
 
@@ -38,13 +41,14 @@ namespace avsm::passes {
 
 inline constexpr uint32_t kMaxShadowedLights = 4;  // AVSM_MAX_SHADOWED_LIGHTS in shadow_lookup.glsl
 
-// std430, 144 bytes; mirrors struct GpuShadow in shaders/common/shadow_lookup.glsl.
+// std430, 160 bytes; mirrors struct GpuShadow in shaders/common/shadow_lookup.glsl.
 struct GpuShadow {
   glm::mat4 light_from_world;
   glm::vec4 depth_plane;
   glm::vec4 texel_camera;     // x + y * depth: texel world size; z: far depth; w: camera radians per pixel
   glm::vec4 camera_position;  // w: receivers' normal offset in texels
-  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed
+  glm::vec4 depth_range;      // x, y: the light's caster depth range (osm, fom)
+  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed, 3 osm, 4 fom
   uint32_t node_count;
   uint32_t resolution;
   uint32_t mip_count;
@@ -53,7 +57,7 @@ struct GpuShadow {
   uint32_t slot;
   uint32_t reference;         // index of this light's exact-reference entry, or kNoReference
 };
-static_assert(sizeof(GpuShadow) == 144);
+static_assert(sizeof(GpuShadow) == 160);
 inline constexpr uint32_t kNoReference = ~0u;
 
 // What a camera pass reads to look shadows up (bindings AVSM_SHADOW_BINDING .. +3).
@@ -156,6 +160,7 @@ class ShadowMaps {
   CaptureSortPass sort_;
   AvsmResolvePass resolve_;
   AvsmMipsPass mips_;
+  MapBuildPass osm_build_, fom_build_;
   ShadowOptions options_;
   std::vector<LightView> views_;
   std::vector<LightState> lights_;

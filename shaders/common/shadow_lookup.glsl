@@ -16,12 +16,15 @@
 
 #extension GL_GOOGLE_include_directive : require
 #include "avsm/avsm_core.glsl"
+#include "techniques/opacity_maps.glsl"
 
 #define AVSM_MAX_SHADOWED_LIGHTS 4
 
 const uint kShadowNone = 0u;
 const uint kShadowAvsm = 1u;
 const uint kShadowUncompressed = 2u;
+const uint kShadowOsm = 3u;  // opacity shadow maps
+const uint kShadowFom = 4u;  // Fourier opacity maps
 const uint kFilterPoint = 0u;
 const uint kFilterBilinear = 1u;
 const uint kFilterTrilinear = 2u;
@@ -31,8 +34,10 @@ struct GpuShadow {
   vec4 depth_plane;       // light depth(p) = dot(xyz, p) + w
   vec4 texel_camera;      // x, y: level-0 texel world size = x + y * depth; z: far depth; w: camera radians per pixel
   vec4 camera_position;   // xyz; w: receivers' normal offset in texels
+  vec4 depth_range;       // x, y: the light's caster depth range (osm and fom normalise over it);
+                          // z: osm/fom lookup bias (depth units), against self-shadowing inside a slice
   uint technique;         // kShadow*
-  uint node_count;        // N, a multiple of 4
+  uint node_count;        // avsm: N nodes (a multiple of 4); osm: K planes; fom: K terms
   uint resolution;        // level-0 texels per side
   uint mip_count;
   uint filter_mode;       // kFilter*
@@ -111,8 +116,36 @@ float list_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   return t;
 }
 
+// Opacity shadow map texel: the optical depth at the planes around d, interpolated.
+float osm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
+  int planes = int(s.node_count);
+  uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(planes / 4);
+  float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
+  int plane = int(floor(z * float(planes)));  // the plane in front of d (0: the near plane, no depth)
+  float before = plane == 0 ? 0.0 : avsm_maps[s.slot].texels[base + uint(plane - 1) / 4u][(plane - 1) % 4];
+  int next = min(plane, planes - 1);
+  float after = avsm_maps[s.slot].texels[base + uint(next) / 4u][next % 4];
+  return osm_transmittance(before, after, z, planes);
+}
+
+// Fourier opacity map texel: the series' optical depth in front of d.
+float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
+  int terms = int(s.node_count);
+  uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(terms / 2);
+  float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
+  float optical_depth = 0.0;
+  for (int k = 0; k < terms; k += 2) {
+    vec4 pair = avsm_maps[s.slot].texels[base + uint(k / 2)];
+    optical_depth +=
+        fom_term_optical_depth(pair.x, pair.y, k, terms, z) + fom_term_optical_depth(pair.z, pair.w, k + 1, terms, z);
+  }
+  return fom_transmittance(optical_depth);
+}
+
 float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) {
   if (s.technique == kShadowUncompressed) return list_texel_transmittance(s, texel, d);
+  if (s.technique == kShadowOsm) return osm_texel_transmittance(s, texel, d);
+  if (s.technique == kShadowFom) return fom_texel_transmittance(s, texel, d);
   return avsm_texel_transmittance(s, avsm_texel_base(s, level, texel), d);
 }
 

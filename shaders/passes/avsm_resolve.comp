@@ -12,11 +12,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 2) writeonly buffer AvsmMap { vec4 map_texels[]; };
 #include "avsm/avsm_map.glsl"
 
-// Mirrors AvsmResolvePass's push constants (passes/avsm_resolve_pass.cpp).
+// Mirrors MapBuildParameters (passes/map_build_pass.h).
 layout(push_constant) uniform Push {
   uint resolution;
   uint node_count;  // N: 4, 8, 12 or 16
+  float near_depth;
   float far_depth;
+  float error;
 } pc;
 
 void main() {

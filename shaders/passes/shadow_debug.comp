@@ -31,6 +31,18 @@ float first_opaque_depth(GpuShadow s, ivec2 texel) {
     }
     return nearest;
   }
+  if (s.technique != kShadowAvsm) {
+    // Opacity and Fourier maps keep no nodes: step along the depth range to where
+    // the curve turns dark.
+    const int kSteps = 128;
+    float previous_depth = s.depth_range.x;
+    for (int i = 1; i <= kSteps; ++i) {
+      float depth = mix(s.depth_range.x, s.depth_range.y, float(i) / float(kSteps));
+      if (shadow_texel_transmittance(s, 0u, texel, depth) <= 0.01) return previous_depth;
+      previous_depth = depth;
+    }
+    return far_depth;
+  }
   uint base = avsm_texel_base(s, 0u, texel);
   uint groups = s.node_count / 4u;
   float previous_depth = far_depth;

@@ -1,0 +1,38 @@
+#pragma once
+// Builds a comparison technique's per-texel map from a light's capture lists:
+// one compute dispatch per light, one thread per texel, with the technique's
+// shader (shaders/passes/osm_build.comp: opacity shadow maps, fom_build.comp:
+// Fourier opacity maps). All share the push constants below.
+#include <rendergraph/graph.h>
+
+#include <string>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "passes/capture_lists.h"
+
+namespace avsm::passes {
+
+struct MapBuildParameters {
+  uint32_t resolution = 1;
+  uint32_t count = 0;      // slices (osm) or terms (fom)
+  float near_depth = 0.0f;  // the light's caster depth range the map covers
+  float far_depth = 1.0f;
+  float error = 0.0f;       // error threshold (dsm)
+};
+
+class MapBuildPass {
+ public:
+  // `shader`: e.g. "shaders/passes/osm_build.comp"; `name`: the pass name after the light prefix.
+  MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name);
+  // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's size).
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                rg::BufferHandle map, const MapBuildParameters& parameters) const;
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  std::string name_;
+};
+
+}  // namespace avsm::passes

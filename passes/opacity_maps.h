@@ -1,0 +1,22 @@
+#pragma once
+// The opacity and Fourier opacity map math in C++: shaders/techniques/opacity_maps.glsl
+// compiled with GLM, so tests check the GPU maps against the same code.
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+namespace avsm::opacity {
+
+using glm::clamp;
+using glm::max;
+using glm::min;
+using glm::mix;
+using std::cos;
+using std::exp;
+using std::floor;
+using std::log;
+using std::sin;
+
+#include "../shaders/techniques/opacity_maps.glsl"
+
+}  // namespace avsm::opacity

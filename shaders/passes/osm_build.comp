@@ -1,0 +1,40 @@
+#version 460
+// Opacity shadow map build (technique osm): per light texel, the optical depth in
+// front of each of K planes evenly spaced over the light's caster range, from the
+// texel's capture list (shaders/techniques/opacity_maps.glsl). K floats per texel.
+#extension GL_GOOGLE_include_directive : require
+#define AVSM_CAPTURE_BINDING 0
+#include "common/capture_lists.glsl"
+#include "techniques/opacity_maps.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 2) writeonly buffer Map { vec4 map_texels[]; };
+
+// Mirrors MapBuildPass's push constants (passes/map_build_pass.cpp).
+layout(push_constant) uniform Push {
+  uint resolution;
+  uint count;  // K planes, a multiple of 4, at most 64
+  float near_depth;
+  float far_depth;
+  float error;
+} pc;
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
+  int planes = int(pc.count);
+  float tau[64];
+  for (int k = 0; k < planes; ++k) tau[k] = 0.0;
+  float scale = 1.0 / max(pc.far_depth - pc.near_depth, 1e-20);
+  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
+    CaptureSegment s = capture_nodes[node];
+    float z0 = (s.entry - pc.near_depth) * scale, z1 = (s.exit_depth - pc.near_depth) * scale;
+    float optical_depth = opacity_segment_optical_depth(s.exit_trans);
+    // Planes in front of the segment get nothing: start at the first plane behind its entry.
+    for (int k = max(int(ceil(z0 * float(planes))), 1); k <= planes; ++k)
+      tau[k - 1] += osm_plane_optical_depth(z0, z1, optical_depth, k, planes);
+  }
+  uint base = (uint(texel.y) * pc.resolution + uint(texel.x)) * uint(planes / 4);
+  for (int g = 0; g < planes / 4; ++g)
+    map_texels[base + uint(g)] = vec4(tau[4 * g], tau[4 * g + 1], tau[4 * g + 2], tau[4 * g + 3]);
+}
