@@ -23,7 +23,7 @@ CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix,
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(c.cmd(), c.image(d.heads), c.layout(d.heads), &end_of_list, 1, &all);
         vkCmdFillBuffer(c.cmd(), c.buffer(d.nodes), 0, kCaptureSegmentBytes, ~0u);
-        vkCmdFillBuffer(c.cmd(), c.buffer(d.counter), 0, 4, 0);
+        vkCmdFillBuffer(c.cmd(), c.buffer(d.counter), 0, VK_WHOLE_SIZE, 0);
       });
   return lists;
 }

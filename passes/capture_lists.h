@@ -22,12 +22,13 @@ inline constexpr VkFormat kCaptureHeadFormat = VK_FORMAT_R32_UINT;
 struct CaptureLists {
   rg::TextureHandle heads;   // R32_UINT, resolution x resolution
   rg::BufferHandle nodes;    // node_capacity CaptureSegments
-  rg::BufferHandle counter;  // one uint: nodes asked for, including those that did not fit
+  rg::BufferHandle counter;  // uint 0: nodes asked for, including those that did not fit; uint 1: deep
+                             // shadow map pool nodes asked for (dsm_build.comp); 16 bytes, cleared
 };
 
 // Declares "<prefix> clear lists": creates the heads and nodes, clears every head
 // to the end-of-list value and the counter to 0. `counter` is an imported buffer
-// of at least 4 bytes.
+// of 16 bytes (cleared whole).
 CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
                                     uint64_t node_capacity, rg::BufferHandle counter);
 

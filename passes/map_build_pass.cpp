@@ -11,27 +11,30 @@ MapBuildPass::MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders,
     : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load(shader), name)), name_(std::move(name)) {}
 
 rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                            rg::BufferHandle map, const MapBuildParameters& parameters) const {
+                                            rg::BufferHandle map, const MapBuildParameters& parameters,
+                                            rg::BufferHandle* counter) const {
   struct Data {
     rg::TextureHandle heads;
-    rg::BufferHandle nodes, map;
+    rg::BufferHandle nodes, map, counter;
   };
   const Data& data = graph.add_pass<Data>(prefix + " " + name_, rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) {
         d.heads = b.read(lists.heads, rg::Usage::StorageRead);
         d.nodes = b.read(lists.nodes, rg::Usage::StorageRead);
-        d.map = b.write(map, rg::Usage::StorageWrite);
+        // The deep shadow map allocates from a pool inside the map: it reads its own writes.
+        d.map = counter ? b.read_write(map, rg::Usage::StorageReadWrite) : b.write(map, rg::Usage::StorageWrite);
+        if (counter) d.counter = b.read_write(*counter, rg::Usage::StorageReadWrite);
       },
       [this, parameters](const Data& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
-        gpu::Bindings(ctx_, pipeline_)
-            .image(0, c.view(d.heads), c.layout(d.heads))
-            .buffer(1, c.buffer(d.nodes))
-            .buffer(2, c.buffer(d.map))
-            .push(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.image(0, c.view(d.heads), c.layout(d.heads)).buffer(1, c.buffer(d.nodes)).buffer(2, c.buffer(d.map));
+        if (d.counter.valid()) bindings.buffer(3, c.buffer(d.counter));
+        bindings.push(c.cmd());
         pipeline_.push_constants(c.cmd(), parameters);
         pipeline_.dispatch_threads(c.cmd(), parameters.resolution, parameters.resolution);
       });
+  if (counter) *counter = data.counter;
   return data.map;
 }
 

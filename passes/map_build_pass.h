@@ -1,8 +1,9 @@
 #pragma once
 // Builds a comparison technique's per-texel map from a light's capture lists:
 // one compute dispatch per light, one thread per texel, with the technique's
-// shader (shaders/passes/osm_build.comp: opacity shadow maps, fom_build.comp:
-// Fourier opacity maps). All share the push constants below.
+// shader (shaders/passes/avsm_resolve.comp, osm_build.comp: opacity shadow maps,
+// fom_build.comp: Fourier opacity maps, dsm_build.comp: deep shadow maps). All
+// share the push constants below.
 #include <rendergraph/graph.h>
 
 #include <string>
@@ -25,9 +26,13 @@ class MapBuildPass {
  public:
   // `shader`: e.g. "shaders/passes/osm_build.comp"; `name`: the pass name after the light prefix.
   MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name);
-  // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's size).
+  // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's
+  // size). With `counter` (a host-readable buffer, updated to its new version), the
+  // shader also gets it at binding 3: the deep shadow map reports its node pool
+  // demand there.
   rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                rg::BufferHandle map, const MapBuildParameters& parameters) const;
+                                rg::BufferHandle map, const MapBuildParameters& parameters,
+                                rg::BufferHandle* counter = nullptr) const;
 
  private:
   gpu::Context& ctx_;

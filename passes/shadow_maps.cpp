@@ -20,25 +20,25 @@ uint32_t technique_code(scene::ShadowTechnique technique) {
     case scene::ShadowTechnique::uncompressed: return 2u;
     case scene::ShadowTechnique::osm: return 3u;
     case scene::ShadowTechnique::fom: return 4u;
-    case scene::ShadowTechnique::dsm: break;
+    case scene::ShadowTechnique::dsm: return 5u;
   }
   return 0u;
 }
+
+// Deep shadow maps: map words before the node pool (dsm_build.comp), and the
+// exact-curve nodes kept before compression.
+uint64_t dsm_pool_base_words(uint32_t resolution) { return (4 + 2 * uint64_t(resolution) * resolution + 3) & ~3ull; }
+constexpr uint32_t kDsmInputNodes = 64;
 
 // Planes of an opacity shadow map (`slices`, default 32) or terms of a Fourier
 // opacity map (`terms`, default 16); the AVSM node count otherwise.
 uint32_t technique_count(const scene::ShadowSettings& s) {
   if (s.technique == scene::ShadowTechnique::osm) return uint32_t(s.parameter("slices", 32));
   if (s.technique == scene::ShadowTechnique::fom) return uint32_t(s.parameter("terms", 16));
+  if (s.technique == scene::ShadowTechnique::dsm) return kDsmInputNodes;
   return uint32_t(s.nodes);
 }
 
-// Bytes per texel of a technique's map (level 0).
-uint64_t technique_texel_bytes(const scene::ShadowSettings& s) {
-  if (s.technique == scene::ShadowTechnique::osm) return technique_count(s) * 4ull;
-  if (s.technique == scene::ShadowTechnique::fom) return technique_count(s) * 8ull;
-  return uint64_t(s.nodes) * 8;
-}
 
 uint32_t filter_code(scene::ShadowFilter filter) {
   switch (filter) {
@@ -52,9 +52,9 @@ uint32_t filter_code(scene::ShadowFilter filter) {
 void check_settings(const scene::Light& light, size_t index) {
   const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
   const scene::ShadowSettings& s = light.shadow;
-  if (s.technique == scene::ShadowTechnique::dsm)
-    throw std::invalid_argument(who + ": shadow technique '" + std::string(scene::to_string(s.technique)) +
-                                "' is not available in this build; use avsm, uncompressed, osm or fom");
+  const double error = s.parameter("error", 0.01);
+  if (s.technique == scene::ShadowTechnique::dsm && !(error > 0.0 && error < 1.0))
+    throw std::invalid_argument(who + ": dsm parameter error = " + std::to_string(error) + "; use a value in (0, 1)");
   const double slices = s.parameter("slices", 32), terms = s.parameter("terms", 16);
   if (s.technique == scene::ShadowTechnique::osm && (slices < 4 || slices > 64 || std::fmod(slices, 4.0) != 0.0))
     throw std::invalid_argument(who + ": osm parameter slices = " + std::to_string(slices) +
@@ -69,6 +69,17 @@ void check_settings(const scene::Light& light, size_t index) {
 }
 
 uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple - 1) / multiple * multiple; }
+
+// "<prefix> dsm clear": zeroes the deep shadow map's pool counter before the build allocates from it.
+rg::BufferHandle add_dsm_clear_pass(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map) {
+  struct Data {
+    rg::BufferHandle map;
+  };
+  return graph.add_pass<Data>(prefix + " dsm clear", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& d) { d.map = b.write(map, rg::Usage::TransferDst); },
+      [](const Data& d, rg::PassContext& c) { vkCmdFillBuffer(c.cmd(), c.buffer(d.map), 0, 16, 0); })
+      .map;
+}
 
 }  // namespace
 
@@ -126,6 +137,7 @@ ShadowMaps::ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
       mips_(ctx, shaders),
       osm_build_(ctx, shaders, "shaders/passes/osm_build.comp", "osm build"),
       fom_build_(ctx, shaders, "shaders/passes/fom_build.comp", "fom build"),
+      dsm_build_(ctx, shaders, "shaders/passes/dsm_build.comp", "dsm build"),
       unshadowed_(ctx) {}
 
 void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& options) {
@@ -151,19 +163,15 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
                               ? AvsmMapLayout::full_mip_count(resolution)
                               : 1;
     const std::string name = "light " + std::to_string(i);
-    const uint64_t map_bytes = avsm ? state.layout.bytes()
-                                    : uint64_t(resolution) * resolution * technique_texel_bytes(light.shadow);
-    // Transfer source too, so tests and tools can read a map back.
-    if (light.shadow.technique != scene::ShadowTechnique::uncompressed)
-      state.map = gpu::Buffer::create(
-          ctx_, {map_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                 gpu::MemoryLocation::DeviceLocal, name + " " + std::string(scene::to_string(light.shadow.technique)) + " map"});
     state.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                gpu::MemoryLocation::HostReadback, name + " capture counter"});
     // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
     state.capacity = std::min<uint64_t>(uint64_t(resolution) * resolution * 8,
                                         options_.capture_limit_bytes / kCaptureSegmentBytes);
+    // Deep shadow maps: a first guess of 8 nodes per texel for the pool; finish_frame() grows it.
+    state.pool_nodes = uint64_t(resolution) * resolution * 8;
     lights_.push_back(std::move(state));
+    create_map(uint32_t(i));
     LightShadowStats stats;
     stats.light = light.name.empty() ? name : light.name;
     stats_.push_back(stats);
@@ -172,6 +180,25 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
   parameters_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
                                            "shadow parameters"});
+}
+
+void ShadowMaps::create_map(uint32_t light) {
+  LightState& state = lights_[light];
+  const scene::ShadowSettings& settings = state.settings;
+  const uint64_t texels = uint64_t(state.layout.resolution) * state.layout.resolution;
+  uint64_t bytes = 0;
+  switch (settings.technique) {
+    case scene::ShadowTechnique::uncompressed: state.map = {}; return;
+    case scene::ShadowTechnique::avsm: bytes = state.layout.bytes(); break;
+    case scene::ShadowTechnique::osm: bytes = texels * technique_count(settings) * 4; break;  // K planes
+    case scene::ShadowTechnique::fom: bytes = texels * technique_count(settings) * 8; break;  // K (a, b) pairs
+    case scene::ShadowTechnique::dsm: bytes = (dsm_pool_base_words(state.layout.resolution) + 2 * state.pool_nodes) * 4; break;
+  }
+  // Transfer source too, so tests and tools can read a map back.
+  state.map = gpu::Buffer::create(
+      ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+             gpu::MemoryLocation::DeviceLocal,
+             "light " + std::to_string(light) + " " + std::string(scene::to_string(settings.technique)) + " map"});
 }
 
 GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
@@ -238,10 +265,14 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
                                                rg::ImportState::none(), rg::ImportState::of(rg::Usage::StorageRead));
     executor.bind(map, light.map);
     const MapBuildParameters build{view.resolution, technique_count(light.settings), view.near_depth, view.far_depth,
-                                   0.0f};
+                                   float(light.settings.parameter("error", 0.01))};
     switch (light.settings.technique) {
       case scene::ShadowTechnique::osm: inputs.maps[i] = osm_build_.add_to_graph(graph, prefix, lists, map, build); break;
       case scene::ShadowTechnique::fom: inputs.maps[i] = fom_build_.add_to_graph(graph, prefix, lists, map, build); break;
+      case scene::ShadowTechnique::dsm:
+        map = add_dsm_clear_pass(graph, prefix, map);
+        inputs.maps[i] = dsm_build_.add_to_graph(graph, prefix, lists, map, build, &lists.counter);
+        break;
       default:
         map = resolve_.add_to_graph(graph, prefix, lists, map, light.layout, view.far_depth);
         inputs.maps[i] = mips_.add_to_graph(graph, prefix, map, light.layout);
@@ -254,8 +285,9 @@ void ShadowMaps::finish_frame() {
   for (size_t i = 0; i < lights_.size(); ++i) {
     LightState& light = lights_[i];
     LightShadowStats& stats = stats_[i];
-    uint32_t requested = 0;
-    std::memcpy(&requested, light.counter.mapped(), sizeof(requested));
+    uint32_t counters[2] = {0, 0};  // capture segments, deep shadow map pool nodes asked for
+    std::memcpy(counters, light.counter.mapped(), sizeof(counters));
+    const uint32_t requested = counters[0];
     stats.technique = light.settings.technique;
     stats.nodes = light.layout.nodes;
     stats.resolution = light.layout.resolution;
@@ -270,6 +302,18 @@ void ShadowMaps::finish_frame() {
       light.capacity = std::min(limit, round_up(requested + requested / 4, 1024));
     }
     stats.next_capture_capacity = light.capacity;
+    stats.grew = stats.next_capture_capacity > stats.capture_capacity;
+    if (light.settings.technique == scene::ShadowTechnique::dsm) {
+      stats.pool_requested = counters[1];
+      stats.pool_capacity = light.pool_nodes;
+      stats.pool_overflowed = counters[1] > light.pool_nodes;
+      if (stats.pool_overflowed) {  // the last frame completed: the map can be replaced now
+        light.pool_nodes = round_up(counters[1] + counters[1] / 4, 1024);
+        create_map(uint32_t(i));
+        stats.grew = true;
+      }
+      stats.map_bytes = light.map.size();
+    }
   }
 }
 

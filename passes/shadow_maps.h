@@ -5,6 +5,7 @@
 //   -> avsm resolve -> avsm mips            (technique avsm)
 //   -> osm build                            (opacity shadow maps, K planes)
 //   -> fom build                            (Fourier opacity maps, K terms)
+//   -> dsm clear -> dsm build               (deep shadow maps, error threshold)
 // or the capture lists themselves, read exactly by the camera passes (technique
 // uncompressed, the ground truth). All techniques share the capture. The lists are transient graph resources, so
 // lights alias each other's capture memory; the map and the capture counter are
@@ -47,8 +48,8 @@ struct GpuShadow {
   glm::vec4 depth_plane;
   glm::vec4 texel_camera;     // x + y * depth: texel world size; z: far depth; w: camera radians per pixel
   glm::vec4 camera_position;  // w: receivers' normal offset in texels
-  glm::vec4 depth_range;      // x, y: the light's caster depth range (osm, fom)
-  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed, 3 osm, 4 fom
+  glm::vec4 depth_range;      // x, y: the light's caster depth range (osm, fom); z: osm/fom lookup bias
+  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed, 3 osm, 4 fom, 5 dsm
   uint32_t node_count;
   uint32_t resolution;
   uint32_t mip_count;
@@ -92,12 +93,17 @@ struct LightShadowStats {
   std::string light;
   scene::ShadowTechnique technique = scene::ShadowTechnique::avsm;
   uint32_t nodes = 0, resolution = 0, mip_levels = 0;
-  uint64_t map_bytes = 0;               // persistent AVSM map (0 for uncompressed)
+  uint64_t map_bytes = 0;               // persistent map (0 for uncompressed)
   uint64_t capture_capacity = 0;        // segments the node buffer held this frame
   uint64_t capture_requested = 0;       // segments the captures asked for
   uint64_t capture_bytes = 0;           // heads + node buffer this frame
   bool overflowed = false;              // requested > capacity: segments were dropped
   uint64_t next_capture_capacity = 0;   // after growth
+  // Deep shadow maps: nodes the texels' compressed curves needed and the pool held;
+  // texels that did not fit read as unshadowed this frame (the pool grows for the next).
+  uint64_t pool_requested = 0, pool_capacity = 0;
+  bool pool_overflowed = false;
+  bool grew = false;                    // a buffer grows for the next frame: rendering again does better
 };
 
 struct ShadowOptions {
@@ -147,10 +153,12 @@ class ShadowMaps {
   struct LightState {
     scene::ShadowSettings settings;
     AvsmMapLayout layout;
-    gpu::Buffer map;      // AVSM nodes, all levels (technique avsm)
+    gpu::Buffer map;      // the technique's map (AVSM nodes, all levels; opacity planes; ...)
     gpu::Buffer counter;  // host-readable capture counter
     uint64_t capacity = 0;
+    uint64_t pool_nodes = 0;  // deep shadow map node pool
   };
+  void create_map(uint32_t light);
   GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
 
   gpu::Context& ctx_;
@@ -160,7 +168,7 @@ class ShadowMaps {
   CaptureSortPass sort_;
   AvsmResolvePass resolve_;
   AvsmMipsPass mips_;
-  MapBuildPass osm_build_, fom_build_;
+  MapBuildPass osm_build_, fom_build_, dsm_build_;
   ShadowOptions options_;
   std::vector<LightView> views_;
   std::vector<LightState> lights_;

@@ -17,9 +17,12 @@
 #define AVSM_INOUT(T) inout T
 #endif
 
-// Room for the largest node count plus the two nodes one insertion adds.
-#define AVSM_MAX_NODES 16
+// Room for the largest node count plus the two nodes one insertion adds. A shader
+// that needs longer curves (the deep shadow map build) defines a larger capacity
+// before including this file.
+#ifndef AVSM_CURVE_CAPACITY
 #define AVSM_CURVE_CAPACITY 18
+#endif
 
 struct AvsmCurve {
   float depth[AVSM_CURVE_CAPACITY];

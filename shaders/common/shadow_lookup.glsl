@@ -25,6 +25,7 @@ const uint kShadowAvsm = 1u;
 const uint kShadowUncompressed = 2u;
 const uint kShadowOsm = 3u;  // opacity shadow maps
 const uint kShadowFom = 4u;  // Fourier opacity maps
+const uint kShadowDsm = 5u;  // deep shadow maps
 const uint kFilterPoint = 0u;
 const uint kFilterBilinear = 1u;
 const uint kFilterTrilinear = 2u;
@@ -142,7 +143,33 @@ float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   return fom_transmittance(optical_depth);
 }
 
+// Deep shadow map texel (layout: shaders/passes/dsm_build.comp): its own count of
+// nodes in the shared pool, searched front to back.
+uint dsm_word(uint slot, uint word) { return floatBitsToUint(avsm_maps[slot].texels[word >> 2u][word & 3u]); }
+
+float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
+  uint index = uint(texel.y) * s.resolution + uint(texel.x);
+  uint first = dsm_word(s.slot, 4u + 2u * index), count = dsm_word(s.slot, 5u + 2u * index);
+  // A texel the full pool could not take (counted and reported; the pool grows for the next frame).
+  if (count == 0u || count == 0xffffffffu) return 1.0;
+  uint pool = (4u + 2u * s.resolution * s.resolution + 3u) & ~3u;
+  float previous_depth = 0.0, previous_trans = 1.0;
+  for (uint k = 0u; k < count; ++k) {
+    float depth = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k)));
+    float trans = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k) + 1u));
+    if (d < depth) {
+      if (k == 0u) return 1.0;
+      float f = depth > previous_depth ? (d - previous_depth) / (depth - previous_depth) : 1.0;
+      return avsm_interpolate(previous_trans, trans, f, s.exponential != 0u);
+    }
+    previous_depth = depth;
+    previous_trans = trans;
+  }
+  return previous_trans;
+}
+
 float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) {
+  if (s.technique == kShadowDsm) return dsm_texel_transmittance(s, texel, d);
   if (s.technique == kShadowUncompressed) return list_texel_transmittance(s, texel, d);
   if (s.technique == kShadowOsm) return osm_texel_transmittance(s, texel, d);
   if (s.technique == kShadowFom) return fom_texel_transmittance(s, texel, d);

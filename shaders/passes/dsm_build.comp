@@ -1,0 +1,62 @@
+#version 460
+// Deep shadow map build (technique dsm): per light texel, the exact transmittance
+// curve of its capture list (the AVSM core's streaming insertion with room for 64
+// nodes: exact up to 31 overlapping segments, trimmed by the smallest-area rule
+// beyond), compressed by Lokovic & Veach's greedy rule to the user error, and
+// stored with a variable node count: a per-texel header (first node, count) and
+// a node pool shared by the texels, allocated with an atomic counter.
+//
+// Map words (uint): [0] pool nodes allocated, [1..3] unused, [4 + 2 t] texel t's
+// first node, [5 + 2 t] its node count (kDsmLost: the pool was full), then the
+// pool from word dsm_pool_base(resolution): per node depth, transmittance (floats).
+#extension GL_GOOGLE_include_directive : require
+#define AVSM_CURVE_CAPACITY 66
+#define AVSM_CAPTURE_BINDING 0
+#include "common/capture_lists.glsl"
+#include "avsm/avsm_core.glsl"
+#include "techniques/deep_shadow.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 2) buffer MapWords { uint words[]; };
+// The light's host-readable capture counter: word 1 gathers the pool nodes asked for.
+layout(std430, binding = 3) buffer Counter { uint counter_words[]; };
+
+// Mirrors MapBuildParameters (passes/map_build_pass.h).
+layout(push_constant) uniform Push {
+  uint resolution;
+  uint count;  // input curve nodes kept before compression (at most 64)
+  float near_depth;
+  float far_depth;
+  float error;
+} pc;
+
+const uint kDsmLost = 0xffffffffu;
+
+uint dsm_pool_base(uint resolution) { return (4u + 2u * resolution * resolution + 3u) & ~3u; }
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
+  AvsmCurve curve = avsm_clear(pc.far_depth);
+  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
+    CaptureSegment s = capture_nodes[node];
+    avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, int(pc.count));
+  }
+  AvsmCurve compressed;
+  dsm_compress(curve, pc.error, compressed);
+
+  uint index = uint(texel.y) * pc.resolution + uint(texel.x);
+  uint count = uint(compressed.count);
+  uint first = atomicAdd(words[0], count);
+  atomicAdd(counter_words[1], count);
+  uint pool = dsm_pool_base(pc.resolution);
+  uint capacity = (uint(words.length()) - pool) / 2u;
+  bool fits = first + count <= capacity;
+  words[4u + 2u * index] = first;
+  words[5u + 2u * index] = fits ? count : kDsmLost;
+  if (!fits) return;
+  for (uint k = 0u; k < count; ++k) {
+    words[pool + 2u * (first + k)] = floatBitsToUint(compressed.depth[k]);
+    words[pool + 2u * (first + k) + 1u] = floatBitsToUint(compressed.trans[k]);
+  }
+}

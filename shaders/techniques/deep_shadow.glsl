@@ -1,0 +1,68 @@
+// Deep shadow maps (Lokovic & Veach 2000): a texel's exact transmittance curve,
+// compressed to as few nodes as keep it within a user error everywhere, with a
+// variable node count per texel. Written for GLSL and C++ like the AVSM core
+// (include avsm/avsm_core.glsl first; C++ through passes/deep_shadow.h).
+#ifndef AVSM_DEEP_SHADOW_GLSL
+#define AVSM_DEEP_SHADOW_GLSL
+
+// Lokovic & Veach's greedy compression: from the last emitted node (the origin),
+// follow the exact curve's nodes while one line from the origin stays within
+// `error` of every one of them (a narrowing range of slopes); when no slope fits the next
+// node, emit the line's end at the previous node and start again from there. A
+// jump at one depth (an opaque surface) that exceeds the error becomes two nodes
+// at that depth. The compressed curve is within `error` of the exact one at each
+// of its nodes, so everywhere: its nodes sit at exact-curve node depths, so both
+// are linear between those. `compressed` holds at most as many nodes as `exact`.
+void dsm_compress(AvsmCurve exact, float error, AVSM_INOUT(AvsmCurve) compressed) {
+  compressed.count = 0;
+  if (exact.count == 0) return;
+  float origin_depth = exact.depth[0], origin_trans = exact.trans[0];
+  compressed.depth[0] = origin_depth;
+  compressed.trans[0] = origin_trans;
+  compressed.count = 1;
+  float low = -3.4e38f, high = 3.4e38f;  // slopes that keep every node so far within the error
+  int i = 1;
+  while (i < exact.count) {
+    float dz = exact.depth[i] - origin_depth;
+    if (dz <= 1e-7f) {  // same depth as the origin: a step
+      if (abs(exact.trans[i] - origin_trans) > error) {
+        origin_trans = exact.trans[i];
+        compressed.depth[compressed.count] = origin_depth;
+        compressed.trans[compressed.count] = origin_trans;
+        compressed.count += 1;
+        low = -3.4e38f;
+        high = 3.4e38f;
+      }
+      i += 1;
+      continue;
+    }
+    float new_low = max(low, (exact.trans[i] - error - origin_trans) / dz);
+    float new_high = min(high, (exact.trans[i] + error - origin_trans) / dz);
+    if (new_low <= new_high) {
+      low = new_low;
+      high = new_high;
+      i += 1;
+      continue;
+    }
+    // Node i does not fit: end the line at the previous node.
+    float end_depth = exact.depth[i - 1];
+    float slope = low <= -3.4e38f ? 0.0f : 0.5f * (low + high);
+    origin_trans = clamp(origin_trans + slope * (end_depth - origin_depth), 0.0f, 1.0f);
+    origin_depth = end_depth;
+    compressed.depth[compressed.count] = origin_depth;
+    compressed.trans[compressed.count] = origin_trans;
+    compressed.count += 1;
+    low = -3.4e38f;
+    high = 3.4e38f;
+  }
+  // The last line ends at the last exact node.
+  float last_depth = exact.depth[exact.count - 1];
+  if (last_depth > origin_depth) {
+    float slope = low <= -3.4e38f ? 0.0f : 0.5f * (low + high);
+    compressed.depth[compressed.count] = last_depth;
+    compressed.trans[compressed.count] = clamp(origin_trans + slope * (last_depth - origin_depth), 0.0f, 1.0f);
+    compressed.count += 1;
+  }
+}
+
+#endif
