@@ -7,12 +7,20 @@
 namespace avsm::core {
 
 using glm::abs;
+using glm::clamp;
 using glm::max;
 using glm::min;
 using glm::mix;
 
+// Internal linkage: the GLSL functions are not inline, and several files include this
+// (each uses only some of them).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+namespace {
 #define AVSM_INOUT(T) T&
 #include "../shaders/avsm/avsm_core.glsl"
 #undef AVSM_INOUT
+}  // namespace
+#pragma GCC diagnostic pop
 
 }  // namespace avsm::core

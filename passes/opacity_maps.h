@@ -17,6 +17,13 @@ using std::floor;
 using std::log;
 using std::sin;
 
+// Internal linkage: the GLSL functions are not inline, and several files include this
+// (each uses only some of them).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+namespace {
 #include "../shaders/techniques/opacity_maps.glsl"
+}  // namespace
+#pragma GCC diagnostic pop
 
 }  // namespace avsm::opacity

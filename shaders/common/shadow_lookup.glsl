@@ -160,12 +160,13 @@ float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
     if (d < depth) {
       if (k == 0u) return 1.0;
       float f = depth > previous_depth ? (d - previous_depth) / (depth - previous_depth) : 1.0;
-      return avsm_interpolate(previous_trans, trans, f, s.exponential != 0u);
+      // Lokovic-Veach nodes may lie up to the error outside [0, 1].
+      return clamp(avsm_interpolate(previous_trans, trans, f, s.exponential != 0u), 0.0, 1.0);
     }
     previous_depth = depth;
     previous_trans = trans;
   }
-  return previous_trans;
+  return clamp(previous_trans, 0.0, 1.0);
 }
 
 float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) {

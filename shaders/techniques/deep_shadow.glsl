@@ -5,6 +5,17 @@
 #ifndef AVSM_DEEP_SHADOW_GLSL
 #define AVSM_DEEP_SHADOW_GLSL
 
+// The slope for a line from (origin_depth, origin_trans) to end_depth: one that keeps
+// every node so far within the error ([low, high]), preferring one that also ends
+// inside [0, 1]. The end value is never clamped afterwards: that would bend the
+// line away from the nodes it was fitted to.
+float dsm_line_slope(float low, float high, float origin_depth, float origin_trans, float end_depth) {
+  if (low <= -3.4e38f) return 0.0f;  // no node constrains it yet (the line ends where it starts)
+  float dz = end_depth - origin_depth;
+  float in_range_low = max(low, -origin_trans / dz), in_range_high = min(high, (1.0f - origin_trans) / dz);
+  return in_range_low <= in_range_high ? 0.5f * (in_range_low + in_range_high) : 0.5f * (low + high);
+}
+
 // Lokovic & Veach's greedy compression: from the last emitted node (the origin),
 // follow the exact curve's nodes while one line from the origin stays within
 // `error` of every one of them (a narrowing range of slopes); when no slope fits the next
@@ -46,8 +57,7 @@ void dsm_compress(AvsmCurve exact, float error, AVSM_INOUT(AvsmCurve) compressed
     }
     // Node i does not fit: end the line at the previous node.
     float end_depth = exact.depth[i - 1];
-    float slope = low <= -3.4e38f ? 0.0f : 0.5f * (low + high);
-    origin_trans = clamp(origin_trans + slope * (end_depth - origin_depth), 0.0f, 1.0f);
+    origin_trans += dsm_line_slope(low, high, origin_depth, origin_trans, end_depth) * (end_depth - origin_depth);
     origin_depth = end_depth;
     compressed.depth[compressed.count] = origin_depth;
     compressed.trans[compressed.count] = origin_trans;
@@ -58,9 +68,9 @@ void dsm_compress(AvsmCurve exact, float error, AVSM_INOUT(AvsmCurve) compressed
   // The last line ends at the last exact node.
   float last_depth = exact.depth[exact.count - 1];
   if (last_depth > origin_depth) {
-    float slope = low <= -3.4e38f ? 0.0f : 0.5f * (low + high);
     compressed.depth[compressed.count] = last_depth;
-    compressed.trans[compressed.count] = clamp(origin_trans + slope * (last_depth - origin_depth), 0.0f, 1.0f);
+    compressed.trans[compressed.count] =
+        origin_trans + dsm_line_slope(low, high, origin_depth, origin_trans, last_depth) * (last_depth - origin_depth);
     compressed.count += 1;
   }
 }

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -553,7 +554,21 @@ double density_path_above(double y) {
   return v + (hi - lo);                                                                // below: the whole box
 }
 
-TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
+// One way of looking shadows up, and how far from exp(-sigma L) it may be.
+struct BoxSetup {
+  const char* name;
+  scene::ShadowTechnique technique;
+  scene::ShadowFilter filter;
+  int nodes;
+  float tolerance;
+  std::map<std::string, double> parameters = {};
+};
+
+// A 32^3 box of density 1 lit straight down by one sun per setup (at most 4); probes
+// on a vertical line through its centre (above: lit, inside, below: through all of
+// it) compared with the closed-form Beer-Lambert transmittance.
+void expect_box_probes_match_beer_lambert(gpu::Context& ctx, const gpu::ShaderLibrary& shaders,
+                                          const std::vector<BoxSetup>& setups) {
   constexpr float kSigma = 0.5f;  // extinction per unit density per world unit: T through the box = exp(-1.6)
   scene::VolumeOptions options;
   options.extinction_scale = kSigma;
@@ -564,21 +579,7 @@ TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
   scene.volumes.back().name = "box";
   scene.bounds.extend(scene.volumes.back().world_bounds);
   const glm::vec3 centre = scene.bounds.center();
-
-  // Four suns straight down, one per way of looking shadows up.
-  struct Setup {
-    const char* name;
-    scene::ShadowTechnique technique;
-    scene::ShadowFilter filter;
-    int nodes;
-  };
-  const std::vector<Setup> setups = {
-      {"uncompressed point", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::point, 8},
-      {"uncompressed bilinear", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::bilinear, 8},
-      {"avsm16 point", scene::ShadowTechnique::avsm, scene::ShadowFilter::point, 16},
-      {"avsm16 bilinear", scene::ShadowTechnique::avsm, scene::ShadowFilter::bilinear, 16},
-  };
-  for (const Setup& setup : setups) {
+  for (const BoxSetup& setup : setups) {
     scene::Light sun;
     sun.name = setup.name;
     sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
@@ -586,6 +587,7 @@ TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
     sun.shadow.filter = setup.filter;
     sun.shadow.nodes = setup.nodes;
     sun.shadow.resolution = 64;
+    sun.shadow.parameters = setup.parameters;
     scene.lights.push_back(sun);
   }
   scene::Camera camera;
@@ -593,7 +595,6 @@ TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
   camera.target = centre;
   scene.cameras.push_back(camera);
 
-  // A vertical line through the box centre: above (lit), inside, below (through all of it).
   // The light box spans the bounding sphere: y from centre - r to centre + r, r = 2.86.
   std::vector<glm::vec3> probes;
   std::vector<float> expected;
@@ -601,36 +602,63 @@ TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
     probes.emplace_back(centre.x, y, centre.z);
     expected.push_back(float(std::exp(-double(kSigma) * density_path_above(y))));
   }
-  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer renderer(ctx, shaders, scene, kFrameWidth, kFrameHeight);
   renderer.set_probes(probes);
-  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
-  render_frame(ctx(), renderer, executor, passes::make_view(camera, kFrameWidth, kFrameHeight));
-  for (const passes::LightShadowStats& stats : renderer.shadows().frame_stats())
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
+  render_frame(ctx, renderer, executor, passes::make_view(camera, kFrameWidth, kFrameHeight));
+  for (const passes::LightShadowStats& stats : renderer.shadows().frame_stats()) {
     ASSERT_FALSE(stats.overflowed) << stats.light;
+    ASSERT_FALSE(stats.pool_overflowed) << stats.light;
+  }
   const std::vector<std::vector<float>> results = renderer.probe_results();
   ASSERT_EQ(results.size(), setups.size());
-
-  // Uncompressed: the capture integrates the trilinear density with the midpoint rule
-  // at a quarter voxel (restarting at brick boundaries, so the steps straddle the ramps
-  // at the box faces: O(step^2) kinks), and the list lookup interpolates transmittance
-  // linearly inside each 16-sample (0.4 unit) segment where the truth is exponential:
-  // up to T * tau^2 / 8 = 0.005 with tau = 0.2 per segment. 2e-2 covers both with room.
-  // AVSM with 16 nodes: the 8 segments through the box fit but the duplicated
-  // entry/exit depths are merged by compression; 0.05 allows for it.
   for (size_t light = 0; light < setups.size(); ++light) {
-    const float tolerance = setups[light].technique == scene::ShadowTechnique::uncompressed ? 2e-2f : 5e-2f;
     float max_error = 0.0f;
     for (size_t i = 0; i < probes.size(); ++i) {
       const float got = results[light][i];
       max_error = std::max(max_error, std::abs(got - expected[i]));
-      EXPECT_NEAR(got, expected[i], tolerance) << setups[light].name << " at y = " << probes[i].y;
+      EXPECT_NEAR(got, expected[i], setups[light].tolerance) << setups[light].name << " at y = " << probes[i].y;
     }
     std::cout << "[ box probes  ] " << setups[light].name << ": max |probe - exp(-sigma L)| " << max_error << " over "
-              << probes.size() << " probes\n";
+              << probes.size() << " probes (tolerance " << setups[light].tolerance << ")\n";
   }
   // The line really crosses the box: fully lit above it, exp(-sigma 3.2) below it.
   EXPECT_EQ(expected.front(), 1.0f);
   EXPECT_NEAR(expected.back(), std::exp(-kSigma * kBoxVoxels * kBoxVoxelSize), 1e-6f);
+}
+
+// Uncompressed: the capture integrates the trilinear density with the midpoint rule
+// at a quarter voxel (restarting at brick boundaries, so the steps straddle the ramps
+// at the box faces: O(step^2) kinks), and the list lookup interpolates transmittance
+// linearly inside each 16-sample (0.4 unit) segment where the truth is exponential:
+// up to T * tau^2 / 8 = 0.005 with tau = 0.2 per segment. 2e-2 covers both with room.
+// AVSM with 16 nodes: the 8 segments through the box fit but the duplicated
+// entry/exit depths are merged by compression; 0.05 allows for it.
+TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
+  expect_box_probes_match_beer_lambert(ctx(), shaders(), {
+      {"uncompressed point", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::point, 8, 2e-2f},
+      {"uncompressed bilinear", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::bilinear, 8, 2e-2f},
+      {"avsm16 point", scene::ShadowTechnique::avsm, scene::ShadowFilter::point, 16, 5e-2f},
+      {"avsm16 bilinear", scene::ShadowTechnique::avsm, scene::ShadowFilter::bilinear, 16, 5e-2f},
+  });
+}
+
+// The comparison techniques on the same box, each within its own expected error:
+// - dsm: the capture's error (2e-2, as above) plus the compression threshold.
+// - osm, 32 planes over the light's 5.7-unit depth range (0.18 per slice): receivers
+//   look up one slice in front of themselves (the default depth bias), which under-
+//   counts up to sigma * 0.18 = 0.09 of optical depth: T off by up to 1 - e^-0.09 = 0.086,
+//   plus the capture's 0.02.
+// - fom, 16 terms: looked up one slice (1/16 of the range, 0.36 units) early, which
+//   under-counts up to sigma * 0.36 = 0.18 of optical depth (T off by up to 0.165),
+//   and the windowed series smooths the box's edges over about that width: 0.2.
+TEST_F(AvsmShadowTest, AvsmComparisonTechniquesMatchBeerLambertThroughABox) {
+  expect_box_probes_match_beer_lambert(ctx(), shaders(), {
+      {"dsm error 0.01", scene::ShadowTechnique::dsm, scene::ShadowFilter::bilinear, 8, 3e-2f, {{"error", 0.01}}},
+      {"dsm error 0.05", scene::ShadowTechnique::dsm, scene::ShadowFilter::bilinear, 8, 7e-2f, {{"error", 0.05}}},
+      {"osm 32", scene::ShadowTechnique::osm, scene::ShadowFilter::bilinear, 8, 0.11f, {{"slices", 32}}},
+      {"fom 16", scene::ShadowTechnique::fom, scene::ShadowFilter::bilinear, 8, 0.2f, {{"terms", 16}}},
+  });
 }
 
 // ---- 6. Capture overflow ----
