@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "gpu/transfer.h"
 
@@ -18,10 +20,30 @@ void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t 
   if (padded.empty()) padded.emplace_back(0.0f);  // a buffer cannot be empty
   point_count_ = uint32_t(points.size());
   light_count_ = light_count;
+  mode_ = Mode::points;
   points_ = gpu::create_buffer_from(ctx_, std::move(padded), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
   results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
                                         "probe results"});
+}
+
+void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples) {
+  std::vector<glm::vec4> packed;  // x, y texel, z depth, w light: exact in floats at these sizes
+  for (const TexelSample& s : samples) {
+    if (s.light >= kMaxShadowedLights || s.texel.x > 16384 || s.texel.y > 16384)
+      throw std::invalid_argument("ShadowProbePass: texel sample of light " + std::to_string(s.light) +
+                                  " at texel (" + std::to_string(s.texel.x) + ", " + std::to_string(s.texel.y) +
+                                  ") is out of range");
+    packed.emplace_back(float(s.texel.x), float(s.texel.y), s.depth, float(s.light));
+  }
+  if (packed.empty()) packed.emplace_back(0.0f);
+  point_count_ = uint32_t(samples.size());
+  light_count_ = 1;  // results: two values per sample
+  mode_ = Mode::texel_curves;
+  points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "texel samples");
+  results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * 2, 1) * sizeof(float),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                                        "texel sample results"});
 }
 
 void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& shadows) {
@@ -29,10 +51,13 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& execu
   struct Data {
     rg::BufferHandle results;
   };
-  rg::BufferHandle results = graph.import_buffer("probe results", {results_.size()}, rg::ImportState::none(),
-                                                 rg::ImportState::of(rg::Usage::HostRead));
+  const bool texels = mode_ == Mode::texel_curves;
+  const std::string name = texels ? "shadow texel curves" : "shadow probes";
+  rg::BufferHandle results =
+      graph.import_buffer(texels ? "texel sample results" : "probe results", {results_.size()},
+                          rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
   executor.bind(results, results_);
-  graph.add_pass<Data>("shadow probes", rg::QueueType::Compute,
+  graph.add_pass<Data>(name, rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) {
         d.results = b.write(results, rg::Usage::StorageWrite);
         shadows.declare_reads(b);
@@ -43,13 +68,21 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& execu
         bindings.buffer(0, points_.handle()).buffer(1, c.buffer(d.results));
         shadows.bind(bindings, 2, c);
         bindings.push(c.cmd());
-        const uint32_t push[2] = {point_count_, light_count_};
+        const uint32_t push[3] = {point_count_, light_count_, uint32_t(mode_)};
         pipeline_.push_constants(c.cmd(), push, sizeof(push));
         pipeline_.dispatch_threads(c.cmd(), point_count_);
       });
 }
 
+std::vector<TexelSampleResult> ShadowProbePass::texel_results() const {
+  if (mode_ != Mode::texel_curves) return {};
+  std::vector<TexelSampleResult> out(point_count_);
+  if (point_count_) std::memcpy(out.data(), results_.mapped(), out.size() * sizeof(TexelSampleResult));
+  return out;
+}
+
 std::vector<std::vector<float>> ShadowProbePass::results() const {
+  if (mode_ != Mode::points) return {};
   std::vector<std::vector<float>> out(light_count_, std::vector<float>(point_count_));
   const auto* values = static_cast<const float*>(results_.mapped());
   for (uint32_t light = 0; light < light_count_; ++light)

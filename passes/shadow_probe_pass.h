@@ -3,6 +3,9 @@
 // light_transmittance() the camera passes use) at a list of world points and
 // leaves the results in a host-readable buffer. For avsm-capture --probe and for
 // tests that check a technique against an independent computation.
+// Or, in texel-curve mode (set_texel_samples), single level-0 texels' curves at
+// chosen light depths, for the technique and for the exact reference side by
+// side (avsm-capture --plot-texel).
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
 
@@ -17,22 +20,43 @@
 
 namespace avsm::passes {
 
+// One sample of a texel curve: light `light`'s level-0 texel at light depth `depth`.
+struct TexelSample {
+  uint32_t light = 0;
+  glm::uvec2 texel{0};
+  float depth = 0.0f;
+};
+
+// A texel curve sample's two values.
+struct TexelSampleResult {
+  float technique;  // the light's technique (its AVSM curve, or the lists when uncompressed)
+  float reference;  // the exact curve (capture lists) when the frame kept them, else the technique's
+};
+
 class ShadowProbePass {
  public:
   ShadowProbePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // Points to probe (uploaded now) for `light_count` lights.
   void set_points(const std::vector<glm::vec3>& points, uint32_t light_count);
-  // Adds "shadow probes" reading the maps; the results are ready after the frame.
+  // Switches this pass to texel curves: the samples are uploaded now. Texels must
+  // lie inside their light's level-0 map and lights be below kMaxShadowedLights.
+  void set_texel_samples(const std::vector<TexelSample>& samples);
+  // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
+  // are ready after the frame.
   void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& shadows);
-  // results()[light][point], after the frame completed.
+  // results()[light][point], after the frame completed (points mode).
   std::vector<std::vector<float>> results() const;
+  // One result per texel sample, in set_texel_samples() order (texel-curve mode).
+  std::vector<TexelSampleResult> texel_results() const;
 
  private:
+  enum class Mode : uint32_t { points = 0, texel_curves = 1 };
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Buffer points_, results_;
   uint32_t point_count_ = 0, light_count_ = 0;
+  Mode mode_ = Mode::points;
 };
 
 }  // namespace avsm::passes

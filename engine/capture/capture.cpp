@@ -11,6 +11,7 @@
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
+#include "capture/quality.h"
 #include "capture/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -121,14 +122,21 @@ void write_probes(const fs::path& path, const scene::Scene& scene, const std::ve
 bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   bool overflowed = false, grew = false;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
-    if (!light.overflowed) continue;
+    if (!light.overflowed && !light.pool_overflowed) continue;
     overflowed = true;
-    grew = grew || light.next_capture_capacity > light.capture_capacity;
-    std::fprintf(stderr,
-                 "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
-                 "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
-                 index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
-                 (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
+    grew = grew || light.grew;
+    if (light.overflowed)
+      std::fprintf(stderr,
+                   "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
+                   "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
+                   index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
+                   (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
+    if (light.pool_overflowed)
+      std::fprintf(stderr,
+                   "avsm-capture: warning: frame %u: light '%s': the deep shadow map needed %llu pool nodes but had "
+                   "%llu; texels that did not fit were unshadowed; the pool grows for the next frame\n",
+                   index + 1, light.light.c_str(), (unsigned long long)light.pool_requested,
+                   (unsigned long long)light.pool_capacity);
   }
   if (overflowed) ++overflowed_frames;
   return grew;
@@ -170,17 +178,23 @@ void write_light_images(gpu::Context& ctx, const renderer::SceneRenderer& frame,
 }
 
 nlohmann::json shadow_json(const passes::LightShadowStats& s) {
-  return {{"light", s.light},
-          {"technique", scene::to_string(s.technique)},
-          {"nodes", s.nodes},
-          {"resolution", s.resolution},
-          {"mip_levels", s.mip_levels},
-          {"map_bytes", s.map_bytes},
-          {"capture_bytes", s.capture_bytes},
-          {"capture_capacity_segments", s.capture_capacity},
-          {"capture_requested_segments", s.capture_requested},
-          {"capture_overflowed", s.overflowed},
-          {"next_capture_capacity_segments", s.next_capture_capacity}};
+  nlohmann::json json = {{"light", s.light},
+                         {"technique", scene::to_string(s.technique)},
+                         {"nodes", s.nodes},
+                         {"resolution", s.resolution},
+                         {"mip_levels", s.mip_levels},
+                         {"map_bytes", s.map_bytes},
+                         {"capture_bytes", s.capture_bytes},
+                         {"capture_capacity_segments", s.capture_capacity},
+                         {"capture_requested_segments", s.capture_requested},
+                         {"capture_overflowed", s.overflowed},
+                         {"next_capture_capacity_segments", s.next_capture_capacity}};
+  if (s.technique == scene::ShadowTechnique::dsm) {  // the deep shadow map's node pool
+    json["dsm_pool_capacity_nodes"] = s.pool_capacity;
+    json["dsm_pool_requested_nodes"] = s.pool_requested;
+    json["dsm_pool_overflowed"] = s.pool_overflowed;
+  }
+  return json;
 }
 
 }  // namespace
@@ -198,6 +212,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   apply_shadow_overrides(options, scene);
   const std::vector<glm::vec3> probe_points =
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
+  std::vector<TexelPlot> plots = options.plot_texels;
+  resolve_texel_plots(plots, scene);
   if (options.progress)
     std::fprintf(stderr, "scene %s: %zu meshes, %zu hair grooms, %zu volumes, %zu lights\n", options.scene.c_str(),
                  scene.meshes.size(), scene.hair.size(), scene.volumes.size(), scene.lights.size());
@@ -217,6 +233,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
 
   passes::ShadowOptions shadow_options;
   shadow_options.exponential_interpolation = options.exponential_interpolation;
+  // The quality figures and texel curves compare against each light's exact lists.
+  shadow_options.keep_reference = options.compare_to_uncompressed || !plots.empty();
   std::unique_ptr<renderer::SceneRenderer> renderer_storage;
   try {
     renderer_storage = std::make_unique<renderer::SceneRenderer>(ctx, shaders, scene, options.width, options.height,
@@ -226,6 +244,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   }
   renderer::SceneRenderer& frame = *renderer_storage;
   if (!probe_points.empty()) frame.set_probes(probe_points);
+  if (options.compare_to_uncompressed) frame.enable_quality();
+  if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));
   frame.enable_light_images();
   uint64_t overflowed_frames = 0;
   passes::View view = passes::make_view(camera, options.width, options.height);
@@ -339,6 +359,10 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                                                  {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}}},
                                                {"frames_with_capture_overflow", overflowed_frames}});
   if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
+  if (options.compare_to_uncompressed)
+    out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height);
+  if (!plots.empty())
+    out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   if (options.report) write_report(options.out_dir, options.out_dir / "report.html");
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();

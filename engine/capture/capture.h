@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "capture/quality.h"
 #include "scene/light.h"
 
 namespace avsm::capture {
@@ -38,12 +40,21 @@ struct CaptureOptions {
   // Also write report.html into out_dir: one self-contained page with the images,
   // timings, memory figures and frame graph (see report.h).
   bool report = false;
+  // --compare-to uncompressed: keep every light's exact reference (its capture lists)
+  // and measure the technique against it at the receivers the camera sees: writes
+  // quality.json and light<i>_error.png (capture/quality.h).
+  bool compare_to_uncompressed = false;
+  // --plot-texel LIGHT:X,Y (parse_texel_plot()): curve_<light index>_<x>_<y>.svg each,
+  // the texel's curve for the technique over the exact one. Also keeps the reference.
+  std::vector<TexelPlot> plot_texels;
 };
 
 struct CaptureOutputs {
   std::filesystem::path png;
   std::filesystem::path exr;
   std::filesystem::path timings;
+  std::filesystem::path quality;               // empty without --compare-to
+  std::vector<std::filesystem::path> curves;   // --plot-texel
 };
 
 // Throws std::runtime_error with a message for the user on any failure.

@@ -427,6 +427,72 @@ void write_probes(std::ostringstream& html, const json& probes) {
   html << "</table>\n</section>\n";
 }
 
+// curve_<light>_<x>_<y>.svg in out_dir (avsm-capture --plot-texel), by name.
+std::vector<fs::path> curve_plots(const fs::path& out_dir) {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("curve_", 0) == 0 && it->path().extension() == ".svg" && it->is_regular_file(ec))
+      found.push_back(it->path());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+// quality.json (--compare-to uncompressed): per light its errors against the exact
+// reference and its error image; then the texel curves (--plot-texel) as images.
+void write_quality(std::ostringstream& html, const fs::path& out_dir, const json* quality,
+                   const std::vector<fs::path>& curves) {
+  html << "<section>\n<h2>Shadow quality</h2>\n";
+  if (quality) {
+    html << "<p class=\"note\">|T &minus; T<sub>exact</sub>| against each light's capture lists at the receivers "
+            "the camera sees; images: error \u00d7"
+         << format("%g", number_at(*quality, {"error_image_scale"})) << ", "
+         << escape(text_at(*quality, {"error_image_colours"}))
+         << ". Hair: " << escape(text_at(*quality, {"receiver_kinds", "hair"})) << ".</p>\n"
+         << "<table id=\"quality-table\">\n<tr><th>light</th><th>technique</th><th class=\"num\">receivers</th>"
+            "<th class=\"num\">mean</th><th class=\"num\">max</th><th class=\"num\">surface mean / max</th>"
+            "<th class=\"num\">smoke mean / max</th></tr>\n";
+    const json& lights = array_at(*quality, "lights");
+    auto error = [](const json& light, std::initializer_list<const char*> keys) {
+      return format("%.4f", number_at(light, keys));
+    };
+    for (const json& light : lights) {
+      const std::string receivers = text_at(light, {"receivers", "total"}) + " (" +
+                                    text_at(light, {"receivers", "surface"}) + " + " +
+                                    text_at(light, {"receivers", "smoke"}) + ")";
+      html << "<tr><td>" << escape(text_at(light, {"light"})) << "</td><td>"
+           << escape(text_at(light, {"technique_label"})) << "</td><td class=\"num\">" << escape(receivers)
+           << "</td><td class=\"num\">" << error(light, {"mean_abs_error"}) << "</td><td class=\"num\">"
+           << error(light, {"max_abs_error"}) << "</td><td class=\"num\">"
+           << error(light, {"surface", "mean_abs_error"}) << " / " << error(light, {"surface", "max_abs_error"})
+           << "</td><td class=\"num\">" << error(light, {"smoke", "mean_abs_error"}) << " / "
+           << error(light, {"smoke", "max_abs_error"}) << "</td></tr>\n";
+    }
+    html << "</table>\n<div id=\"quality-images\" style=\"display:flex;flex-wrap:wrap;gap:1em\">\n";
+    for (const json& light : lights) {
+      const std::string file = text_at(light, {"error_image"});
+      std::error_code ec;
+      if (!fs::is_regular_file(out_dir / file, ec)) continue;
+      html << "<figure><img class=\"error-image\" style=\"width:320px;height:auto;border:1px solid #ccc\" alt=\""
+           << escape(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
+           << escape(text_at(light, {"light"}) + ": " + text_at(light, {"technique_label"}) + " error")
+           << "</figcaption></figure>\n";
+    }
+    html << "</div>\n";
+  }
+  if (!curves.empty()) {
+    html << "<div id=\"texel-curves\">\n";
+    for (const fs::path& path : curves)
+      html << "<figure><img class=\"texel-curve\" style=\"max-width:100%\" alt=\""
+           << escape(path.filename().string()) << "\" src=\"data:image/svg+xml;base64," << base64(read_bytes(path))
+           << "\"></figure>\n";
+    html << "</div>\n";
+  }
+  html << "</section>\n";
+}
+
 void write_graph(std::ostringstream& html, const json& graph, const std::string& dot, const json& timings) {
   const json& passes = array_at(graph, "passes");
   const json& resources = array_at(graph, "resources");
@@ -519,6 +585,9 @@ void write_report(const fs::path& out_dir, const fs::path& html_path) {
   std::error_code ec;
   const bool has_probes = fs::is_regular_file(out_dir / "probes.json", ec);
   const json probes = has_probes ? read_json(out_dir / "probes.json") : json::object();
+  const bool has_quality = fs::is_regular_file(out_dir / "quality.json", ec);
+  const json quality = has_quality ? read_json(out_dir / "quality.json") : json::object();
+  const std::vector<fs::path> curves = curve_plots(out_dir);
 
   std::ostringstream html;
   write_head(html, timings);
@@ -527,6 +596,7 @@ void write_report(const fs::path& out_dir, const fs::path& html_path) {
   write_timing_chart(html, timings);
   write_memory(html, memory);
   if (has_probes) write_probes(html, probes);
+  if (has_quality || !curves.empty()) write_quality(html, out_dir, has_quality ? &quality : nullptr, curves);
   write_graph(html, graph, dot, timings);
   write_footer(html, out_dir);
 

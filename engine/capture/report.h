@@ -9,7 +9,8 @@ namespace avsm::capture {
 
 // Reads frame.png, timings.json, graph.json, graph.dot and memory.json from
 // out_dir (required: std::runtime_error naming a missing or unreadable one), and
-// probes.json and light*_transmittance.png when present; writes html_path.
+// probes.json, light*_transmittance.png, quality.json with its light*_error.png
+// and curve_*.svg when present; writes html_path.
 void write_report(const std::filesystem::path& out_dir, const std::filesystem::path& html_path);
 
 }  // namespace avsm::capture

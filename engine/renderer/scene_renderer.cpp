@@ -1,5 +1,8 @@
 #include "renderer/scene_renderer.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "passes/lights.h"
 
 namespace avsm::renderer {
@@ -54,7 +57,10 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_, shadows);
 
   tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
+  if (quality_)
+    quality_->add_to_graph(graph, executor, opaque.depth, view, lights_, light_count_, volumes_, shadows);
   if (probes_) probes_->add_to_graph(graph, executor, shadows);
+  if (texel_curves_) texel_curves_->add_to_graph(graph, executor, shadows);
   if (light_images_) light_images_->add_to_graph(graph, executor, shadows);
   return graph;
 }
@@ -62,6 +68,37 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
   if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
   probes_->set_points(points, light_count_);
+}
+
+void SceneRenderer::set_texel_samples(const std::vector<passes::TexelSample>& samples) {
+  for (const passes::TexelSample& sample : samples) {
+    if (sample.light >= shadows_.light_count())
+      throw std::invalid_argument("texel sample of light " + std::to_string(sample.light) + ": the scene has " +
+                                  std::to_string(shadows_.light_count()) + " lights");
+    const uint32_t resolution = shadows_.light_views()[sample.light].resolution;
+    if (sample.texel.x >= resolution || sample.texel.y >= resolution)
+      throw std::invalid_argument("texel (" + std::to_string(sample.texel.x) + ", " + std::to_string(sample.texel.y) +
+                                  ") is outside light " + std::to_string(sample.light) + "'s " +
+                                  std::to_string(resolution) + "x" + std::to_string(resolution) + " map");
+  }
+  if (!texel_curves_) texel_curves_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  texel_curves_->set_texel_samples(samples);
+}
+
+std::vector<passes::TexelSampleResult> SceneRenderer::texel_results() const {
+  return texel_curves_ ? texel_curves_->texel_results() : std::vector<passes::TexelSampleResult>{};
+}
+
+void SceneRenderer::enable_quality() {
+  if (!shadows_.has_reference())
+    throw std::logic_error("SceneRenderer::enable_quality: the shadow maps must keep the reference "
+                           "(ShadowOptions::keep_reference)");
+  if (!quality_) quality_ = std::make_unique<passes::ShadowQualityPass>(ctx_, shaders_);
+  quality_->set_size(width_, height_, light_count_);
+}
+
+std::vector<passes::PixelShadowError> SceneRenderer::quality_results() const {
+  return quality_ ? quality_->results() : std::vector<passes::PixelShadowError>{};
 }
 
 void SceneRenderer::enable_light_images() {

@@ -14,6 +14,7 @@
 #include "passes/shadow_maps.h"
 #include "passes/shadow_debug_pass.h"
 #include "passes/shadow_probe_pass.h"
+#include "passes/shadow_quality_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
 #include "passes/volume_pass.h"
@@ -34,6 +35,20 @@ class SceneRenderer {
   // camera passes); results in probe_results() once the frame completed.
   void set_probes(const std::vector<glm::vec3>& points);
   std::vector<std::vector<float>> probe_results() const;
+
+  // Evaluates single texels' curves (technique and exact reference) at chosen light
+  // depths in each frame (passes/shadow_probe_pass.h, texel-curve mode); results in
+  // texel_results() once the frame completed. Throws std::invalid_argument for a
+  // light or texel the shadow maps do not have.
+  void set_texel_samples(const std::vector<passes::TexelSample>& samples);
+  std::vector<passes::TexelSampleResult> texel_results() const;
+
+  // Measures every light's shadows against the exact reference, per camera pixel, at
+  // the receivers the camera sees (passes/shadow_quality_pass.h), in each frame after
+  // the camera passes. Needs ShadowOptions::keep_reference (std::logic_error without).
+  // quality_results() once the frame completed: [light][pixel], row 0 at the top.
+  void enable_quality();
+  std::vector<passes::PixelShadowError> quality_results() const;
 
   // Renders a picture of every light's transmittance map in each frame
   // (passes/shadow_debug_pass.h); light_images() after the frame completed.
@@ -59,6 +74,8 @@ class SceneRenderer {
   passes::VolumePass volumes_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
+  std::unique_ptr<passes::ShadowProbePass> texel_curves_;
+  std::unique_ptr<passes::ShadowQualityPass> quality_;
   std::unique_ptr<passes::ShadowDebugPass> light_images_;
   const gpu::ShaderLibrary& shaders_;
 

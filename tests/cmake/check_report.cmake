@@ -1,7 +1,8 @@
 # Opens DIR/report.html (avsm-capture --report) in headless Chromium, dumps the DOM it
 # built and checks that the report's elements are there: every section id, the embedded
 # PNGs, one bar (<rect>) per pass of timings.json in the timing chart, one light-map
-# image per light*_transmittance.png in DIR and one memory row per light of memory.json.
+# image per light*_transmittance.png in DIR and one memory row per light of memory.json;
+# the shadow-quality table and images when quality.json is there, and the texel curves.
 # Chromium's stderr (dbus and similar noise) is ignored unless it fails to run.
 find_program(CHROMIUM NAMES chromium chromium-browser)
 if(NOT CHROMIUM)
@@ -91,6 +92,38 @@ list(LENGTH light_rows light_row_count)
 if(NOT light_row_count EQUAL light_count)
   list(APPEND missing "one memory-table row per light (memory.json lists ${light_count}, the table has "
                       "${light_row_count})")
+endif()
+
+# With --compare-to uncompressed: the quality table, one error image per light of
+# quality.json; with --plot-texel: one <img class="texel-curve"> per curve_*.svg.
+if(EXISTS "${DIR}/quality.json")
+  file(READ "${DIR}/quality.json" quality)
+  string(JSON quality_lights LENGTH "${quality}" lights)
+  string(FIND "${dom}" "id=\"quality-table\"" at)
+  if(at EQUAL -1)
+    list(APPEND missing "an element with id=\"quality-table\" (quality.json is in the folder)")
+  endif()
+  # (Patterns without ';': MATCHALL returns a list.)
+  string(REGEX MATCHALL "<img[^>;]*class=\"error-image\"" error_images "${dom}")
+  list(LENGTH error_images error_image_count)
+  if(NOT error_image_count EQUAL quality_lights)
+    list(APPEND missing "one <img class=\"error-image\"> per light of quality.json (${quality_lights} lights, "
+                        "${error_image_count} images)")
+  endif()
+  if(quality_lights GREATER 0 AND NOT dom MATCHES "class=\"error-image\"[^>]*src=\"data:image/png;base64,")
+    list(APPEND missing "the error images embedded as data:image/png;base64")
+  endif()
+endif()
+file(GLOB curve_files "${DIR}/curve_*.svg")
+list(LENGTH curve_files curve_file_count)
+string(REGEX MATCHALL "<img[^>;]*class=\"texel-curve\"" curve_images "${dom}")
+list(LENGTH curve_images curve_image_count)
+if(NOT curve_image_count EQUAL curve_file_count)
+  list(APPEND missing "one <img class=\"texel-curve\"> per curve_*.svg (${curve_file_count} files, "
+                      "${curve_image_count} images)")
+endif()
+if(curve_file_count GREATER 0 AND NOT dom MATCHES "class=\"texel-curve\"[^>]*src=\"data:image/svg\\+xml;base64,")
+  list(APPEND missing "the texel curves embedded as data:image/svg+xml;base64")
 endif()
 
 if(missing)

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "capture/capture.h"
@@ -22,7 +23,7 @@ const char* kUsage =
     "  --report         also write report.html: one self-contained page with the images,\n"
     "                   pass timings, memory figures and frame graph\n"
     "shadow overrides, for every light (default: the scene file's settings):\n"
-    "  --technique T    avsm | uncompressed (the exact reference)\n"
+    "  --technique T    avsm | uncompressed (the exact reference) | dsm | osm | fom\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
     "  --sort on|off    sort each texel's segments before the resolve\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
@@ -30,6 +31,12 @@ const char* kUsage =
     "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
     "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
     "                   transmittance at every point\n"
+    "shadow quality against the exact reference (keeps every light's capture lists):\n"
+    "  --compare-to uncompressed   per light, |T - T_exact| at the surfaces and smoke the\n"
+    "                   camera sees: quality.json and light<i>_error.png (error x4)\n"
+    "  --plot-texel LIGHT:X,Y      (repeatable) LIGHT: index or name; X,Y: level-0 texel\n"
+    "                   (y = 0 at the bottom of light<i>_transmittance.png): writes\n"
+    "                   curve_<light index>_<x>_<y>.svg, the technique's curve over the exact one\n"
     "  --help           this text\n";
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -90,7 +97,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--technique") {
       const std::string name = value();
       options.technique = avsm::scene::shadow_technique_from_string(name);
-      if (!options.technique) usage_error("--technique expects avsm or uncompressed, got '" + name + "'");
+      if (!options.technique)
+        usage_error("--technique expects avsm, uncompressed, dsm, osm or fom, got '" + name + "'");
     } else if (arg == "--nodes") {
       const uint32_t n = parse_count(arg, value());
       if (n != 4 && n != 8 && n != 12 && n != 16) usage_error("--nodes expects 4, 8, 12 or 16");
@@ -112,6 +120,17 @@ int main(int argc, char** argv) {
       options.exponential_interpolation = name == "exponential";
     } else if (arg == "--probe") {
       options.probe_file = value();
+    } else if (arg == "--compare-to") {
+      const std::string name = value();
+      if (name != "uncompressed")
+        usage_error("--compare-to expects uncompressed (the exact reference), got '" + name + "'");
+      options.compare_to_uncompressed = true;
+    } else if (arg == "--plot-texel") {
+      const std::string spec = value();
+      std::optional<avsm::capture::TexelPlot> plot = avsm::capture::parse_texel_plot(spec);
+      if (!plot)
+        usage_error("--plot-texel expects LIGHT:X,Y (light index or name, level-0 texel), got '" + spec + "'");
+      options.plot_texels.push_back(*plot);
     } else {
       usage_error("unknown option '" + arg + "'");
     }
@@ -119,6 +138,8 @@ int main(int argc, char** argv) {
   try {
     avsm::capture::CaptureOutputs out = avsm::capture::run_capture(options);
     std::printf("image:   %s\nhdr:     %s\ntimings: %s\n", out.png.c_str(), out.exr.c_str(), out.timings.c_str());
+    if (!out.quality.empty()) std::printf("quality: %s\n", out.quality.c_str());
+    for (const auto& curve : out.curves) std::printf("curve:   %s\n", curve.c_str());
     if (options.report) std::printf("report:  %s\n", (options.out_dir / "report.html").c_str());
     return 0;
   } catch (const std::exception& e) {

@@ -1,0 +1,88 @@
+#pragma once
+// Shadow quality against the exact reference, on the CPU side of avsm-capture:
+//  - --compare-to uncompressed: the per-pixel errors of passes/shadow_quality_pass.h
+//    summed up per light into quality.json, and light<i>_error.png per light;
+//  - --plot-texel LIGHT:X,Y: one texel's transmittance curve, technique over the
+//    exact curve, as curve_<light index>_<x>_<y>.svg (like Figures 6-7 of the AVSM paper).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "passes/light_view.h"
+#include "passes/shadow_probe_pass.h"
+#include "passes/shadow_quality_pass.h"
+#include "scene/scene.h"
+
+namespace avsm::gpu {
+class Context;
+}
+namespace avsm::passes {
+class ShadowMaps;
+}
+
+namespace avsm::capture {
+
+// ---- quality.json ----
+
+// Errors are shown this many times larger in light<i>_error.png (as in the paper's figures), clamped to 1.
+inline constexpr float kErrorImageScale = 4.0f;
+
+struct ErrorStats {
+  uint64_t receivers = 0;
+  double sum = 0.0;  // of |T - T_ref|
+  double max = 0.0;
+  double mean() const { return receivers ? sum / double(receivers) : 0.0; }
+  void add(const ErrorStats& other);
+};
+
+struct LightQuality {
+  std::string light;  // name, or "light <i>"
+  scene::ShadowSettings settings;
+  ErrorStats surface, smoke;
+  ErrorStats all() const;
+};
+
+// Sums the per-pixel errors (ShadowQualityPass::results(), `light_count` lights of a
+// width x height image) per light.
+std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShadowError>& errors, uint32_t width,
+                                            uint32_t height, const scene::Scene& scene);
+
+// Writes quality.json and light<i>_error.png into out_dir; returns quality.json's path.
+std::filesystem::path write_quality(const std::filesystem::path& out_dir, const scene::Scene& scene,
+                                    const std::vector<passes::PixelShadowError>& errors, uint32_t width,
+                                    uint32_t height);
+
+// ---- texel curves ----
+
+inline constexpr uint32_t kCurveSamples = 512;  // depths per curve
+
+struct TexelPlot {
+  std::string spec;   // the flag value as given, LIGHT:X,Y (for messages)
+  std::string light;  // light index or name
+  uint32_t x = 0, y = 0;
+  uint32_t light_index = 0;  // resolved by resolve_texel_plots()
+};
+
+// Parses LIGHT:X,Y (LIGHT: index or name, may itself hold ':'; X, Y whole numbers);
+// nullopt when malformed.
+std::optional<TexelPlot> parse_texel_plot(const std::string& spec);
+
+// Finds each plot's light (index first, then name) and checks the texel lies in
+// its level-0 map. Throws std::runtime_error naming the flag value otherwise.
+void resolve_texel_plots(std::vector<TexelPlot>& plots, const scene::Scene& scene);
+
+// kCurveSamples samples per plot, evenly over its light's depth range (near to far depth).
+std::vector<passes::TexelSample> texel_curve_samples(const std::vector<TexelPlot>& plots,
+                                                     const std::vector<passes::LightView>& views);
+
+// Writes curve_<light>_<x>_<y>.svg per plot from the samples' results (same order as
+// texel_curve_samples()); reads the AVSM nodes of each texel from `shadows` to mark
+// them. Returns the files written.
+std::vector<std::filesystem::path> write_texel_curves(const std::filesystem::path& out_dir,
+                                                      const std::vector<TexelPlot>& plots, const scene::Scene& scene,
+                                                      const passes::ShadowMaps& shadows, gpu::Context& ctx,
+                                                      const std::vector<passes::TexelSampleResult>& results);
+
+}  // namespace avsm::capture

@@ -1,0 +1,102 @@
+#include "passes/shadow_quality_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace avsm::passes {
+namespace {
+
+// Mirrors the push constants of shaders/passes/shadow_quality.comp.
+struct Push {
+  glm::mat4 inverse_view_projection;
+  glm::vec3 camera_position;
+  uint32_t volume_count;
+  glm::uvec2 image_size;
+  uint32_t light_count;
+  uint32_t smoke_samples;
+};
+static_assert(sizeof(Push) == 96);
+
+}  // namespace
+
+ShadowQualityPass::ShadowQualityPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx),
+      pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_quality.comp"), "shadow quality")),
+      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "quality depth"}) {
+  // Large enough for one GpuVolume, though the shader reads none (volume_count 0).
+  no_volumes_ = gpu::Buffer::create(ctx, {256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal,
+                                          "quality: no volumes"});
+}
+
+void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light_count) {
+  if (light_count > kMaxShadowedLights)
+    throw std::invalid_argument("ShadowQualityPass: " + std::to_string(light_count) + " lights; at most " +
+                                std::to_string(kMaxShadowedLights));
+  width_ = width;
+  height_ = height;
+  light_count_ = light_count;
+  const uint64_t entries = std::max<uint64_t>(uint64_t(width) * height * light_count, 1);
+  results_ = gpu::Buffer::create(ctx_, {entries * sizeof(PixelShadowError), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        gpu::MemoryLocation::HostReadback, "shadow quality errors"});
+}
+
+void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth,
+                                     const View& view, const gpu::Buffer& lights, uint32_t light_count,
+                                     const VolumePass& volumes, const ShadowInputs& shadows) {
+  if (light_count_ == 0 || width_ == 0 || height_ == 0) return;
+  if (light_count != light_count_)
+    throw std::invalid_argument("ShadowQualityPass: sized for " + std::to_string(light_count_) + " lights, got " +
+                                std::to_string(light_count));
+  const rg::TextureDesc& d = graph.resources().at(depth.index).texture;
+  if (d.width != width_ || d.height != height_ || d.format != VolumePass::kDepthFormat)
+    throw std::invalid_argument("ShadowQualityPass: depth must be D32_SFLOAT " + std::to_string(width_) + "x" +
+                                std::to_string(height_));
+  rg::BufferHandle results = graph.import_buffer("shadow quality errors", {results_.size()}, rg::ImportState::none(),
+                                                 rg::ImportState::of(rg::Usage::HostRead));
+  executor.bind(results, results_);
+  struct Data {
+    rg::TextureHandle depth;
+    rg::BufferHandle results;
+  };
+  const uint32_t volume_count = volumes.volume_count();
+  const VkBuffer grids = volume_count ? volumes.grids().handle() : no_volumes_.handle();
+  const VkBuffer majorants = volume_count ? volumes.majorants().handle() : no_volumes_.handle();
+  const VkBuffer parameters = volume_count ? volumes.parameters().handle() : no_volumes_.handle();
+  graph.add_pass<Data>("shadow quality", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& data) {
+        data.depth = b.read(depth, rg::Usage::Sampled);
+        data.results = b.write(results, rg::Usage::StorageWrite);
+        shadows.declare_reads(b);
+      },
+      [this, view, &lights, light_count, shadows, volume_count, grids, majorants, parameters](const Data& data,
+                                                                                          rg::PassContext& c) {
+        pipeline_.bind(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.image(0, c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
+            .buffer(1, c.buffer(data.results))
+            .buffer(2, grids)
+            .buffer(3, majorants)
+            .buffer(4, parameters)
+            .buffer(5, lights.handle());
+        shadows.bind(bindings, 6, c);
+        bindings.push(c.cmd());
+        const Push push{view.inverse_view_projection, view.camera_position, volume_count, {width_, height_},
+                        light_count, kSmokeSamplesPerVolume};
+        pipeline_.push_constants(c.cmd(), push);
+        pipeline_.dispatch_threads(c.cmd(), width_, height_);
+      });
+}
+
+std::vector<PixelShadowError> ShadowQualityPass::results() const {
+  const size_t count = size_t(width_) * height_ * light_count_;
+  std::vector<PixelShadowError> out(count);
+  if (count) std::memcpy(out.data(), results_.mapped(), count * sizeof(PixelShadowError));
+  return out;
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,68 @@
+#pragma once
+// Shadow quality against the exact reference: per camera pixel and per light, the
+// absolute difference between the technique's transmittance and the exact one
+// (the light's capture lists, ShadowOptions::keep_reference) at the receivers the
+// pixel sees: the opaque surface in the depth buffer and points inside the smoke.
+// Hair is not measured (it writes no depth). The per-pixel errors land in a
+// host-readable buffer; engine/capture/quality.h turns them into figures and
+// images (avsm-capture --compare-to uncompressed).
+// Shader: shaders/passes/shadow_quality.comp (which receivers count, exactly).
+#include <rendergraph/graph.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/shadow_maps.h"
+#include "passes/view.h"
+#include "passes/volume_pass.h"
+
+namespace avsm::passes {
+
+// One light's errors at one pixel; mirrors a vec4 of shadow_quality.comp's output.
+struct PixelShadowError {
+  float surface;      // |T - T_ref| at the opaque surface; < 0: no surface the light reaches
+  float smoke_sum;    // sum of |T - T_ref| over the pixel's smoke receivers
+  float smoke_max;    // their maximum (0 when there are none)
+  float smoke_count;  // how many there are
+};
+static_assert(sizeof(PixelShadowError) == 16);
+
+class ShadowQualityPass {
+ public:
+  // Smoke receivers per volume along a pixel ray: evenly spaced over the ray's
+  // stretch inside the volume's support (those with density > 0 count).
+  static constexpr uint32_t kSmokeSamplesPerVolume = 4;
+
+  ShadowQualityPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // Sizes the result buffer for `light_count` lights on a width x height image.
+  void set_size(uint32_t width, uint32_t height, uint32_t light_count);
+
+  // Adds "shadow quality" after the camera passes: reads `depth` (the opaque depth
+  // buffer, D32_SFLOAT, width x height), the volumes and the shadows. `shadows`
+  // should come from ShadowMaps with keep_reference on (without it the reference is
+  // the technique itself and every error is 0). `lights` must outlive the frame.
+  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth, const View& view,
+                    const gpu::Buffer& lights, uint32_t light_count, const VolumePass& volumes,
+                    const ShadowInputs& shadows);
+
+  // After the frame completed: [light * width * height + y * width + x], row 0 at the top.
+  std::vector<PixelShadowError> results() const;
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t light_count() const { return light_count_; }
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler depth_sampler_;
+  gpu::Buffer results_;
+  gpu::Buffer no_volumes_;  // bound in place of the volume buffers when the scene has none
+  uint32_t width_ = 0, height_ = 0, light_count_ = 0;
+};
+
+}  // namespace avsm::passes
