@@ -7,6 +7,11 @@
 // removing the interior node whose removal changes the area under the curve
 // least; the first and last nodes are never removed and no node ever moves.
 //
+// Every loop runs to a constant bound (the curve capacity) and breaks out on the
+// real condition: with loop bounds that differ between lanes (a curve's count),
+// lavapipe dropped iterations for some lanes after long divergent loops and stored
+// corrupt curves.
+//
 // C++ includes this file through passes/avsm_core.h, which defines AVSM_INOUT
 // and brings GLSL's built-ins (min, max, abs, mix, exp, pow) in from GLM. Keep
 // to the common subset: no GLSL-only syntax, float literals with an f suffix.
@@ -45,7 +50,8 @@ AvsmCurve avsm_clear(float far_depth) {
 // Transmittance of the curve at depth d with linear interpolation between nodes.
 float avsm_evaluate_linear(AvsmCurve c, float d) {
   if (d <= c.depth[0]) return 1.0f;
-  for (int i = 1; i < c.count; ++i) {
+  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
+    if (i >= c.count) break;
     if (d < c.depth[i]) {
       float span = c.depth[i] - c.depth[i - 1];
       float t = span > 0.0f ? (d - c.depth[i - 1]) / span : 1.0f;
@@ -60,7 +66,8 @@ float avsm_evaluate_linear(AvsmCurve c, float d) {
 int avsm_insert_node(AVSM_INOUT(AvsmCurve) c, float d) {
   float value = avsm_evaluate_linear(c, d);
   int at = c.count;
-  while (at > 0 && c.depth[at - 1] > d) {
+  for (int step = 0; step < AVSM_CURVE_CAPACITY; ++step) {
+    if (at == 0 || c.depth[at - 1] <= d) break;
     c.depth[at] = c.depth[at - 1];
     c.trans[at] = c.trans[at - 1];
     --at;
@@ -79,7 +86,9 @@ float avsm_removal_cost(AvsmCurve c, int i) {
 }
 
 void avsm_remove_node(AVSM_INOUT(AvsmCurve) c, int i) {
-  for (int k = i; k + 1 < c.count; ++k) {
+  for (int k = 1; k + 1 < AVSM_CURVE_CAPACITY; ++k) {
+    if (k + 1 >= c.count) break;
+    if (k < i) continue;
     c.depth[k] = c.depth[k + 1];
     c.trans[k] = c.trans[k + 1];
   }
@@ -89,10 +98,12 @@ void avsm_remove_node(AVSM_INOUT(AvsmCurve) c, int i) {
 // Removes the cheapest interior node until at most max_nodes remain (ties: the
 // front-most, so results are deterministic).
 void avsm_compress(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
-  while (c.count > max_nodes && c.count > 2) {
+  for (int round = 0; round < AVSM_CURVE_CAPACITY; ++round) {
+    if (c.count <= max_nodes || c.count <= 2) break;
     int cheapest = 1;
     float cheapest_cost = avsm_removal_cost(c, 1);
-    for (int i = 2; i + 1 < c.count; ++i) {
+    for (int i = 2; i + 1 < AVSM_CURVE_CAPACITY; ++i) {
+      if (i + 1 >= c.count) break;
       float cost = avsm_removal_cost(c, i);
       if (cost < cheapest_cost) {
         cheapest_cost = cost;
@@ -123,7 +134,9 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
   int last = avsm_insert_node(c, exit_depth);
   // The entry node keeps its value (the segment starts at 1); nodes inside get
   // the segment's value at their depth, nodes from the exit on its exit value.
-  for (int i = first + 1; i < c.count; ++i) {
+  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
+    if (i >= c.count) break;
+    if (i <= first) continue;
     c.trans[i] *= i >= last ? exit_trans : avsm_segment_transmittance(entry, exit_depth, exit_trans, c.depth[i]);
   }
   avsm_compress(c, max_nodes);
@@ -167,7 +180,8 @@ AvsmCurve avsm_mip_merge(AvsmCurve c0, AvsmCurve c1, AvsmCurve c2, AvsmCurve c3,
   int k0 = 0, k1 = 0, k2 = 0, k3 = 0;
   float previous = -3.4e38f;
   int total = c0.count + c1.count + c2.count + c3.count;
-  for (int step = 0; step < total; ++step) {
+  for (int step = 0; step < 4 * AVSM_CURVE_CAPACITY; ++step) {
+    if (step >= total) break;
     // The next node: the smallest unconsumed depth (ties: the lowest child).
     float d = 3.4e38f;
     int pick = -1;
@@ -176,10 +190,22 @@ AvsmCurve avsm_mip_merge(AvsmCurve c0, AvsmCurve c1, AvsmCurve c2, AvsmCurve c3,
     if (k2 < c2.count && c2.depth[k2] < d) { d = c2.depth[k2]; pick = 2; }
     if (k3 < c3.count && c3.depth[k3] < d) { d = c3.depth[k3]; pick = 3; }
     // Consume every node at this depth, so each child is evaluated behind it.
-    while (k0 < c0.count && c0.depth[k0] <= d) ++k0;
-    while (k1 < c1.count && c1.depth[k1] <= d) ++k1;
-    while (k2 < c2.count && c2.depth[k2] <= d) ++k2;
-    while (k3 < c3.count && c3.depth[k3] <= d) ++k3;
+    for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+      if (k0 >= c0.count || c0.depth[k0] > d) break;
+      ++k0;
+    }
+    for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+      if (k1 >= c1.count || c1.depth[k1] > d) break;
+      ++k1;
+    }
+    for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+      if (k2 >= c2.count || c2.depth[k2] > d) break;
+      ++k2;
+    }
+    for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+      if (k3 >= c3.count || c3.depth[k3] > d) break;
+      ++k3;
+    }
     if (pick < 0) break;
     if (d <= previous) continue;
     previous = d;

@@ -3,17 +3,27 @@
 // repeated into unused slots. The includer declares `vec4 map_texels[]`.
 #ifndef AVSM_MAP_GLSL
 #define AVSM_MAP_GLSL
+#define AVSM_MAX_GROUPS 4
 
 void avsm_map_store(uint base, AvsmCurve c, int n) {
-  for (int g = 0; g < n / 4; ++g) {
-    vec4 depths, trans;
+  // Walk the nodes with the loop counter as the index (the same in every lane) and
+  // hold the last real node for the padding: lavapipe mis-read local arrays indexed
+  // by a per-lane value here (min(i, count - 1)), storing other lanes' nodes.
+  float depth = c.depth[0], trans = c.trans[0];
+  for (int g = 0; g < AVSM_MAX_GROUPS; ++g) {
+    if (g >= n / 4) break;
+    vec4 depths, transmittances;
     for (int k = 0; k < 4; ++k) {
-      int i = min(4 * g + k, c.count - 1);
-      depths[k] = c.depth[i];
-      trans[k] = c.trans[i];
+      int i = 4 * g + k;
+      if (i < c.count) {
+        depth = c.depth[i];
+        trans = c.trans[i];
+      }
+      depths[k] = depth;
+      transmittances[k] = trans;
     }
     map_texels[base + uint(g)] = depths;
-    map_texels[base + uint(n / 4 + g)] = trans;
+    map_texels[base + uint(n / 4 + g)] = transmittances;
   }
 }
 

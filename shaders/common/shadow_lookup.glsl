@@ -62,6 +62,30 @@ layout(binding = AVSM_SHADOW_BINDING + 2, r32ui) uniform readonly uimage2D shado
 layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { ShadowListNode nodes[]; }
 shadow_list_nodes[AVSM_MAX_SHADOWED_LIGHTS];
 
+// The per-light arrays are indexed only with constants: lavapipe took the index of
+// the first SIMD lane even when that lane was inactive in a branch (reading another
+// light's data), and it lacks non-uniform indexing to ask for better.
+vec4 shadow_map_texel(uint slot, uint i) {
+  if (slot == 0u) return avsm_maps[0].texels[i];
+  if (slot == 1u) return avsm_maps[1].texels[i];
+  if (slot == 2u) return avsm_maps[2].texels[i];
+  return avsm_maps[3].texels[i];
+}
+
+uint shadow_list_head(uint slot, ivec2 texel) {
+  if (slot == 0u) return imageLoad(shadow_list_heads[0], texel).r;
+  if (slot == 1u) return imageLoad(shadow_list_heads[1], texel).r;
+  if (slot == 2u) return imageLoad(shadow_list_heads[2], texel).r;
+  return imageLoad(shadow_list_heads[3], texel).r;
+}
+
+ShadowListNode shadow_list_node(uint slot, uint i) {
+  if (slot == 0u) return shadow_list_nodes[0].nodes[i];
+  if (slot == 1u) return shadow_list_nodes[1].nodes[i];
+  if (slot == 2u) return shadow_list_nodes[2].nodes[i];
+  return shadow_list_nodes[3].nodes[i];
+}
+
 float shadow_light_depth(GpuShadow s, vec3 p) { return dot(s.depth_plane.xyz, p) + s.depth_plane.w; }
 
 float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.texel_camera.y * depth; }
@@ -85,19 +109,20 @@ float avsm_texel_transmittance(GpuShadow s, uint base, float d) {
   uint groups = s.node_count / 4u;
   vec4 depths = vec4(0.0);
   uint g = 0u;
-  for (; g < groups; ++g) {
-    depths = avsm_maps[slot].texels[base + g];
+  for (; g < 4u; ++g) {  // constant bounds in the lookups: see avsm_core.glsl
+    if (g >= groups) break;
+    depths = shadow_map_texel(slot, base + g);
     if (d < depths.w) break;
   }
-  if (g == groups) return avsm_maps[slot].texels[base + 2u * groups - 1u].w;  // behind every node
+  if (g == groups) return shadow_map_texel(slot, base + 2u * groups - 1u).w;  // behind every node
   uint k = d < depths.x ? 0u : (d < depths.y ? 1u : (d < depths.z ? 2u : 3u));
   uint i = 4u * g + k;
   if (i == 0u) return 1.0;  // in front of the first node
   float d1 = depths[k];
-  float d0 = k > 0u ? depths[k - 1u] : avsm_maps[slot].texels[base + g - 1u].w;
-  float t1 = avsm_maps[slot].texels[base + groups + g][k];
-  float t0 = k > 0u ? avsm_maps[slot].texels[base + groups + g][k - 1u]
-                    : avsm_maps[slot].texels[base + groups + g - 1u].w;
+  float d0 = k > 0u ? depths[k - 1u] : shadow_map_texel(slot, base + g - 1u).w;
+  float t1 = shadow_map_texel(slot, base + groups + g)[k];
+  float t0 = k > 0u ? shadow_map_texel(slot, base + groups + g)[k - 1u]
+                    : shadow_map_texel(slot, base + groups + g - 1u).w;
   float f = d1 > d0 ? (d - d0) / (d1 - d0) : 1.0;
   return avsm_interpolate(t0, t1, f, s.exponential != 0u);
 }
@@ -105,11 +130,11 @@ float avsm_texel_transmittance(GpuShadow s, uint base, float d) {
 // The exact curve of one texel's capture list: the product of its segments.
 float list_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   uint slot = s.slot;
-  uint node = imageLoad(shadow_list_heads[slot], texel).r;
+  uint node = shadow_list_head(slot, texel);
   float t = 1.0;
   uint previous = 0xffffffffu;
   while (node < previous) {  // indices fall along a list; kListEnd ends it
-    ShadowListNode n = shadow_list_nodes[slot].nodes[node];
+    ShadowListNode n = shadow_list_node(slot, node);
     t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
     previous = node;
     node = n.next;
@@ -123,9 +148,9 @@ float osm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(planes / 4);
   float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
   int plane = int(floor(z * float(planes)));  // the plane in front of d (0: the near plane, no depth)
-  float before = plane == 0 ? 0.0 : avsm_maps[s.slot].texels[base + uint(plane - 1) / 4u][(plane - 1) % 4];
+  float before = plane == 0 ? 0.0 : shadow_map_texel(s.slot, base + uint(plane - 1) / 4u)[(plane - 1) % 4];
   int next = min(plane, planes - 1);
-  float after = avsm_maps[s.slot].texels[base + uint(next) / 4u][next % 4];
+  float after = shadow_map_texel(s.slot, base + uint(next) / 4u)[next % 4];
   return osm_transmittance(before, after, z, planes);
 }
 
@@ -135,8 +160,9 @@ float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(terms / 2);
   float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
   float optical_depth = 0.0;
-  for (int k = 0; k < terms; k += 2) {
-    vec4 pair = avsm_maps[s.slot].texels[base + uint(k / 2)];
+  for (int k = 0; k < 32; k += 2) {
+    if (k >= terms) break;
+    vec4 pair = shadow_map_texel(s.slot, base + uint(k / 2));
     optical_depth +=
         fom_term_optical_depth(pair.x, pair.y, k, terms, z) + fom_term_optical_depth(pair.z, pair.w, k + 1, terms, z);
   }
@@ -145,7 +171,7 @@ float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
 
 // Deep shadow map texel (layout: shaders/passes/dsm_build.comp): its own count of
 // nodes in the shared pool, searched front to back.
-uint dsm_word(uint slot, uint word) { return floatBitsToUint(avsm_maps[slot].texels[word >> 2u][word & 3u]); }
+uint dsm_word(uint slot, uint word) { return floatBitsToUint(shadow_map_texel(slot, word >> 2u)[word & 3u]); }
 
 float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   uint index = uint(texel.y) * s.resolution + uint(texel.x);
@@ -154,7 +180,8 @@ float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   if (count == 0u || count == 0xffffffffu) return 1.0;
   uint pool = (4u + 2u * s.resolution * s.resolution + 3u) & ~3u;
   float previous_depth = 0.0, previous_trans = 1.0;
-  for (uint k = 0u; k < count; ++k) {
+  for (uint k = 0u; k < 66u; ++k) {  // at most the build's curve capacity
+    if (k >= count) break;
     float depth = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k)));
     float trans = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k) + 1u));
     if (d < depth) {

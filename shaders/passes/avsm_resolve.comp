@@ -4,6 +4,7 @@
 // segment, compress to N nodes by the smallest-area rule — and store the N nodes
 // in level 0 of the light's map (layout: shaders/common/shadow_lookup.glsl).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
 #define AVSM_CAPTURE_BINDING 0
 #include "common/capture_lists.glsl"
 #include "avsm/avsm_core.glsl"
@@ -26,9 +27,17 @@ void main() {
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
   int n = int(pc.node_count);
   AvsmCurve curve = avsm_clear(pc.far_depth);
-  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
-    CaptureSegment s = capture_nodes[node];
-    avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, n);
+  // The subgroup walks its lists in step (a lane whose list has ended idles) rather
+  // than each lane leaving the loop on its own: with lists of very different lengths
+  // (hair: a thousand segments next to one), lavapipe corrupted the long lists' curves
+  // in the divergent version.
+  uint node = imageLoad(capture_heads, texel).r;
+  while (subgroupAny(node != kListEnd)) {
+    if (node != kListEnd) {
+      CaptureSegment s = capture_nodes[node];
+      avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, n);
+      node = s.next;
+    }
   }
   avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(n / 2), curve, n);
 }

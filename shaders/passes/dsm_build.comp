@@ -1,16 +1,17 @@
 #version 460
 // Deep shadow map build (technique dsm): per light texel, the exact transmittance
-// curve of its capture list (the AVSM core's streaming insertion with room for 64
-// nodes: exact up to 31 overlapping segments, trimmed by the smallest-area rule
-// beyond), compressed by Lokovic & Veach's greedy rule to the user error, and
-// stored with a variable node count: a per-texel header (first node, count) and
+// curve of its capture list (the AVSM core's streaming insertion with room for 32
+// nodes: exact up to 15 overlapping segments, trimmed by the smallest-area rule
+// beyond; 64 nodes made lavapipe corrupt long lists' curves), compressed by
+// Lokovic & Veach's greedy rule to the user error, and stored with a variable node count: a per-texel header (first node, count) and
 // a node pool shared by the texels, allocated with an atomic counter.
 //
 // Map words (uint): [0] pool nodes allocated, [1..3] unused, [4 + 2 t] texel t's
 // first node, [5 + 2 t] its node count (kDsmLost: the pool was full), then the
 // pool from word dsm_pool_base(resolution): per node depth, transmittance (floats).
 #extension GL_GOOGLE_include_directive : require
-#define AVSM_CURVE_CAPACITY 66
+#extension GL_KHR_shader_subgroup_vote : require
+#define AVSM_CURVE_CAPACITY 34
 #define AVSM_CAPTURE_BINDING 0
 #include "common/capture_lists.glsl"
 #include "avsm/avsm_core.glsl"
@@ -24,7 +25,7 @@ layout(std430, binding = 3) buffer Counter { uint counter_words[]; };
 // Mirrors MapBuildParameters (passes/map_build_pass.h).
 layout(push_constant) uniform Push {
   uint resolution;
-  uint count;  // input curve nodes kept before compression (at most 64)
+  uint count;  // input curve nodes kept before compression (at most 32)
   float near_depth;
   float far_depth;
   float error;
@@ -38,8 +39,12 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
   AvsmCurve curve = avsm_clear(pc.far_depth);
-  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
+  // Lists walked in step across the subgroup (see avsm_resolve.comp).
+  uint node = imageLoad(capture_heads, texel).r;
+  while (subgroupAny(node != kListEnd)) {
+    if (node == kListEnd) continue;
     CaptureSegment s = capture_nodes[node];
+    node = s.next;
     avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, int(pc.count));
   }
   AvsmCurve compressed;
@@ -55,7 +60,8 @@ void main() {
   words[4u + 2u * index] = first;
   words[5u + 2u * index] = fits ? count : kDsmLost;
   if (!fits) return;
-  for (uint k = 0u; k < count; ++k) {
+  for (uint k = 0u; k < uint(AVSM_CURVE_CAPACITY); ++k) {  // constant bound: see avsm_core.glsl
+    if (k >= count) break;
     words[pool + 2u * (first + k)] = floatBitsToUint(compressed.depth[k]);
     words[pool + 2u * (first + k) + 1u] = floatBitsToUint(compressed.trans[k]);
   }

@@ -23,9 +23,9 @@ float first_opaque_depth(GpuShadow s, ivec2 texel) {
   if (s.technique == kShadowUncompressed) {
     float nearest = far_depth;
     uint previous = 0xffffffffu;
-    for (uint node = imageLoad(shadow_list_heads[s.slot], texel).r; node < previous;
-         node = shadow_list_nodes[s.slot].nodes[node].next) {
-      ShadowListNode n = shadow_list_nodes[s.slot].nodes[node];
+    for (uint node = shadow_list_head(s.slot, texel); node < previous;
+         node = shadow_list_node(s.slot, node).next) {
+      ShadowListNode n = shadow_list_node(s.slot, node);
       if (n.exit_trans <= kOpaque) nearest = min(nearest, n.entry);
       previous = node;
     }
@@ -47,8 +47,8 @@ float first_opaque_depth(GpuShadow s, ivec2 texel) {
   uint groups = s.node_count / 4u;
   float previous_depth = far_depth;
   for (uint i = 0u; i < s.node_count; ++i) {
-    float depth = avsm_maps[s.slot].texels[base + i / 4u][i % 4u];
-    float trans = avsm_maps[s.slot].texels[base + groups + i / 4u][i % 4u];
+    float depth = shadow_map_texel(s.slot, base + i / 4u)[i % 4u];
+    float trans = shadow_map_texel(s.slot, base + groups + i / 4u)[i % 4u];
     if (trans <= kOpaque) return i == 0u ? depth : previous_depth;
     previous_depth = depth;
   }

@@ -33,7 +33,10 @@ void dsm_compress(AvsmCurve exact, float error, AVSM_INOUT(AvsmCurve) compressed
   compressed.count = 1;
   float low = -3.4e38f, high = 3.4e38f;  // slopes that keep every node so far within the error
   int i = 1;
-  while (i < exact.count) {
+  // Each pass of the loop consumes a node or emits one before consuming it: at most
+  // two passes per node (a constant bound, as in the AVSM core).
+  for (int pass = 0; pass < 2 * AVSM_CURVE_CAPACITY; ++pass) {
+    if (i >= exact.count) break;
     float dz = exact.depth[i] - origin_depth;
     if (dz <= 1e-7f) {  // same depth as the origin: a step
       if (abs(exact.trans[i] - origin_trans) > error) {
