@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""AVSM-4/8/12/16 against the uncompressed reference, measured in one run (a table
-in the manner of the AVSM paper's Table 1).
+"""AVSM-4/8/12/16, deep shadow maps at two error thresholds, opacity shadow maps
+(32 planes) and Fourier opacity maps (16 terms) against the uncompressed reference,
+measured in one run (a table in the manner of the AVSM paper's Table 1).
 
 Renders the default scene once per technique with avsm-capture, reads the
 per-pass GPU timings (timings.json) and probes every light's transmittance at a
@@ -40,7 +41,7 @@ def stage(name):
         return "capture"
     if "sort" in name:
         return "sort"
-    if "resolve" in name:
+    if "resolve" in name or "build" in name or "dsm clear" in name:
         return "resolve"
     if "mips" in name:
         return "mips"
@@ -49,7 +50,7 @@ def stage(name):
     return "other"
 
 
-def run(capture, scene, out, args, technique, nodes, probe_file):
+def run(capture, scene, out, args, technique, nodes, probe_file, params=()):
     cmd = [capture, "--out", out, "--width", str(args.width), "--height", str(args.height),
            "--frames", str(args.frames), "--shadow-res", str(args.shadow_res), "--quiet",
            "--technique", technique, "--probe", probe_file, "--filter", args.filter]
@@ -57,6 +58,8 @@ def run(capture, scene, out, args, technique, nodes, probe_file):
         cmd += ["--scene", scene]
     if nodes:
         cmd += ["--nodes", str(nodes)]
+    for param in params:
+        cmd += ["--shadow-param", param]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     timings = json.load(open(os.path.join(out, "timings.json")))
     memory = json.load(open(os.path.join(out, "memory.json")))
@@ -102,20 +105,24 @@ def main():
     probe_file = os.path.join(work, "probes.json")
     json.dump(points, open(probe_file, "w"))
 
-    rows = [("uncompressed", None)] + [("avsm", n) for n in (4, 8, 12, 16)]
+    # (label, technique, AVSM nodes, technique parameters)
+    rows = ([("uncompressed", "uncompressed", None, ())] +
+            [(f"AVSM-{n}", "avsm", n, ()) for n in (4, 8, 12, 16)] +
+            [(f"DSM e={e}", "dsm", None, (f"error={e}",)) for e in (0.01, 0.05)] +
+            [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))])
     print(f"{os.path.basename(args.scene) or 'default scene'}:", file=sys.stderr)
     results = {}
-    for technique, nodes in rows:
-        label = "uncompressed" if nodes is None else f"AVSM-{nodes}"
+    for label, technique, nodes, params in rows:
         print(f"rendering {label} ...", file=sys.stderr)
-        results[label] = run(capture, args.scene, os.path.join(work, label), args, technique, nodes, probe_file)
+        results[label] = run(capture, args.scene, os.path.join(work, label.replace(" ", "_")), args, technique, nodes,
+                             probe_file, params)
 
     reference = results["uncompressed"][3]
     receivers = sum(1 for light in reference for r in light if 0.0 < r < 1.0)
     print(f"\nscene: {args.scene or 'default'}  {args.width}x{args.height}, shadow maps {args.shadow_res}^2, "
           f"{args.filter} lookups, GPU ms medians over {max(args.frames - 1, 1)} frames; receivers: {len(points)} grid points x "
           f"{len(reference)} lights, errors over partially shadowed ones")
-    header = (f"{'technique':<13}{'capture':>9}{'sort':>8}{'resolve':>9}{'mips':>8}{'camera':>9}{'frame':>9}"
+    header = (f"{'technique':<13}{'capture':>9}{'sort':>8}{'build':>9}{'mips':>8}{'camera':>9}{'frame':>9}"
               f"{'map MiB':>9}{'lists MiB':>10}{'mean err':>10}{'max err':>9}{'frame/AVSM-8':>13}")
     print(header)
     print("-" * len(header))
@@ -133,6 +140,11 @@ def main():
               f"{map_bytes / 2**20:>9.2f}{capture_bytes / 2**20:>10.2f}{mean:>10.4f}{worst:>9.4f}"
               f"{ms['frame'] / avsm8_frame:>13.2f}")
     print(f"\nerror receivers: {receivers} (light, point) pairs with 0 < T_ref < 1; outputs in {work}")
+    frame = {label: r[0]["frame"] for label, r in results.items()}
+    print("ratios (frame ms, this run): "
+          f"AVSM-8 / OSM-32 = {frame['AVSM-8'] / frame['OSM-32']:.2f}; "
+          f"DSM e=0.01 / AVSM-8 = {frame['DSM e=0.01'] / frame['AVSM-8']:.2f}; "
+          f"uncompressed / AVSM-8 = {frame['uncompressed'] / frame['AVSM-8']:.2f}")
 
 
 if __name__ == "__main__":

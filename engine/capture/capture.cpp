@@ -77,6 +77,7 @@ void apply_shadow_overrides(const CaptureOptions& options, scene::Scene& scene) 
     if (options.sort) shadow.sort = *options.sort;
     if (options.filter) shadow.filter = *options.filter;
     if (options.shadow_resolution) shadow.resolution = *options.shadow_resolution;
+    for (const auto& [name, value] : options.shadow_parameters) shadow.parameters[name] = value;
   }
 }
 

@@ -3,6 +3,7 @@
 // and EXR, and the per-pass GPU timings as JSON. What avsm-capture runs.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,8 @@ struct CaptureOptions {
   std::optional<bool> sort;
   std::optional<scene::ShadowFilter> filter;
   std::optional<int> shadow_resolution;
+  // Technique parameters (dsm error, osm slices, fom terms, depth_bias), set on every light.
+  std::map<std::string, double> shadow_parameters;
   bool exponential_interpolation = false;
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).

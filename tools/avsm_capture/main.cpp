@@ -1,4 +1,5 @@
 // avsm-capture: renders a scene headless and writes images and per-pass timings.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -28,6 +29,8 @@ const char* kUsage =
     "  --sort on|off    sort each texel's segments before the resolve\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
     "  --shadow-res R   transmittance map texels per side\n"
+    "  --shadow-param NAME=NUMBER   (repeatable) technique parameter: dsm error,\n"
+    "                   osm slices, fom terms, osm/fom depth_bias\n"
     "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
     "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
     "                   transmittance at every point\n"
@@ -120,6 +123,19 @@ int main(int argc, char** argv) {
       options.exponential_interpolation = name == "exponential";
     } else if (arg == "--probe") {
       options.probe_file = value();
+    } else if (arg == "--shadow-param") {
+      const std::string text = value();
+      const size_t equals = text.find('=');
+      double number = 0;
+      try {
+        size_t used = 0;
+        if (equals == std::string::npos || equals == 0) throw std::invalid_argument("form");
+        number = std::stod(text.substr(equals + 1), &used);
+        if (used != text.size() - equals - 1 || !std::isfinite(number)) throw std::invalid_argument("number");
+      } catch (const std::exception&) {
+        usage_error("--shadow-param expects NAME=NUMBER (e.g. error=0.01, slices=32, terms=16), got '" + text + "'");
+      }
+      options.shadow_parameters[text.substr(0, equals)] = number;
     } else if (arg == "--compare-to") {
       const std::string name = value();
       if (name != "uncompressed")
