@@ -28,7 +28,7 @@ uint32_t technique_code(scene::ShadowTechnique technique) {
 // Deep shadow maps: map words before the node pool (dsm_build.comp), and the
 // exact-curve nodes kept before compression.
 uint64_t dsm_pool_base_words(uint32_t resolution) { return (4 + 2 * uint64_t(resolution) * resolution + 3) & ~3ull; }
-constexpr uint32_t kDsmInputNodes = 32;
+constexpr uint32_t kDsmInputNodes = 16;
 
 // Planes of an opacity shadow map (`slices`, default 32) or terms of a Fourier
 // opacity map (`terms`, default 16); the AVSM node count otherwise.

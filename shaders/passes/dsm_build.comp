@@ -1,8 +1,8 @@
 #version 460
 // Deep shadow map build (technique dsm): per light texel, the exact transmittance
-// curve of its capture list (the AVSM core's streaming insertion with room for 32
-// nodes: exact up to 15 overlapping segments, trimmed by the smallest-area rule
-// beyond; 64 nodes made lavapipe corrupt long lists' curves), compressed by
+// curve of its capture list (the AVSM core's streaming insertion with room for 16
+// nodes: exact up to 7 overlapping segments, trimmed by the smallest-area rule
+// beyond; curves of 32 or 64 nodes came out corrupt on lavapipe), compressed by
 // Lokovic & Veach's greedy rule to the user error, and stored with a variable node count: a per-texel header (first node, count) and
 // a node pool shared by the texels, allocated with an atomic counter.
 //
@@ -11,7 +11,7 @@
 // pool from word dsm_pool_base(resolution): per node depth, transmittance (floats).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
-#define AVSM_CURVE_CAPACITY 34
+#define AVSM_CURVE_CAPACITY 18
 #define AVSM_CAPTURE_BINDING 0
 #include "common/capture_lists.glsl"
 #include "avsm/avsm_core.glsl"
@@ -25,7 +25,7 @@ layout(std430, binding = 3) buffer Counter { uint counter_words[]; };
 // Mirrors MapBuildParameters (passes/map_build_pass.h).
 layout(push_constant) uniform Push {
   uint resolution;
-  uint count;  // input curve nodes kept before compression (at most 32)
+  uint count;  // input curve nodes kept before compression (at most 16)
   float near_depth;
   float far_depth;
   float error;
@@ -39,14 +39,11 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
   AvsmCurve curve = avsm_clear(pc.far_depth);
-  // Lists walked in step across the subgroup (see avsm_resolve.comp).
-  uint node = imageLoad(capture_heads, texel).r;
-  while (subgroupAny(node != kListEnd)) {
-    if (node == kListEnd) continue;
+  for (uint node = imageLoad(capture_heads, texel).r; node != kListEnd; node = capture_nodes[node].next) {
     CaptureSegment s = capture_nodes[node];
-    node = s.next;
     avsm_insert_segment(curve, s.entry, s.exit_depth, s.exit_trans, int(pc.count));
   }
+
   AvsmCurve compressed;
   dsm_compress(curve, pc.error, compressed);
 

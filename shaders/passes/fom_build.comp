@@ -31,16 +31,17 @@ void main() {
   // Lists walked in step across the subgroup (see avsm_resolve.comp).
   uint node = imageLoad(capture_heads, texel).r;
   while (subgroupAny(node != kListEnd)) {
-    if (node == kListEnd) continue;
-    CaptureSegment s = capture_nodes[node];
-    node = s.next;
-    float z0 = clamp((s.entry - pc.near_depth) * scale, 0.0, 1.0);
-    float z1 = clamp((s.exit_depth - pc.near_depth) * scale, 0.0, 1.0);
-    float optical_depth = opacity_segment_optical_depth(s.exit_trans);
-    for (int k = 0; k < 32; ++k) {
-      if (k >= terms) break;
-      a[k] += fom_cosine_coefficient(z0, z1, optical_depth, k);
-      if (k > 0) b[k] += fom_sine_coefficient(z0, z1, optical_depth, k);
+    if (node != kListEnd) {
+      CaptureSegment s = capture_nodes[node];
+      node = s.next;
+      float z0 = clamp((s.entry - pc.near_depth) * scale, 0.0, 1.0);
+      float z1 = clamp((s.exit_depth - pc.near_depth) * scale, 0.0, 1.0);
+      float optical_depth = opacity_segment_optical_depth(s.exit_trans);
+      for (int k = 0; k < 32; ++k) {
+        if (k >= terms) break;
+        a[k] += fom_cosine_coefficient(z0, z1, optical_depth, k);
+        if (k > 0) b[k] += fom_sine_coefficient(z0, z1, optical_depth, k);
+      }
     }
   }
   uint base = (uint(texel.y) * pc.resolution + uint(texel.x)) * uint(terms / 2);

@@ -30,16 +30,17 @@ void main() {
   // Lists walked in step across the subgroup (see avsm_resolve.comp).
   uint node = imageLoad(capture_heads, texel).r;
   while (subgroupAny(node != kListEnd)) {
-    if (node == kListEnd) continue;
-    CaptureSegment s = capture_nodes[node];
-    node = s.next;
-    float z0 = (s.entry - pc.near_depth) * scale, z1 = (s.exit_depth - pc.near_depth) * scale;
-    float optical_depth = opacity_segment_optical_depth(s.exit_trans);
-    // Planes in front of the segment get nothing: start at the first plane behind its entry.
-    int first_plane = max(int(ceil(z0 * float(planes))), 1);
-    for (int k = 1; k <= 64; ++k) {
-      if (k > planes) break;
-      if (k >= first_plane) tau[k - 1] += osm_plane_optical_depth(z0, z1, optical_depth, k, planes);
+    if (node != kListEnd) {
+      CaptureSegment s = capture_nodes[node];
+      node = s.next;
+      float z0 = (s.entry - pc.near_depth) * scale, z1 = (s.exit_depth - pc.near_depth) * scale;
+      float optical_depth = opacity_segment_optical_depth(s.exit_trans);
+      // Planes in front of the segment get nothing: start at the first plane behind its entry.
+      int first_plane = max(int(ceil(z0 * float(planes))), 1);
+      for (int k = 1; k <= 64; ++k) {
+        if (k > planes) break;
+        if (k >= first_plane) tau[k - 1] += osm_plane_optical_depth(z0, z1, optical_depth, k, planes);
+      }
     }
   }
   uint base = (uint(texel.y) * pc.resolution + uint(texel.x)) * uint(planes / 4);
