@@ -14,6 +14,7 @@
 #include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
+#include "capture/report.h"
 #include "io/image_io.h"
 #include "passes/shadow_maps.h"
 
@@ -98,19 +99,6 @@ std::optional<uint32_t> parse_uint(const std::string& text) {
 
 // ---- SVG ----
 
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string num(double v) {
   char buffer[32];
@@ -197,10 +185,10 @@ std::string curve_svg(const CurvePlot& plot) {
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
       << "\" viewBox=\"0 0 " << num(width) << " " << num(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<title>" << xml_escape(plot.title) << "</title>\n<desc>" << xml_escape(plot.description) << "</desc>\n"
+      << "<title>" << escape_markup(plot.title) << "</title>\n<desc>" << escape_markup(plot.description) << "</desc>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << num(width / 2) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
-      << xml_escape(plot.title) << "</text>\n";
+      << escape_markup(plot.title) << "</text>\n";
   // Largest gap between the curves, as a subtitle.
   double max_gap = 0;
   for (size_t i = 0; i < plot.depths.size(); ++i)
@@ -273,7 +261,7 @@ std::string curve_svg(const CurvePlot& plot) {
       << "<text x=\"" << num(lx + 48) << "\" y=\"" << num(ly + 20) << "\">exact (uncompressed)</text>\n"
       << "<line x1=\"" << num(lx + 10) << "\" y1=\"" << num(ly + 34) << "\" x2=\"" << num(lx + 40) << "\" y2=\""
       << num(ly + 34) << "\" stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"6 3\"/>\n"
-      << "<text x=\"" << num(lx + 48) << "\" y=\"" << num(ly + 38) << "\">" << xml_escape(plot.technique)
+      << "<text x=\"" << num(lx + 48) << "\" y=\"" << num(ly + 38) << "\">" << escape_markup(plot.technique)
       << "</text>\n";
   if (!plot.nodes.empty())
     svg << "<circle cx=\"" << num(lx + 25) << "\" cy=\"" << num(ly + 52) << "\" r=\"3.5\" fill=\"#d62728\"/>\n"

@@ -110,21 +110,7 @@ std::vector<std::pair<long, fs::path>> light_images(const fs::path& out_dir) {
 
 // ---- text ----
 
-std::string escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string escape(std::string_view text) { return escape_markup(text); }
 
 // The value at a path of object keys, or nullptr where any step is missing.
 const json* find(const json& root, std::initializer_list<const char*> keys) {
@@ -605,6 +591,22 @@ void write_report(const fs::path& out_dir, const fs::path& html_path) {
   out << html.str();
   out.close();
   if (!out) throw std::runtime_error(html_path.string() + ": write failed");
+}
+
+std::string escape_markup(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace avsm::capture

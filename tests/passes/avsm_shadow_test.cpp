@@ -39,6 +39,7 @@
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_test.h"
+#include "support/test_volumes.h"
 
 namespace avsm {
 namespace {
@@ -510,32 +511,8 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIsBitIdenticalAcrossRuns) {
 
 // ---- 5. The uncompressed lookup against Beer-Lambert through a constant box ----
 
-// A grid of constant density over voxels [lo, hi] (inclusive), with a linear transform.
-openvdb::FloatGrid::Ptr constant_box_grid(const openvdb::Coord& lo, const openvdb::Coord& hi, float density,
-                                          float voxel_size) {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.0f);
-  grid->setName("density");
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
-  grid->fill(openvdb::CoordBBox(lo, hi), density, true);
-  return grid;
-}
-
-// Writes `grid` to a VDB file and loads it the way scenes do.
-scene::Volume load_grid(openvdb::FloatGrid::Ptr grid, const scene::VolumeOptions& options) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     ("avsm_shadow_" + std::string(info ? info->name() : "volume") + "_" +
-                                      std::to_string(::getpid()) + ".vdb");
-  {
-    openvdb::io::File vdb(file.string());
-    vdb.write({grid});
-    vdb.close();
-  }
-  scene::Volume volume = scene::load_vdb_volume(file, options);
-  std::filesystem::remove(file);
-  return volume;
-}
+using testing::constant_box_grid;
+using testing::load_grid;
 
 // 32^3 voxels of density 1, voxel 0.1: voxel centres span [0, 3.1] per axis; the
 // trilinear density is 1 there and ramps to 0 over one voxel on each side.

@@ -28,6 +28,7 @@
 #include "passes/volume_pass.h"
 #include "scene/volume.h"
 #include "support/gpu_test.h"
+#include "support/test_volumes.h"
 
 namespace avsm {
 namespace {
@@ -53,32 +54,8 @@ std::filesystem::path shared_content(const std::string& relative) {
 
 // ---- Volumes ----
 
-// A grid of constant density over voxels [lo, hi] (inclusive), with a linear transform.
-openvdb::FloatGrid::Ptr constant_box_grid(const openvdb::Coord& lo, const openvdb::Coord& hi, float density,
-                                          float voxel_size) {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.0f);
-  grid->setName("density");
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
-  grid->fill(openvdb::CoordBBox(lo, hi), density, true);
-  return grid;
-}
-
-// Writes `grid` to a VDB file and loads it the way scenes do.
-scene::Volume load_grid(openvdb::FloatGrid::Ptr grid, const scene::VolumeOptions& options) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     ("avsm_pass_" + std::string(info ? info->name() : "volume") + "_" +
-                                      std::to_string(::getpid()) + ".vdb");
-  {
-    openvdb::io::File vdb(file.string());
-    vdb.write({grid});
-    vdb.close();
-  }
-  scene::Volume volume = scene::load_vdb_volume(file, options);
-  std::filesystem::remove(file);
-  return volume;
-}
+using testing::constant_box_grid;
+using testing::load_grid;
 
 // 32^3 voxels of density 1, voxel 0.1: world [0, 3.1]^3, density support [-0.1, 3.2]^3.
 constexpr int kBoxVoxels = 32;
