@@ -3,7 +3,7 @@
 // absolute difference between the technique's transmittance and the exact one
 // (the light's capture lists, ShadowOptions::keep_reference) at the receivers the
 // pixel sees: the opaque surface in the depth buffer and points inside the smoke.
-// Hair is not measured (it writes no depth). The per-pixel errors land in a
+// Hair is measured by passes/shadow_quality_hair_pass.h. The per-pixel errors land in a
 // host-readable buffer; engine/capture/quality.h turns them into figures and
 // images (avsm-capture --compare-to uncompressed).
 // Shader: shaders/passes/shadow_quality.comp (which receivers count, exactly).

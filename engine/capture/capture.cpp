@@ -361,7 +361,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                                {"frames_with_capture_overflow", overflowed_frames}});
   if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
   if (options.compare_to_uncompressed)
-    out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height);
+    out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,
+                                {frame.hair_quality_results(), frame.hair_receiver_count()});
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   if (options.report) write_report(options.out_dir, options.out_dir / "report.html");

@@ -283,11 +283,12 @@ void ErrorStats::add(const ErrorStats& other) {
 ErrorStats LightQuality::all() const {
   ErrorStats s = surface;
   s.add(smoke);
+  s.add(hair);
   return s;
 }
 
 std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShadowError>& errors, uint32_t width,
-                                            uint32_t height, const scene::Scene& scene) {
+                                            uint32_t height, const scene::Scene& scene, const HairErrors& hair) {
   const size_t pixels = size_t(width) * height;
   std::vector<LightQuality> lights;
   for (size_t light = 0; light < scene.lights.size(); ++light) {
@@ -309,14 +310,24 @@ std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShado
         }
       }
     }
+    if ((light + 1) * size_t(hair.receivers) <= hair.errors.size()) {
+      for (size_t r = 0; r < hair.receivers; ++r) {
+        const float e = hair.errors[light * hair.receivers + r];
+        if (e < 0.0f) continue;
+        ++q.hair.receivers;
+        q.hair.sum += e;
+        q.hair.max = std::max(q.hair.max, double(e));
+      }
+    }
     lights.push_back(std::move(q));
   }
   return lights;
 }
 
 fs::path write_quality(const fs::path& out_dir, const scene::Scene& scene,
-                       const std::vector<passes::PixelShadowError>& errors, uint32_t width, uint32_t height) {
-  const std::vector<LightQuality> lights = summarize_quality(errors, width, height, scene);
+                       const std::vector<passes::PixelShadowError>& errors, uint32_t width, uint32_t height,
+                       const HairErrors& hair) {
+  const std::vector<LightQuality> lights = summarize_quality(errors, width, height, scene, hair);
   const size_t pixels = size_t(width) * height;
   nlohmann::json list = nlohmann::json::array();
   for (size_t i = 0; i < lights.size(); ++i) {
@@ -334,10 +345,12 @@ fs::path write_quality(const fs::path& out_dir, const scene::Scene& scene,
         {"sort", q.settings.sort},
         {"resolution", q.settings.resolution},
         {"error_image", image},
-        {"receivers", {{"surface", q.surface.receivers}, {"smoke", q.smoke.receivers}, {"total", all.receivers}}},
+        {"receivers",
+         {{"surface", q.surface.receivers}, {"smoke", q.smoke.receivers}, {"hair", q.hair.receivers},
+          {"total", all.receivers}}},
         {"surface", stats_json(q.surface)},
         {"smoke", stats_json(q.smoke)},
-        {"hair", {{"measured", false}, {"why", "hair writes no depth, so the hair a pixel sees is not known"}}},
+        {"hair", stats_json(q.hair)},
     };
     // AVSM keeps N nodes per texel (the other techniques' sizes are in technique_label and parameters).
     light["nodes"] = q.settings.technique == scene::ShadowTechnique::avsm ? nlohmann::json(q.settings.nodes)
@@ -362,7 +375,9 @@ fs::path write_quality(const fs::path& out_dir, const scene::Scene& scene,
         {"smoke", std::to_string(passes::ShadowQualityPass::kSmokeSamplesPerVolume) +
                       " evenly spaced points per volume of the pixel ray's stretch inside the volume's support, in "
                       "front of the surface, where the density is > 0 and the light reaches"},
-        {"hair", "not measured: hair writes no depth"}}},
+        {"hair", "strand vertices (every k-th, at most " + std::to_string(passes::ShadowQualityHairPass::kMaxReceivers) +
+                     ") inside the view and not behind the opaque depth, looked up as the hair pass shades them; "
+                     "hair hidden behind other hair still counts (hair writes no depth); not in the error images"}}},
       {"lights", list},
   };
   const fs::path path = out_dir / "quality.json";

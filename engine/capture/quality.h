@@ -12,6 +12,7 @@
 
 #include "passes/light_view.h"
 #include "passes/shadow_probe_pass.h"
+#include "passes/shadow_quality_hair_pass.h"
 #include "passes/shadow_quality_pass.h"
 #include "scene/scene.h"
 
@@ -40,19 +41,26 @@ struct ErrorStats {
 struct LightQuality {
   std::string light;  // name, or "light <i>"
   scene::ShadowSettings settings;
-  ErrorStats surface, smoke;
+  ErrorStats surface, smoke, hair;
   ErrorStats all() const;
 };
 
+// The errors at the hair the camera sees (ShadowQualityHairPass::results()):
+// [light * receivers + receiver], negative where a strand vertex is not a receiver.
+struct HairErrors {
+  std::vector<float> errors;
+  uint32_t receivers = 0;
+};
+
 // Sums the per-pixel errors (ShadowQualityPass::results(), `light_count` lights of a
-// width x height image) per light.
+// width x height image) and the hair errors per light.
 std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShadowError>& errors, uint32_t width,
-                                            uint32_t height, const scene::Scene& scene);
+                                            uint32_t height, const scene::Scene& scene, const HairErrors& hair = {});
 
 // Writes quality.json and light<i>_error.png into out_dir; returns quality.json's path.
 std::filesystem::path write_quality(const std::filesystem::path& out_dir, const scene::Scene& scene,
                                     const std::vector<passes::PixelShadowError>& errors, uint32_t width,
-                                    uint32_t height);
+                                    uint32_t height, const HairErrors& hair = {});
 
 // ---- texel curves ----
 

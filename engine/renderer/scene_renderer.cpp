@@ -59,6 +59,7 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
   if (quality_)
     quality_->add_to_graph(graph, executor, opaque.depth, view, lights_, light_count_, volumes_, shadows);
+  if (hair_quality_) hair_quality_->add_to_graph(graph, executor, opaque.depth, view, shadows);
   if (probes_) probes_->add_to_graph(graph, executor, shadows);
   if (texel_curves_) texel_curves_->add_to_graph(graph, executor, shadows);
   if (light_images_) light_images_->add_to_graph(graph, executor, shadows);
@@ -95,6 +96,12 @@ void SceneRenderer::enable_quality() {
                            "(ShadowOptions::keep_reference)");
   if (!quality_) quality_ = std::make_unique<passes::ShadowQualityPass>(ctx_, shaders_);
   quality_->set_size(width_, height_, light_count_);
+  if (!hair_quality_) hair_quality_ = std::make_unique<passes::ShadowQualityHairPass>(ctx_, shaders_);
+  hair_quality_->set_hair(hair_, light_count_);
+}
+
+std::vector<float> SceneRenderer::hair_quality_results() const {
+  return hair_quality_ ? hair_quality_->results() : std::vector<float>{};
 }
 
 std::vector<passes::PixelShadowError> SceneRenderer::quality_results() const {

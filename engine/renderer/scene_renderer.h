@@ -14,6 +14,7 @@
 #include "passes/shadow_maps.h"
 #include "passes/shadow_debug_pass.h"
 #include "passes/shadow_probe_pass.h"
+#include "passes/shadow_quality_hair_pass.h"
 #include "passes/shadow_quality_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
@@ -49,6 +50,10 @@ class SceneRenderer {
   // quality_results() once the frame completed: [light][pixel], row 0 at the top.
   void enable_quality();
   std::vector<passes::PixelShadowError> quality_results() const;
+  // The same at the hair the camera sees (passes/shadow_quality_hair_pass.h):
+  // [light * hair_receiver_count() + receiver], -1 where a strand vertex is not a receiver.
+  std::vector<float> hair_quality_results() const;
+  uint32_t hair_receiver_count() const { return hair_quality_ ? hair_quality_->receiver_count() : 0; }
 
   // Renders a picture of every light's transmittance map in each frame
   // (passes/shadow_debug_pass.h); light_images() after the frame completed.
@@ -76,6 +81,7 @@ class SceneRenderer {
   std::unique_ptr<passes::ShadowProbePass> probes_;
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;
   std::unique_ptr<passes::ShadowQualityPass> quality_;
+  std::unique_ptr<passes::ShadowQualityHairPass> hair_quality_;
   std::unique_ptr<passes::ShadowDebugPass> light_images_;
   const gpu::ShaderLibrary& shaders_;
 

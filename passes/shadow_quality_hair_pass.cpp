@@ -1,0 +1,77 @@
+#include "passes/shadow_quality_hair_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace avsm::passes {
+namespace {
+
+// Mirrors shaders/passes/shadow_quality_hair.comp.
+struct Push {
+  glm::mat4 view_projection;
+  glm::uvec2 image_size;
+  uint32_t receiver_count;
+  uint32_t stride;
+  uint32_t light_count;
+};
+
+}  // namespace
+
+ShadowQualityHairPass::ShadowQualityHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx),
+      pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_quality_hair.comp"),
+                                       "shadow quality hair")),
+      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE,
+                           "quality hair depth"}) {}
+
+void ShadowQualityHairPass::set_hair(const HairPass& hair, uint32_t light_count) {
+  const uint32_t vertices = hair.segment_count() ? uint32_t(hair.points().size() / sizeof(glm::vec4)) : 0;
+  points_ = &hair.points();
+  stride_ = std::max(1u, (vertices + kMaxReceivers - 1) / kMaxReceivers);
+  receiver_count_ = vertices / stride_;
+  light_count_ = light_count;
+  results_ = gpu::Buffer::create(
+      ctx_, {std::max<uint64_t>(uint64_t(receiver_count_) * light_count, 1) * sizeof(float),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "shadow quality hair errors"});
+}
+
+void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth,
+                                         const View& view, const ShadowInputs& shadows) {
+  if (receiver_count_ == 0 || light_count_ == 0) return;
+  rg::BufferHandle results = graph.import_buffer("shadow quality hair errors", {results_.size()},
+                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  executor.bind(results, results_);
+  struct Data {
+    rg::TextureHandle depth;
+    rg::BufferHandle results;
+  };
+  graph.add_pass<Data>("shadow quality hair", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& data) {
+        data.depth = b.read(depth, rg::Usage::Sampled);
+        data.results = b.write(results, rg::Usage::StorageWrite);
+        shadows.declare_reads(b);
+      },
+      [this, view, shadows](const Data& data, rg::PassContext& c) {
+        pipeline_.bind(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer(0, points_->handle())
+            .image(1, c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
+            .buffer(2, c.buffer(data.results));
+        shadows.bind(bindings, 3, c);
+        bindings.push(c.cmd());
+        pipeline_.push_constants(c.cmd(), Push{view.view_projection, {view.width, view.height}, receiver_count_,
+                                               stride_, light_count_});
+        pipeline_.dispatch_threads(c.cmd(), receiver_count_);
+      });
+}
+
+std::vector<float> ShadowQualityHairPass::results() const {
+  std::vector<float> out(size_t(receiver_count_) * light_count_);
+  if (!out.empty()) std::memcpy(out.data(), results_.mapped(), out.size() * sizeof(float));
+  return out;
+}
+
+}  // namespace avsm::passes

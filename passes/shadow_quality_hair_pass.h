@@ -1,0 +1,46 @@
+#pragma once
+// Shadow quality at the hair: per strand vertex the camera sees (inside the view,
+// not behind the opaque depth; every `stride`-th vertex, at most kMaxReceivers) and
+// per light, |T - T_ref| against the exact reference (ShadowOptions::keep_reference),
+// looked up as the hair pass shades. Results land in a host-readable buffer for
+// engine/capture/quality.h. Shader: shaders/passes/shadow_quality_hair.comp.
+#include <rendergraph/graph.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/hair_pass.h"
+#include "passes/shadow_maps.h"
+#include "passes/view.h"
+
+namespace avsm::passes {
+
+class ShadowQualityHairPass {
+ public:
+  static constexpr uint32_t kMaxReceivers = 1u << 16;
+
+  ShadowQualityHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // Sizes the results for `hair`'s vertices and `light_count` lights.
+  void set_hair(const HairPass& hair, uint32_t light_count);
+  // Adds "shadow quality hair" reading `depth` (the opaque depth buffer) and the shadows.
+  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth, const View& view,
+                    const ShadowInputs& shadows);
+  // After the frame: [light * receiver_count() + receiver], -1 where not a receiver.
+  std::vector<float> results() const;
+  uint32_t receiver_count() const { return receiver_count_; }
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler depth_sampler_;
+  gpu::Buffer results_;
+  const gpu::Buffer* points_ = nullptr;
+  uint32_t receiver_count_ = 0, stride_ = 1, light_count_ = 0;
+};
+
+}  // namespace avsm::passes
