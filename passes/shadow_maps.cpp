@@ -39,7 +39,6 @@ uint32_t technique_count(const scene::ShadowSettings& s) {
   return uint32_t(s.nodes);
 }
 
-
 uint32_t filter_code(scene::ShadowFilter filter) {
   switch (filter) {
     case scene::ShadowFilter::point: return 0u;
@@ -292,7 +291,6 @@ void ShadowMaps::finish_frame() {
     stats.nodes = light.layout.nodes;
     stats.resolution = light.layout.resolution;
     stats.mip_levels = light.layout.levels;
-    stats.map_bytes = light.map ? light.map.size() : 0;
     stats.capture_capacity = light.capacity;
     stats.capture_requested = requested;
     stats.capture_bytes = light.capacity * kCaptureSegmentBytes + uint64_t(light.layout.resolution) * light.layout.resolution * 4;
@@ -312,8 +310,8 @@ void ShadowMaps::finish_frame() {
         create_map(uint32_t(i));
         stats.grew = true;
       }
-      stats.map_bytes = light.map.size();
     }
+    stats.map_bytes = light.map ? light.map.size() : 0;  // after a pool growth: the new map
   }
 }
 

@@ -120,9 +120,9 @@ float avsm_texel_transmittance(GpuShadow s, uint base, float d) {
   if (i == 0u) return 1.0;  // in front of the first node
   float d1 = depths[k];
   float d0 = k > 0u ? depths[k - 1u] : shadow_map_texel(slot, base + g - 1u).w;
-  float t1 = shadow_map_texel(slot, base + groups + g)[k];
-  float t0 = k > 0u ? shadow_map_texel(slot, base + groups + g)[k - 1u]
-                    : shadow_map_texel(slot, base + groups + g - 1u).w;
+  vec4 transmittances = shadow_map_texel(slot, base + groups + g);
+  float t1 = transmittances[k];
+  float t0 = k > 0u ? transmittances[k - 1u] : shadow_map_texel(slot, base + groups + g - 1u).w;
   float f = d1 > d0 ? (d - d0) / (d1 - d0) : 1.0;
   return avsm_interpolate(t0, t1, f, s.exponential != 0u);
 }
@@ -180,10 +180,13 @@ float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   if (count == 0u || count == 0xffffffffu) return 1.0;
   uint pool = (4u + 2u * s.resolution * s.resolution + 3u) & ~3u;
   float previous_depth = 0.0, previous_trans = 1.0;
-  for (uint k = 0u; k < 66u; ++k) {  // at most the build's curve capacity
+  for (uint k = 0u; k < uint(AVSM_CURVE_CAPACITY); ++k) {  // at most the build's curve capacity
     if (k >= count) break;
-    float depth = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k)));
-    float trans = uintBitsToFloat(dsm_word(s.slot, pool + 2u * (first + k) + 1u));
+    // A node is two words at an even word of a pool that starts on a vec4: one vec4 half.
+    uint word = pool + 2u * (first + k);
+    vec4 pair = shadow_map_texel(s.slot, word >> 2u);
+    vec2 node = uintBitsToFloat(floatBitsToUint((word & 2u) == 0u ? pair.xy : pair.zw));
+    float depth = node.x, trans = node.y;
     if (d < depth) {
       if (k == 0u) return 1.0;
       float f = depth > previous_depth ? (d - previous_depth) / (depth - previous_depth) : 1.0;
@@ -204,14 +207,13 @@ float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) 
   return avsm_texel_transmittance(s, avsm_texel_base(s, level, texel), d);
 }
 
-// Transmittance from light `light_index` to world point p. Point: the nearest
+// Transmittance from the light `s` describes to world point p. Point: the nearest
 // texel of level 0. Bilinear: the four nearest curves evaluated at the point's
 // depth and their results weighted (curves cannot be blended). Trilinear: bilinear
 // in the two mip levels around the level of detail, blended. The taps run in one
 // loop so the texel evaluation is compiled once: inlined per tap, it made the
 // shaders that call this (the smoke march above all) several times slower on lavapipe.
-float light_transmittance(uint light_index, vec3 p) {
-  GpuShadow s = shadows[light_index];
+float shadow_transmittance(GpuShadow s, vec3 p) {
   if (s.technique == kShadowNone) return 1.0;
   vec4 clip = s.light_from_world * vec4(p, 1.0);
   if (clip.w <= 0.0) return 1.0;  // behind a spot light: it does not shine there
@@ -253,6 +255,8 @@ float light_transmittance(uint light_index, vec3 p) {
   return result;
 }
 
+float light_transmittance(uint light_index, vec3 p) { return shadow_transmittance(shadows[light_index], p); }
+
 // The exact transmittance (the light's capture lists, all nodes) when the frame
 // kept them (ShadowOptions::keep_reference), else the technique's own.
 float reference_light_transmittance(uint light_index, vec3 p) {
@@ -262,15 +266,19 @@ float reference_light_transmittance(uint light_index, vec3 p) {
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
-vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
-  GpuShadow s = shadows[light_index];
+vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
   return p + n * (s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p)));
 }
 
+vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
+  return shadow_surface_point(shadows[light_index], p, normal, to_light);
+}
+
 float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
-  if (shadows[light_index].technique == kShadowNone) return 1.0;
-  return light_transmittance(light_index, surface_lookup_point(light_index, p, normal, to_light));
+  GpuShadow s = shadows[light_index];  // read once for the offset and the lookup
+  if (s.technique == kShadowNone) return 1.0;
+  return shadow_transmittance(s, shadow_surface_point(s, p, normal, to_light));
 }
 
 #endif
