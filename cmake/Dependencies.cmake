@@ -7,6 +7,11 @@ find_package(tinyexr CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+# The viewer only (engine/viewer): a window and Dear ImGui (libimgui.a holds the GLFW backend).
+if(AVSM_BUILD_VIEWER)
+  find_package(glfw3 CONFIG REQUIRED)
+  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+endif()
 
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 # PNanoVDB.h compiles as GLSL: shaders include it as "nanovdb/PNanoVDB.h".

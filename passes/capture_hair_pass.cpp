@@ -38,23 +38,23 @@ CaptureHairPass::CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& sh
 }
 
 CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                           const LightView& light, const HairPass& hair) const {
-  if (hair.segment_count() == 0) return lists;
+                                           const LightView& light, const StrandCasters& hair) const {
+  if (hair.empty()) return lists;
   return graph.add_pass<CaptureLists>(prefix + " capture hair", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
-      [this, light, &hair](const CaptureLists& d, rg::PassContext& c) {
+      [this, light, hair](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
         pipeline_.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, hair.points().handle()).buffer(1, hair.segments().handle()).buffer(2, hair.strands().handle());
+        bindings.buffer(0, hair.points).buffer(1, hair.segments).buffer(2, hair.strands);
         bind_capture_lists(bindings, 3, c, d);
         bindings.push(cmd);
         const float resolution = float(light.resolution);
         pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(ribbon_facing_point(light), 1.0f),
                                            {resolution, resolution}, 0, 0.0f, light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
-        vkCmdDraw(cmd, hair.segment_count() * 6, 1, 0, 0);
+        vkCmdDraw(cmd, hair.segment_count * 6, 1, 0, 0);
         vkCmdEndRendering(cmd);
       });
 }

@@ -8,8 +8,8 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/capture_lists.h"
-#include "passes/hair_pass.h"
 #include "passes/light_view.h"
+#include "passes/shadow_casters.h"
 
 namespace avsm::passes {
 
@@ -18,7 +18,7 @@ class CaptureHairPass {
   CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   // Adds "<prefix> capture hair" when there are strands; returns the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const HairPass& hair) const;
+                            const LightView& light, const StrandCasters& hair) const;
 
  private:
   gpu::Context& ctx_;

@@ -26,22 +26,23 @@ CaptureOpaquePass::CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary
 }
 
 CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                             const LightView& light, const OpaquePass& meshes) const {
-  if (meshes.draws().empty()) return lists;
+                                             const LightView& light, const MeshCasters& meshes) const {
+  if (meshes.empty()) return lists;
+  // The execute step copies the caster view: it runs when the executor records, after this returns.
   return graph.add_pass<CaptureLists>(prefix + " capture opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
-      [this, light, &meshes](const CaptureLists& d, rg::PassContext& c) {
+      [this, light, meshes](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
         pipeline_.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, meshes.vertices().handle());
+        bindings.buffer(0, meshes.vertices);
         bind_capture_lists(bindings, 1, c, d);
         bindings.push(cmd);
         pipeline_.push_constants(cmd, Push{light.light_from_world, light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth}});
-        vkCmdBindIndexBuffer(cmd, meshes.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-        for (const OpaquePass::Draw& draw : meshes.draws())
+        vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
+        for (const MeshDraw& draw : meshes.draws)
           vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
         vkCmdEndRendering(cmd);
       });

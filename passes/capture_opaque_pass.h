@@ -8,7 +8,7 @@
 #include "gpu/shader_compiler.h"
 #include "passes/capture_lists.h"
 #include "passes/light_view.h"
-#include "passes/opaque_pass.h"
+#include "passes/shadow_casters.h"
 
 namespace avsm::passes {
 
@@ -17,7 +17,7 @@ class CaptureOpaquePass {
   CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   // Adds "<prefix> capture opaque" when `meshes` has something to draw; returns the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const OpaquePass& meshes) const;
+                            const LightView& light, const MeshCasters& meshes) const;
 
  private:
   gpu::Context& ctx_;

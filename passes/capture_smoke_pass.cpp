@@ -21,21 +21,19 @@ CaptureSmokePass::CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& 
     : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/capture_smoke.comp"), "capture smoke")) {}
 
 CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                            const LightView& light, const VolumePass& volumes,
+                                            const LightView& light, const VolumeCasters& volumes,
                                             uint32_t samples_per_segment) const {
-  if (volumes.volume_count() == 0) return lists;
+  if (volumes.empty()) return lists;
   return graph.add_pass<CaptureLists>(prefix + " capture smoke", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
-      [this, light, &volumes, samples_per_segment](const CaptureLists& d, rg::PassContext& c) {
+      [this, light, volumes, samples_per_segment](const CaptureLists& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, volumes.grids().handle())
-            .buffer(1, volumes.majorants().handle())
-            .buffer(2, volumes.parameters().handle());
+        bindings.buffer(0, volumes.grids).buffer(1, volumes.majorants).buffer(2, volumes.parameters);
         bind_capture_lists(bindings, 3, c, d);
         bindings.push(c.cmd());
         pipeline_.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
-                                               volumes.volume_count(), samples_per_segment, 0.0f});
+                                               volumes.volume_count, samples_per_segment, 0.0f});
         pipeline_.dispatch_threads(c.cmd(), light.resolution, light.resolution);
       });
 }

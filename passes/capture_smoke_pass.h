@@ -9,7 +9,7 @@
 #include "gpu/shader_compiler.h"
 #include "passes/capture_lists.h"
 #include "passes/light_view.h"
-#include "passes/volume_pass.h"
+#include "passes/shadow_casters.h"
 
 namespace avsm::passes {
 
@@ -22,7 +22,7 @@ class CaptureSmokePass {
   CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   // Adds "<prefix> capture smoke" when there are volumes; returns the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const VolumePass& volumes,
+                            const LightView& light, const VolumeCasters& volumes,
                             uint32_t samples_per_segment = kDefaultSamplesPerSegment) const;
 
  private:

@@ -18,6 +18,7 @@ struct GpuStrand {
   float width;
   float pad[3];
 };
+static_assert(sizeof(GpuStrand) == sizeof(StrandParameters));  // what StrandCasters document
 struct HairPush {
   glm::mat4 view_projection;
   glm::vec4 camera_position;

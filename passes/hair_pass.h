@@ -11,6 +11,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/resources.h"
+#include "passes/shadow_casters.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/scene.h"
@@ -26,6 +27,7 @@ class HairPass {
   const gpu::Buffer& points() const { return points_; }
   const gpu::Buffer& segments() const { return segments_; }
   const gpu::Buffer& strands() const { return strands_; }
+  StrandCasters casters() const { return {points_.handle(), segments_.handle(), strands_.handle(), segment_count_}; }
 
   // Draws onto `color` (loaded), testing against `depth`; returns the new colour version.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth, const View& view,

@@ -12,11 +12,7 @@ namespace avsm::passes {
 namespace {
 
 // std430 mirrors of shaders/passes/opaque.vert/.frag.
-struct GpuVertex {
-  float position[3];
-  float normal[3];
-  float uv[2];
-};
+using GpuVertex = CasterVertex;  // the captures read the same vertex buffer
 struct GpuMaterial {
   glm::vec4 base_color;
   uint32_t alpha_mask;  // 1: discard below alpha_cutoff
@@ -92,6 +88,12 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   textures_.clear();
   for (const scene::Texture& t : scene.textures)
     textures_.push_back(upload_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));
+}
+
+MeshCasters OpaquePass::casters() const {
+  MeshCasters casters{vertices_.handle(), indices_.handle(), {}};
+  for (const Draw& draw : draws_) casters.draws.push_back({draw.first_index, draw.index_count, draw.vertex_offset});
+  return casters;
 }
 
 VkImageView OpaquePass::texture_view(int texture) const {

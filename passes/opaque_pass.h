@@ -10,6 +10,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/resources.h"
+#include "passes/shadow_casters.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/scene.h"
@@ -37,6 +38,8 @@ class OpaquePass {
   const gpu::Buffer& vertices() const { return vertices_; }
   const gpu::Buffer& indices() const { return indices_; }
   const std::vector<Draw>& draws() const { return draws_; }
+  // The same geometry as shadow casters (vertices are CasterVertex).
+  MeshCasters casters() const;
 
   // Clears `color` to the sky colour and a new transient depth buffer to far,
   // then draws every mesh.

@@ -143,15 +143,23 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
   if (scene.lights.size() > kMaxShadowedLights)
     throw std::invalid_argument(scene.file.string() + ": " + std::to_string(scene.lights.size()) +
                                 " lights; at most " + std::to_string(kMaxShadowedLights) + " can cast shadows");
+  set_lights(scene.lights, scene.bounds, options);
+}
+
+void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
+                            const ShadowOptions& options) {
+  if (lights.size() > kMaxShadowedLights)
+    throw std::invalid_argument(std::to_string(lights.size()) + " lights; at most " +
+                                std::to_string(kMaxShadowedLights) + " can cast shadows");
+  for (size_t i = 0; i < lights.size(); ++i) check_settings(lights[i], i);
   options_ = options;
   views_.clear();
   lights_.clear();
   stats_.clear();
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const scene::Light& light = scene.lights[i];
-    check_settings(light, i);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const scene::Light& light = lights[i];
     const uint32_t resolution = uint32_t(light.shadow.resolution);
-    views_.push_back(make_light_view(light, scene.bounds, resolution));
+    views_.push_back(make_light_view(light, casters, resolution));
     LightState state;
     state.settings = light.shadow;
     state.layout.resolution = resolution;
@@ -228,7 +236,7 @@ GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
 }
 
 ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
-                                      const OpaquePass& meshes, const HairPass& hair, const VolumePass& volumes) {
+                                      const ShadowCasters& casters) {
   ShadowInputs inputs = unshadowed_inputs();
   if (lights_.empty()) return inputs;
   inputs.parameters = parameters_.handle();
@@ -249,9 +257,9 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
                                                    rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
     executor.bind(counter, light.counter);
     CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, light.capacity, counter);
-    lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, meshes);
-    lists = capture_hair_.add_to_graph(graph, prefix, lists, view, hair);
-    lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, volumes, options_.smoke_samples_per_segment);
+    lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
+    lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
+    lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
     if (light.settings.sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
 
     if (light.settings.technique == scene::ShadowTechnique::uncompressed || options_.keep_reference) {

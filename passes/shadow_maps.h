@@ -35,45 +35,12 @@
 #include "passes/capture_sort_pass.h"
 #include "passes/light_view.h"
 #include "passes/map_build_pass.h"
+#include "passes/shadow_casters.h"
+#include "passes/shadow_inputs.h"
 #include "passes/view.h"
 #include "scene/scene.h"
 
 namespace avsm::passes {
-
-inline constexpr uint32_t kMaxShadowedLights = 4;  // AVSM_MAX_SHADOWED_LIGHTS in shadow_lookup.glsl
-
-// std430, 160 bytes; mirrors struct GpuShadow in shaders/common/shadow_lookup.glsl.
-struct GpuShadow {
-  glm::mat4 light_from_world;
-  glm::vec4 depth_plane;
-  glm::vec4 texel_camera;     // x + y * depth: texel world size; z: far depth; w: camera radians per pixel
-  glm::vec4 camera_position;  // w: receivers' normal offset in texels
-  glm::vec4 depth_range;      // x, y: the light's caster depth range (osm, fom); z: osm/fom lookup bias
-  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed, 3 osm, 4 fom, 5 dsm
-  uint32_t node_count;
-  uint32_t resolution;
-  uint32_t mip_count;
-  uint32_t filter_mode;       // 0 point, 1 bilinear, 2 trilinear
-  uint32_t exponential;
-  uint32_t slot;
-  uint32_t reference;         // index of this light's exact-reference entry, or kNoReference
-};
-static_assert(sizeof(GpuShadow) == 160);
-inline constexpr uint32_t kNoReference = ~0u;
-
-// What a camera pass reads to look shadows up (bindings AVSM_SHADOW_BINDING .. +3).
-struct ShadowInputs {
-  VkBuffer parameters = VK_NULL_HANDLE;  // one GpuShadow per scene light
-  std::array<rg::BufferHandle, kMaxShadowedLights> maps{};
-  std::array<rg::TextureHandle, kMaxShadowedLights> heads{};
-  std::array<rg::BufferHandle, kMaxShadowedLights> nodes{};
-  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound to slots without a map or lists
-  VkImageView unused_heads = VK_NULL_HANDLE;
-
-  // Declares the reads in a camera pass's setup.
-  void declare_reads(rg::PassBuilder& builder) const;
-  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const;
-};
 
 // Stand-ins bound where a light has no map or lists, and the parameter block of
 // all-unshadowed lights: camera passes rendered without shadow maps use these.
@@ -124,15 +91,22 @@ class ShadowMaps {
   ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // Every scene light casts (at most kMaxShadowedLights; more is an error naming
-  // the scene), with its ShadowSettings. Throws std::invalid_argument for
-  // settings this build cannot render (a technique of a later issue, bad N).
+  // the scene), with its ShadowSettings, each map fitted around the scene's bounds.
+  // Throws std::invalid_argument for settings this build cannot render (bad N, an
+  // unknown technique parameter value).
   void set_scene(const scene::Scene& scene, const ShadowOptions& options = {});
+  // The same for lights that come without a scene: each light's map is fitted around
+  // `casters` (everything that casts or receives: what the map must cover; empty
+  // bounds give a unit box at the origin).
+  void set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
+                  const ShadowOptions& options = {});
 
-  // Declares this frame's shadow passes for every light and binds their
-  // persistent resources to `executor`. The casters are the camera passes'
-  // geometry. Returns what the camera passes need to read the maps.
+  // Declares this frame's shadow passes for every light and binds their persistent
+  // resources to `executor`. `casters` are captured by value: their buffers must stay
+  // alive and unchanged until the frame completes. Returns what the camera passes
+  // need to read the maps.
   ShadowInputs add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
-                            const OpaquePass& meshes, const HairPass& hair, const VolumePass& volumes);
+                            const ShadowCasters& casters);
 
   // Inputs that leave every light unshadowed (for camera passes used without maps).
   ShadowInputs unshadowed_inputs() const { return unshadowed_.inputs(); }

@@ -24,6 +24,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
+#include "passes/shadow_casters.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "scene/volume.h"
@@ -83,6 +84,7 @@ class VolumePass {
   const gpu::Buffer& grids() const { return grids_; }
   const gpu::Buffer& majorants() const { return majorants_; }
   const gpu::Buffer& parameters() const { return parameters_; }
+  VolumeCasters casters() const { return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_}; }
 
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);

@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev assimp-testmodels
   clang libclang-rt-14-dev
   chromium
+  libimgui-dev xvfb xauth
 )
 
 missing=()

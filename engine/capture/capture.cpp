@@ -1,6 +1,5 @@
 #include "capture/capture.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,17 +10,15 @@
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
+#include "capture/frame_outputs.h"
 #include "capture/quality.h"
 #include "capture/report.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
-#include "gpu/transfer.h"
 #include "gpu/vk_check.h"
-#include "io/image_io.h"
 #include "passes/view.h"
-#include "capture/trace.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 
@@ -30,24 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Timings of one pass over all measured frames.
-struct PassSamples {
-  std::vector<double> gpu_ms;
-  std::vector<double> cpu_record_ms;
-};
-
-struct Stats {
-  double min = 0, median = 0, max = 0;
-};
-
-Stats stats_of(std::vector<double> values) {
-  if (values.empty()) return {};
-  std::sort(values.begin(), values.end());
-  return {values.front(), values[values.size() / 2], values.back()};
-}
-
-nlohmann::json to_json(const Stats& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
-
 const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& wanted) {
   if (wanted.empty()) return scene.cameras.front();
   for (size_t i = 0; i < scene.cameras.size(); ++i)
@@ -55,12 +34,6 @@ const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& w
   std::string names;
   for (const scene::Camera& c : scene.cameras) names += " '" + c.name + "'";
   throw std::runtime_error("scene has no camera '" + wanted + "'; cameras:" + names);
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << text;
 }
 
 void write_json(const fs::path& path, const nlohmann::json& json) {
@@ -143,61 +116,6 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
   return grew;
 }
 
-// One frame on the trace: CPU slices (build, record with a slice per pass, submit and
-// wait) and, per queue type, the passes' GPU times laid end to end from the submit.
-void add_frame_to_trace(TraceWriter& trace, uint32_t index, double start, double built, double recorded,
-                        double completed, const std::vector<rg::vulkan::PassTiming>& passes) {
-  const std::string frame = "frame " + std::to_string(index + 1);
-  trace.add("CPU", frame, start, completed - start, "frame");
-  trace.add("CPU", "build graph", start, built - start, "cpu");
-  trace.add("CPU", "record", built, recorded - built, "cpu");
-  trace.add("CPU", "submit + wait", recorded, completed - recorded, "cpu");
-  double record_at = built, gpu_at = recorded;
-  for (const rg::vulkan::PassTiming& pass : passes) {
-    trace.add("CPU record", pass.name, record_at, pass.cpu_record_ms, "cpu");
-    record_at += pass.cpu_record_ms;
-    trace.add(std::string("GPU ") + rg::to_string(pass.queue) + " queue", pass.name, gpu_at, pass.gpu_ms, "gpu");
-    gpu_at += pass.gpu_ms;
-  }
-}
-
-nlohmann::json frame_samples_json(const std::vector<double>& gpu, const std::vector<double>& wall,
-                                  const std::vector<double>& submit) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (size_t i = 0; i < gpu.size(); ++i)
-    frames.push_back({{"gpu_ms", gpu[i]}, {"wall_ms", wall[i]}, {"submit_wall_ms", submit[i]}});
-  return frames;
-}
-
-// light<i>_transmittance.png: each light's map as grey levels (passes/shadow_debug_pass.h).
-void write_light_images(gpu::Context& ctx, const renderer::SceneRenderer& frame, const scene::Scene& scene,
-                        const fs::path& out_dir) {
-  const std::vector<gpu::Image>& images = frame.light_images();
-  for (size_t i = 0; i < images.size() && i < scene.lights.size(); ++i)
-    io::write_png_raw(out_dir / ("light" + std::to_string(i) + "_transmittance.png"),
-                      gpu::read_image(ctx, images[i], passes::ShadowDebugPass::kOutputLayout));
-}
-
-nlohmann::json shadow_json(const passes::LightShadowStats& s) {
-  nlohmann::json json = {{"light", s.light},
-                         {"technique", scene::to_string(s.technique)},
-                         {"nodes", s.nodes},
-                         {"resolution", s.resolution},
-                         {"mip_levels", s.mip_levels},
-                         {"map_bytes", s.map_bytes},
-                         {"capture_bytes", s.capture_bytes},
-                         {"capture_capacity_segments", s.capture_capacity},
-                         {"capture_requested_segments", s.capture_requested},
-                         {"capture_overflowed", s.overflowed},
-                         {"next_capture_capacity_segments", s.next_capture_capacity}};
-  if (s.technique == scene::ShadowTechnique::dsm) {  // the deep shadow map's node pool
-    json["dsm_pool_capacity_nodes"] = s.pool_capacity;
-    json["dsm_pool_requested_nodes"] = s.pool_requested;
-    json["dsm_pool_overflowed"] = s.pool_overflowed;
-  }
-  return json;
-}
-
 }  // namespace
 
 CaptureOutputs run_capture(const CaptureOptions& options) {
@@ -252,23 +170,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   passes::View view = passes::make_view(camera, options.width, options.height);
   rg::vulkan::Executor executor(ctx, calibration.mode);
   VkCommandBuffer cmd = ctx.allocate_command_buffer("frame");
-  std::map<std::string, PassSamples> samples;
-  std::vector<std::string> pass_order;
-  std::map<std::string, rg::QueueType> queues;
-  std::vector<double> frame_gpu_ms, frame_wall_ms;
-
-  // Times in ms from the start of the first frame, for the trace.
-  const auto capture_start = std::chrono::steady_clock::now();
-  auto since_start = [&](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(t - capture_start).count();
-  };
-  TraceWriter trace;
-  std::vector<double> frame_submit_ms;
+  FrameTimingLog timing_log;
   constexpr uint32_t kMaxOverflowRetries = 4;
 
-  struct FrameClock {
-    std::chrono::steady_clock::time_point start, built, recorded, completed;
-  };
   auto render_frame = [&]() {
     FrameClock clock;
     clock.start = std::chrono::steady_clock::now();
@@ -294,71 +198,15 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       if (options.progress) std::fprintf(stderr, "frame %u: capture buffers grown, rendering it again\n", index + 1);
       clock = render_frame();
     }
-    const auto [start, built, recorded, completed] = clock;
-    const double wall = since_start(std::chrono::steady_clock::now()) - since_start(start);
-    const double submit_wall = since_start(completed) - since_start(recorded);
     const bool warm_up = index == 0 && options.frames > 1;
+    const double wall = timing_log.add_frame(clock, executor.read_timings(), /*measured=*/!warm_up);
     if (options.progress)
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", index + 1, options.frames, wall, warm_up ? " (warm-up)" : "");
-
-    const std::vector<rg::vulkan::PassTiming> timings = executor.read_timings();
-    add_frame_to_trace(trace, index, since_start(start), since_start(built), since_start(recorded),
-                       since_start(completed), timings);
-    if (warm_up) continue;
-    double total = 0;
-    for (const rg::vulkan::PassTiming& pass : timings) {
-      if (!samples.count(pass.name)) pass_order.push_back(pass.name);
-      samples[pass.name].gpu_ms.push_back(pass.gpu_ms);
-      samples[pass.name].cpu_record_ms.push_back(pass.cpu_record_ms);
-      queues[pass.name] = pass.queue;
-      total += pass.gpu_ms;
-    }
-    frame_gpu_ms.push_back(total);
-    frame_wall_ms.push_back(wall);
-    frame_submit_ms.push_back(submit_wall);
   }
 
-  CaptureOutputs out{options.out_dir / "frame.png", options.out_dir / "frame.exr", options.out_dir / "timings.json"};
-  io::write_png_raw(out.png, gpu::read_image(ctx, frame.ldr(), renderer::SceneRenderer::kOutputLayout));
-  io::write_exr(out.exr, gpu::read_image(ctx, frame.hdr(), renderer::SceneRenderer::kOutputLayout));
-
-  nlohmann::json passes = nlohmann::json::array();
-  for (const std::string& name : pass_order) {
-    const PassSamples& s = samples[name];
-    passes.push_back({{"name", name},
-                      {"queue", rg::to_string(queues[name])},
-                      {"gpu_ms", to_json(stats_of(s.gpu_ms))},
-                      {"cpu_record_ms", to_json(stats_of(s.cpu_record_ms))}});
-  }
-  nlohmann::json timings = {
-      {"device", ctx.info().name},
-      {"driver", ctx.info().driver_name + " " + ctx.info().driver_info},
-      {"timestamp_mode", gpu::to_string(calibration.mode)},
-      {"width", options.width},
-      {"height", options.height},
-      {"frames_measured", frame_gpu_ms.size()},
-      {"passes", passes},
-      {"frame_gpu_ms", to_json(stats_of(frame_gpu_ms))},
-      {"frame_wall_ms", to_json(stats_of(frame_wall_ms))},
-      // Submit to completion on the CPU clock: what the GPU times of a frame add up to.
-      {"frame_submit_wall_ms", to_json(stats_of(frame_submit_ms))},
-      {"frames", frame_samples_json(frame_gpu_ms, frame_wall_ms, frame_submit_ms)},
-  };
-  write_json(out.timings, timings);
-  trace.write(options.out_dir / "trace.json");
-  write_light_images(ctx, frame, scene, options.out_dir);
-  write_text(options.out_dir / "graph.json", executor.plan().to_json());
-  write_text(options.out_dir / "graph.dot", executor.plan().to_dot());
-  const rg::PlanStats& stats = executor.plan().stats;
-  nlohmann::json lights = nlohmann::json::array();
-  for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) lights.push_back(shadow_json(light));
-  write_json(options.out_dir / "memory.json", {{"transient_bytes_aliased", stats.transient_bytes_aliased},
-                                               {"transient_bytes_unaliased", stats.transient_bytes_unaliased},
-                                               {"heaps", executor.plan().heaps.size()},
-                                               {"lights", lights},
-                                               {"scene_bounds", {{"min", {scene.bounds.min.x, scene.bounds.min.y, scene.bounds.min.z}},
-                                                                 {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}}},
-                                               {"frames_with_capture_overflow", overflowed_frames}});
+  const FrameOutputFiles files = write_frame_outputs(
+      options.out_dir, {ctx, frame, executor, scene, timing_log, overflowed_frames});
+  CaptureOutputs out{files.png, files.exr, files.timings};
   if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
   if (options.compare_to_uncompressed)
     out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,

@@ -28,24 +28,6 @@ std::string light_label(const scene::Scene& scene, size_t index) {
   return name.empty() ? "light " + std::to_string(index) : name;
 }
 
-// "AVSM-8", "uncompressed": what the legend and quality.json call a light's technique.
-// (defaults as in passes/shadow_maps.cpp).
-std::string technique_label(const scene::ShadowSettings& s) {
-  auto whole = [](double v) { return std::to_string(static_cast<long long>(v)); };
-  switch (s.technique) {
-    case scene::ShadowTechnique::avsm: return "AVSM-" + std::to_string(s.nodes);
-    case scene::ShadowTechnique::osm: return "OSM-" + whole(s.parameter("slices", 32));
-    case scene::ShadowTechnique::fom: return "FOM-" + whole(s.parameter("terms", 16));
-    case scene::ShadowTechnique::dsm: {
-      char text[64];
-      std::snprintf(text, sizeof(text), "DSM (error %g)", s.parameter("error", 0.01));
-      return text;
-    }
-    case scene::ShadowTechnique::uncompressed: break;
-  }
-  return std::string(scene::to_string(s.technique));
-}
-
 nlohmann::json stats_json(const ErrorStats& s) {
   nlohmann::json j = {{"receivers", s.receivers}};
   // No receivers: no error to speak of (null rather than a made-up 0).
@@ -121,9 +103,6 @@ double nice_step(double range, int count) {
   return 10.0 * magnitude;
 }
 
-struct Node {
-  float depth, transmittance;
-};
 
 // `count` vec4s from vec4 `first` on of a device buffer (TRANSFER_SRC), through a small staging buffer.
 std::vector<glm::vec4> read_vec4s(gpu::Context& ctx, const gpu::Buffer& src, uint64_t first, uint64_t count) {
@@ -143,25 +122,6 @@ std::vector<glm::vec4> read_vec4s(gpu::Context& ctx, const gpu::Buffer& src, uin
   return out;
 }
 
-// The stored AVSM nodes of a level-0 texel (padding repeats of the last node dropped);
-// none for lights that are not AVSM.
-std::vector<Node> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light, uint32_t x,
-                              uint32_t y, scene::ShadowTechnique technique) {
-  const gpu::Buffer& map = shadows.avsm_map(light);
-  if (!map || technique != scene::ShadowTechnique::avsm) return {};
-  const passes::AvsmMapLayout& layout = shadows.map_layout(light);
-  const uint32_t groups = layout.nodes / 4;
-  const uint64_t base = layout.level_offset(0) + (uint64_t(y) * layout.resolution + x) * layout.vec4s_per_texel();
-  const std::vector<glm::vec4> curve = read_vec4s(ctx, map, base, layout.vec4s_per_texel());
-  std::vector<Node> nodes;
-  for (uint32_t i = 0; i < layout.nodes; ++i) {
-    const Node n{curve[i / 4][i % 4], curve[groups + i / 4][i % 4]};
-    if (!nodes.empty() && n.depth == nodes.back().depth && n.transmittance == nodes.back().transmittance) continue;
-    nodes.push_back(n);
-  }
-  return nodes;
-}
-
 // Sample k of kCurveSamples: evenly over the light's depth range, near to far.
 float curve_depth(const passes::LightView& view, uint32_t k) {
   const float f = float(k) / float(kCurveSamples - 1);
@@ -172,7 +132,7 @@ struct CurvePlot {
   std::string title, technique, description;
   float near_depth = 0, far_depth = 1;
   std::vector<float> depths, technique_values, reference_values;
-  std::vector<Node> nodes;
+  std::vector<CurveNode> nodes;
 };
 
 std::string curve_svg(const CurvePlot& plot) {
@@ -231,7 +191,7 @@ std::string curve_svg(const CurvePlot& plot) {
   };
   polyline(plot.reference_values, "exact", "#222", "2.5", "");
   polyline(plot.technique_values, "technique", "#d62728", "1.5", "6 3");
-  for (const Node& n : plot.nodes)
+  for (const CurveNode& n : plot.nodes)
     if (n.depth >= x0 && n.depth <= x1)
       svg << "<circle class=\"node\" cx=\"" << num(px(n.depth)) << "\" cy=\"" << num(py(n.transmittance))
           << "\" r=\"3.5\" fill=\"#d62728\"/>\n";
@@ -271,6 +231,41 @@ std::string curve_svg(const CurvePlot& plot) {
 }
 
 }  // namespace
+
+std::string technique_label(const scene::ShadowSettings& s) {
+  auto whole = [](double v) { return std::to_string(static_cast<long long>(v)); };
+  switch (s.technique) {
+    case scene::ShadowTechnique::avsm: return "AVSM-" + std::to_string(s.nodes);
+    case scene::ShadowTechnique::osm: return "OSM-" + whole(s.parameter("slices", 32));
+    case scene::ShadowTechnique::fom: return "FOM-" + whole(s.parameter("terms", 16));
+    case scene::ShadowTechnique::dsm: {
+      char text[64];
+      std::snprintf(text, sizeof(text), "DSM (error %g)", s.parameter("error", 0.01));
+      return text;
+    }
+    case scene::ShadowTechnique::uncompressed: break;
+  }
+  return std::string(scene::to_string(s.technique));
+}
+
+// The stored AVSM nodes of a level-0 texel (padding repeats of the last node dropped);
+// none for lights that are not AVSM.
+std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light, uint32_t x,
+                                   uint32_t y, scene::ShadowTechnique technique) {
+  const gpu::Buffer& map = shadows.avsm_map(light);
+  if (!map || technique != scene::ShadowTechnique::avsm) return {};
+  const passes::AvsmMapLayout& layout = shadows.map_layout(light);
+  const uint32_t groups = layout.nodes / 4;
+  const uint64_t base = layout.level_offset(0) + (uint64_t(y) * layout.resolution + x) * layout.vec4s_per_texel();
+  const std::vector<glm::vec4> curve = read_vec4s(ctx, map, base, layout.vec4s_per_texel());
+  std::vector<CurveNode> nodes;
+  for (uint32_t i = 0; i < layout.nodes; ++i) {
+    const CurveNode n{curve[i / 4][i % 4], curve[groups + i / 4][i % 4]};
+    if (!nodes.empty() && n.depth == nodes.back().depth && n.transmittance == nodes.back().transmittance) continue;
+    nodes.push_back(n);
+  }
+  return nodes;
+}
 
 // ---- quality ----
 

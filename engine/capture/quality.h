@@ -85,6 +85,20 @@ void resolve_texel_plots(std::vector<TexelPlot>& plots, const scene::Scene& scen
 std::vector<passes::TexelSample> texel_curve_samples(const std::vector<TexelPlot>& plots,
                                                      const std::vector<passes::LightView>& views);
 
+// "AVSM-8", "OSM-32", "DSM (error 0.01)", "uncompressed": what legends and quality.json
+// call a light's technique (defaults as in passes/shadow_maps.cpp).
+std::string technique_label(const scene::ShadowSettings& settings);
+
+// One stored node of a texel's AVSM curve.
+struct CurveNode {
+  float depth, transmittance;
+};
+
+// The stored AVSM nodes of light `light`'s level-0 texel (x, y), read back from its
+// map now (padding repeats of the last node dropped); none unless the technique is avsm.
+std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light, uint32_t x,
+                                   uint32_t y, scene::ShadowTechnique technique);
+
 // Writes curve_<light>_<x>_<y>.svg per plot from the samples' results (same order as
 // texel_curve_samples()); reads the AVSM nodes of each texel from `shadows` to mark
 // them. Returns the files written.

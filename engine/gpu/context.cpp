@@ -63,18 +63,67 @@ Context::Context(const ContextDesc& desc) {
   create_device(desc);
 }
 
+Context::Context(const AdoptedDevice& adopted) : owns_device_(false) {
+  if (!adopted.instance || !adopted.physical_device || !adopted.device || !adopted.queue)
+    throw std::invalid_argument("gpu::Context: an adopted device needs its instance, physical device, device and queue");
+  if (adopted.validation_layer && !adopted.debug_utils)
+    throw std::invalid_argument("gpu::Context: collecting validation messages needs VK_EXT_debug_utils on the instance");
+  instance_ = adopted.instance;
+  physical_device_ = adopted.physical_device;
+  device_ = adopted.device;
+  graphics_queue_ = {adopted.queue, adopted.queue_family};
+  debug_utils_ = adopted.debug_utils;
+  validation_enabled_ = adopted.validation_layer;
+  validation_log_.set_echo(adopted.echo_validation || env_flag("AVSM_VALIDATION_ECHO", false));
+  read_device_info();
+  if (info_.api_version < VK_API_VERSION_1_3)
+    throw std::runtime_error("adopted device '" + info_.name + "' lacks Vulkan 1.3");
+  if (debug_utils_) load_debug_utils();
+  finish_device_setup();
+  // Last: nothing after it can throw, so the destructor always gets to destroy it.
+  if (validation_enabled_) create_validation_messenger();
+}
+
 Context::~Context() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    // An adopted device may be busy with the host's own work on other queues: wait
+    // only for the queue the engine submits to.
+    if (owns_device_) vkDeviceWaitIdle(device_);
+    else vkQueueWaitIdle(graphics_queue_.handle);
     vkDestroyCommandPool(device_, command_pool_, nullptr);
-    vkDestroyDevice(device_, nullptr);
+    if (owns_device_) vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
     destroy(instance_, messenger_, nullptr);
   }
-  if (instance_) vkDestroyInstance(instance_, nullptr);
+  if (instance_ && owns_device_) vkDestroyInstance(instance_, nullptr);
+}
+
+static VkDebugUtilsMessengerCreateInfoEXT messenger_create_info(ValidationLog& log) {
+  VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = validation_callback;
+  info.pUserData = &log;
+  return info;
+}
+
+void Context::create_validation_messenger() {
+  VkDebugUtilsMessengerCreateInfoEXT info = messenger_create_info(validation_log_);
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+  VK_CHECK(create(instance_, &info, nullptr, &messenger_));
+}
+
+void Context::load_debug_utils() {
+  set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+      vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+  cmd_begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+      vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+  cmd_end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+      vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
 }
 
 void Context::create_instance(const ContextDesc& desc) {
@@ -105,13 +154,8 @@ void Context::create_instance(const ContextDesc& desc) {
   features.enabledValidationFeatureCount = 1;
   features.pEnabledValidationFeatures = enables;
 
-  VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messenger_info.messageSeverity =
-      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messenger_info.messageType =
-      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  messenger_info.pfnUserCallback = validation_callback;
-  messenger_info.pUserData = &validation_log_;
+  // Chained into the instance info too, so messages of vkCreateInstance itself are caught.
+  VkDebugUtilsMessengerCreateInfoEXT messenger_info = messenger_create_info(validation_log_);
   if (validation_enabled_) {
     messenger_info.pNext = &features;
   }
@@ -125,20 +169,8 @@ void Context::create_instance(const ContextDesc& desc) {
   if (validation_enabled_) info.pNext = &messenger_info;
   VK_CHECK(vkCreateInstance(&info, nullptr, &instance_));
 
-  if (validation_enabled_) {
-    messenger_info.pNext = nullptr;
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    VK_CHECK(create(instance_, &messenger_info, nullptr, &messenger_));
-  }
-  if (debug_utils_) {
-    set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
-        vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
-    cmd_begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
-    cmd_end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
-  }
+  if (validation_enabled_) create_validation_messenger();
+  if (debug_utils_) load_debug_utils();
 }
 
 static int device_type_rank(VkPhysicalDeviceType type) {
@@ -184,7 +216,10 @@ void Context::pick_physical_device(const std::string& preference) {
   physical_device_ = devices[chosen];
   if (props[chosen].apiVersion < VK_API_VERSION_1_3)
     throw std::runtime_error(std::string("device '") + props[chosen].deviceName + "' lacks Vulkan 1.3");
+  read_device_info();
+}
 
+void Context::read_device_info() {
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   driver.pNext = &subgroup;
@@ -206,17 +241,21 @@ void Context::pick_physical_device(const std::string& preference) {
   vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
 }
 
-void Context::create_device(const ContextDesc& desc) {
+uint32_t Context::universal_queue_family() const {
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);
   vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, families.data());
-  int universal = -1;
-  for (uint32_t i = 0; i < family_count && universal < 0; ++i)
-    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT))
-      universal = int(i);
-  if (universal < 0) throw std::runtime_error("device '" + info_.name + "' has no graphics+compute queue");
-  info_.timestamp_valid_bits = families[universal].timestampValidBits;
+  for (uint32_t i = 0; i < family_count; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) return i;
+  throw std::runtime_error("device '" + info_.name + "' has no graphics+compute queue");
+}
+
+DeviceRequirements::DeviceRequirements(VkPhysicalDevice physical, const std::vector<std::string>& extra_extensions) {
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physical, &props);
+  const std::string device = std::string("device '") + props.deviceName + "'";
+  if (props.apiVersion < VK_API_VERSION_1_3) throw std::runtime_error(device + " lacks Vulkan 1.3");
 
   // Ask for what the renderer uses when the device has it; require only the core of it.
   VkPhysicalDeviceVulkan13Features has13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -226,67 +265,90 @@ void Context::create_device(const ContextDesc& desc) {
   has12.pNext = &has11;
   VkPhysicalDeviceFeatures2 has{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   has.pNext = &has13;
-  vkGetPhysicalDeviceFeatures2(physical_device_, &has);
+  vkGetPhysicalDeviceFeatures2(physical, &has);
   if (!has13.synchronization2 || !has13.dynamicRendering)
-    throw std::runtime_error("device '" + info_.name + "' lacks synchronization2 or dynamic rendering");
+    throw std::runtime_error(device + " lacks synchronization2 or dynamic rendering");
 
-  VkPhysicalDeviceVulkan11Features use11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-  VkPhysicalDeviceVulkan12Features use12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  VkPhysicalDeviceVulkan13Features use13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceFeatures2 use{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  use.pNext = &use13;
-  use13.pNext = &use12;
-  use12.pNext = &use11;
-  use13.synchronization2 = VK_TRUE;
-  use13.dynamicRendering = VK_TRUE;
-  use13.maintenance4 = has13.maintenance4;
-  use12.timelineSemaphore = has12.timelineSemaphore;
-  use12.hostQueryReset = has12.hostQueryReset;
-  use12.shaderBufferInt64Atomics = has12.shaderBufferInt64Atomics;
-  use12.scalarBlockLayout = has12.scalarBlockLayout;
-  use12.storageBuffer8BitAccess = has12.storageBuffer8BitAccess;
-  use12.shaderFloat16 = has12.shaderFloat16;
-  use11.storageBuffer16BitAccess = has11.storageBuffer16BitAccess;
-  use11.shaderDrawParameters = has11.shaderDrawParameters;
+  features13_.synchronization2 = VK_TRUE;
+  features13_.dynamicRendering = VK_TRUE;
+  features13_.maintenance4 = has13.maintenance4;
+  features12_.timelineSemaphore = has12.timelineSemaphore;
+  features12_.hostQueryReset = has12.hostQueryReset;
+  features12_.shaderBufferInt64Atomics = has12.shaderBufferInt64Atomics;
+  features12_.scalarBlockLayout = has12.scalarBlockLayout;
+  features12_.storageBuffer8BitAccess = has12.storageBuffer8BitAccess;
+  features12_.shaderFloat16 = has12.shaderFloat16;
+  features11_.storageBuffer16BitAccess = has11.storageBuffer16BitAccess;
+  features11_.shaderDrawParameters = has11.shaderDrawParameters;
   const VkPhysicalDeviceFeatures& core = has.features;
-  use.features.geometryShader = core.geometryShader;
-  use.features.fragmentStoresAndAtomics = core.fragmentStoresAndAtomics;
-  use.features.vertexPipelineStoresAndAtomics = core.vertexPipelineStoresAndAtomics;
-  use.features.shaderInt64 = core.shaderInt64;
-  use.features.shaderInt16 = core.shaderInt16;
-  use.features.samplerAnisotropy = core.samplerAnisotropy;
-  use.features.independentBlend = core.independentBlend;
-  use.features.largePoints = core.largePoints;
-  use.features.wideLines = core.wideLines;
-  use.features.shaderStorageImageExtendedFormats = core.shaderStorageImageExtendedFormats;
+  VkPhysicalDeviceFeatures& use = features_.features;
+  use.geometryShader = core.geometryShader;
+  use.fragmentStoresAndAtomics = core.fragmentStoresAndAtomics;
+  use.vertexPipelineStoresAndAtomics = core.vertexPipelineStoresAndAtomics;
+  use.shaderInt64 = core.shaderInt64;
+  use.shaderInt16 = core.shaderInt16;
+  use.samplerAnisotropy = core.samplerAnisotropy;
+  use.independentBlend = core.independentBlend;
+  use.largePoints = core.largePoints;
+  use.wideLines = core.wideLines;
+  use.shaderStorageImageExtendedFormats = core.shaderStorageImageExtendedFormats;
 
-  std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-  for (const std::string& ext : desc.device_extensions) extensions.push_back(ext.c_str());
-  for (const char* ext : extensions)
-    if (!has_device_extension(physical_device_, ext))
-      throw std::runtime_error("device '" + info_.name + "' lacks extension " + ext);
+  extensions_ = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  extensions_.insert(extensions_.end(), extra_extensions.begin(), extra_extensions.end());
+  for (const std::string& ext : extensions_) {
+    if (!has_device_extension(physical, ext.c_str())) throw std::runtime_error(device + " lacks extension " + ext);
+    extension_names_.push_back(ext.c_str());
+  }
+}
+
+const VkPhysicalDeviceFeatures2* DeviceRequirements::features(void* next) {
+  features_.pNext = &features13_;
+  features13_.pNext = &features12_;
+  features12_.pNext = &features11_;
+  features11_.pNext = next;
+  return &features_;
+}
+
+void Context::create_device(const ContextDesc& desc) {
+  const uint32_t universal = universal_queue_family();
+  DeviceRequirements requirements(physical_device_, desc.device_extensions);
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  queue_info.queueFamilyIndex = uint32_t(universal);
+  queue_info.queueFamilyIndex = universal;
   queue_info.queueCount = 1;
   queue_info.pQueuePriorities = &priority;
 
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  info.pNext = &use;
+  info.pNext = requirements.features();
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  info.enabledExtensionCount = uint32_t(extensions.size());
-  info.ppEnabledExtensionNames = extensions.data();
+  info.enabledExtensionCount = uint32_t(requirements.extensions().size());
+  info.ppEnabledExtensionNames = requirements.extensions().data();
   VK_CHECK(vkCreateDevice(physical_device_, &info, nullptr, &device_));
 
-  graphics_queue_.family = uint32_t(universal);
+  graphics_queue_.family = universal;
   vkGetDeviceQueue(device_, graphics_queue_.family, 0, &graphics_queue_.handle);
   set_name(graphics_queue_.handle, VK_OBJECT_TYPE_QUEUE, "universal queue");
   set_name(device_, VK_OBJECT_TYPE_DEVICE, "avsm device");
+  finish_device_setup();
+}
+
+// What both an owned and an adopted device need: the queue family's timestamp
+// bits, the push-descriptor entry point and the context's own command pool.
+void Context::finish_device_setup() {
+  uint32_t family_count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(family_count);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, families.data());
+  if (graphics_queue_.family >= family_count)
+    throw std::runtime_error("device '" + info_.name + "' has no queue family " + std::to_string(graphics_queue_.family));
+  info_.timestamp_valid_bits = families[graphics_queue_.family].timestampValidBits;
 
   cmd_push_descriptor_set = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  if (!cmd_push_descriptor_set)
+    throw std::runtime_error("device '" + info_.name + "' was created without " VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
 
   VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

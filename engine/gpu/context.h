@@ -30,6 +30,54 @@ struct ContextDesc {
   bool echo_validation = false;
 };
 
+// A device the host application created and keeps owning (Context(const AdoptedDevice&)).
+// The host must have created it with at least DeviceRequirements' extensions and
+// features, on Vulkan 1.3, with `queue` from a graphics + compute family.
+struct AdoptedDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;  // the engine records and submits its passes for this queue
+  uint32_t queue_family = 0;
+  // Whether the host enabled VK_EXT_debug_utils on the instance (Vulkan cannot be asked):
+  // then the engine names its objects and labels its passes.
+  bool debug_utils = false;
+  // Whether the host enabled VK_LAYER_KHRONOS_validation (and debug utils): then the
+  // engine adds its own messenger on the host's instance, so validation_log() collects
+  // every message, the host's included. Synchronization validation is on only if the
+  // host asked for it when it created the instance (VkValidationFeaturesEXT).
+  bool validation_layer = false;
+  bool echo_validation = false;
+};
+
+// What the engine needs from a device: Vulkan 1.3 with synchronization2 and dynamic
+// rendering, VK_KHR_push_descriptor, and (when the device has them) the optional
+// features its passes use: 64-bit and fragment-stage atomics for the capture lists,
+// geometry shaders, scalar layouts, draw parameters... A host that creates its own
+// device puts extensions() and features() into its VkDeviceCreateInfo.
+class DeviceRequirements {
+ public:
+  // Queries `physical`; throws std::runtime_error naming the first missing requirement.
+  explicit DeviceRequirements(VkPhysicalDevice physical, const std::vector<std::string>& extra_extensions = {});
+  // Not copyable: extensions() and the feature chain point into this object.
+  DeviceRequirements(const DeviceRequirements&) = delete;
+  DeviceRequirements& operator=(const DeviceRequirements&) = delete;
+
+  // Device extensions to enable (the engine's, then the extra ones); valid while this lives.
+  const std::vector<const char*>& extensions() const { return extension_names_; }
+  // The feature chain for VkDeviceCreateInfo::pNext (no pEnabledFeatures):
+  // VkPhysicalDeviceFeatures2 -> Vulkan 1.3 -> 1.2 -> 1.1 features -> `next`.
+  const VkPhysicalDeviceFeatures2* features(void* next = nullptr);
+
+ private:
+  std::vector<std::string> extensions_;
+  std::vector<const char*> extension_names_;
+  VkPhysicalDeviceFeatures2 features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  VkPhysicalDeviceVulkan11Features features11_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+  VkPhysicalDeviceVulkan12Features features12_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceVulkan13Features features13_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+};
+
 struct Queue {
   VkQueue handle = VK_NULL_HANDLE;
   uint32_t family = 0;
@@ -55,7 +103,12 @@ struct DeviceInfo {
 
 class Context {
  public:
+  // Creates its own instance, picks a device and creates it (destroyed with the context).
   explicit Context(const ContextDesc& desc = {});
+  // Wraps a device the host created: the context makes only its own command pool (and
+  // a validation messenger, see AdoptedDevice) and destroys only those. Destroy the
+  // context before the device, while the host is not submitting to `queue`.
+  explicit Context(const AdoptedDevice& adopted);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -71,6 +124,8 @@ class Context {
   const Queue& graphics_queue() const { return graphics_queue_; }
 
   bool validation_enabled() const { return validation_enabled_; }
+  // False for an adopted device: the host owns instance and device.
+  bool owns_device() const { return owns_device_; }
   ValidationLog& validation_log() { return validation_log_; }
 
   // Index of a memory type allowed by type_bits with all `required` flags; -1 if none.
@@ -100,8 +155,13 @@ class Context {
 
  private:
   void create_instance(const ContextDesc& desc);
+  void create_validation_messenger();
+  void load_debug_utils();
   void pick_physical_device(const std::string& preference);
+  void read_device_info();
+  uint32_t universal_queue_family() const;
   void create_device(const ContextDesc& desc);
+  void finish_device_setup();
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -113,6 +173,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_properties_{};
   bool validation_enabled_ = false;
   bool debug_utils_ = false;
+  bool owns_device_ = true;
   ValidationLog validation_log_;
 
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;

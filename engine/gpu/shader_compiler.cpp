@@ -5,6 +5,8 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 
 #include <fstream>
+#include <map>
+#include <set>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -161,8 +163,41 @@ ShaderLibrary::Paths ShaderLibrary::default_paths() {
   return paths;
 }
 
+namespace {
+// A file's modification time, or the minimum for a file that is gone (which
+// counts as a change).
+std::filesystem::file_time_type write_time(const std::filesystem::path& file) {
+  std::error_code ec;
+  const auto time = std::filesystem::last_write_time(file, ec);
+  return ec ? std::filesystem::file_time_type::min() : time;
+}
+}  // namespace
+
+struct ShaderLibrary::Cache {
+  struct Entry {
+    CompiledShader shader;
+    std::vector<std::filesystem::file_time_type> times;  // of shader.files, when compiled
+    bool current() const {
+      for (size_t i = 0; i < shader.files.size(); ++i)
+        if (write_time(shader.files[i]) != times[i]) return false;
+      return true;
+    }
+  };
+  std::mutex mutex;
+  std::map<std::string, Entry> entries;
+};
+
 ShaderLibrary::ShaderLibrary(Paths paths, bool compile_from_source)
-    : paths_(std::move(paths)), compile_from_source_(compile_from_source) {}
+    : paths_(std::move(paths)), compile_from_source_(compile_from_source), cache_(std::make_unique<Cache>()) {}
+
+ShaderLibrary::~ShaderLibrary() = default;
+
+std::vector<std::filesystem::path> ShaderLibrary::source_files() const {
+  std::lock_guard lock(cache_->mutex);
+  std::set<std::filesystem::path> files;
+  for (const auto& [name, entry] : cache_->entries) files.insert(entry.shader.files.begin(), entry.shader.files.end());
+  return {files.begin(), files.end()};
+}
 
 CompiledShader ShaderLibrary::compile(const std::string& relative_path) const {
   ShaderCompileOptions options;
@@ -171,7 +206,15 @@ CompiledShader ShaderLibrary::compile(const std::string& relative_path) const {
 }
 
 std::vector<uint32_t> ShaderLibrary::load(const std::string& relative_path) const {
-  if (compile_from_source_) return compile(relative_path).spirv;
+  if (compile_from_source_) {
+    std::lock_guard lock(cache_->mutex);
+    auto found = cache_->entries.find(relative_path);
+    if (found != cache_->entries.end() && found->second.current()) return found->second.shader.spirv;
+    Cache::Entry entry;
+    entry.shader = compile(relative_path);  // throws before the cache changes
+    for (const std::filesystem::path& file : entry.shader.files) entry.times.push_back(write_time(file));
+    return (cache_->entries[relative_path] = std::move(entry)).shader.spirv;
+  }
   return read_spirv_file(paths_.spirv_root / (relative_path + ".spv"));
 }
 

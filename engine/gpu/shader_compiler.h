@@ -2,6 +2,7 @@
 // GLSL -> SPIR-V at run time through the glslang library (hot reload needs it),
 // and loading of the SPIR-V that the build compiled ahead of time.
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -46,7 +47,10 @@ CompiledShader compile_glsl_file(const std::filesystem::path& path, const Shader
 
 // Finds shaders by their path relative to the repository root, e.g.
 // "shaders/fullscreen.vert". Prebuilt SPIR-V comes from the build's spirv/
-// folder; with compile_from_source, the GLSL is compiled now (hot reload).
+// folder; with compile_from_source, the GLSL is compiled now (hot reload). Those
+// compiled shaders are kept and compiled again only when their source or one of
+// its includes changed on disk, so rebuilding every pipeline after one edit
+// recompiles just the shaders that edit touched.
 class ShaderLibrary {
  public:
   struct Paths {
@@ -57,15 +61,24 @@ class ShaderLibrary {
   static Paths default_paths();
 
   explicit ShaderLibrary(Paths paths = default_paths(), bool compile_from_source = false);
+  ~ShaderLibrary();
 
+  // Throws ShaderCompileError (from source) or std::runtime_error (a missing file).
   std::vector<uint32_t> load(const std::string& relative_path) const;
+  // Compiles now, bypassing the cache.
   CompiledShader compile(const std::string& relative_path) const;
   const Paths& paths() const { return paths_; }
   bool compiles_from_source() const { return compile_from_source_; }
 
+  // Every source and include file of the shaders compiled from source so far
+  // (what a hot reloader watches).
+  std::vector<std::filesystem::path> source_files() const;
+
  private:
+  struct Cache;
   Paths paths_;
   bool compile_from_source_;
+  std::unique_ptr<Cache> cache_;
 };
 
 std::vector<uint32_t> read_spirv_file(const std::filesystem::path& path);

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/context.h"
 #include "passes/lights.h"
 
 namespace avsm::renderer {
@@ -23,22 +24,63 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
     : ctx_(ctx),
       width_(width),
       height_(height),
-      lights_(passes::upload_lights(ctx, scene.lights)),
-      light_count_(uint32_t(scene.lights.size())),
       opaque_(ctx, shaders),
       hair_(ctx, shaders),
       volumes_(ctx, shaders),
       shadows_(ctx, shaders),
       shaders_(shaders),
       tonemap_(ctx, shaders) {
+  set_scene(scene, shadow_options);
+  create_outputs();
+}
+
+void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOptions& shadow_options) {
+  // The previous frame's commands may still read the buffers replaced here.
+  vkDeviceWaitIdle(ctx_.device());
+  lights_ = passes::upload_lights(ctx_, scene.lights);
+  light_count_ = uint32_t(scene.lights.size());
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
   shadows_.set_scene(scene, shadow_options);
 
-  hdr_ = output_image(ctx, width, height, passes::OpaquePass::kColorFormat,
+  // Output passes enabled before follow the new lights.
+  if (probes_) probes_->set_points(probe_points_, light_count_);
+  if (light_images_) light_images_->set_lights(shadows_);
+  if (quality_ && shadows_.has_reference()) {
+    enable_quality();
+  } else {
+    quality_.reset();
+    hair_quality_.reset();
+  }
+  if (texel_curves_) {
+    std::vector<passes::TexelSample> still_valid;
+    for (const passes::TexelSample& sample : texel_samples_)
+      if (sample.light < shadows_.light_count() && sample.texel.x < shadows_.light_views()[sample.light].resolution &&
+          sample.texel.y < shadows_.light_views()[sample.light].resolution)
+        still_valid.push_back(sample);
+    texel_samples_ = still_valid;
+    if (texel_samples_.empty())
+      texel_curves_.reset();
+    else
+      texel_curves_->set_texel_samples(texel_samples_);
+  }
+}
+
+void SceneRenderer::set_size(uint32_t width, uint32_t height) {
+  if (width == width_ && height == height_) return;
+  vkDeviceWaitIdle(ctx_.device());
+  width_ = width;
+  height_ = height;
+  create_outputs();
+  if (quality_) quality_->set_size(width_, height_, light_count_);
+}
+
+void SceneRenderer::create_outputs() {
+  hdr_ = output_image(ctx_, width_, height_, passes::OpaquePass::kColorFormat,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "hdr color");
-  ldr_ = output_image(ctx, width, height, passes::TonemapPass::kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT, "tonemapped");
+  ldr_ = output_image(ctx_, width_, height_, passes::TonemapPass::kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT,
+                      "tonemapped");
 }
 
 rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passes::View& view) {
@@ -51,12 +93,12 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   executor.bind(hdr, hdr_);
   executor.bind(ldr, ldr_);
 
-  const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, opaque_, hair_, volumes_);
+  const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
   passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_, shadows);
   rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_, shadows);
   color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_, shadows);
 
-  tonemap_.add_to_graph(graph, color, ldr, /*exposure=*/1.0f);
+  tonemap_.add_to_graph(graph, color, ldr, exposure_);
   if (quality_)
     quality_->add_to_graph(graph, executor, opaque.depth, view, lights_, light_count_, volumes_, shadows);
   if (hair_quality_) hair_quality_->add_to_graph(graph, executor, opaque.depth, view, shadows);
@@ -68,6 +110,7 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
   if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  probe_points_ = points;
   probes_->set_points(points, light_count_);
 }
 
@@ -83,6 +126,7 @@ void SceneRenderer::set_texel_samples(const std::vector<passes::TexelSample>& sa
                                   std::to_string(resolution) + "x" + std::to_string(resolution) + " map");
   }
   if (!texel_curves_) texel_curves_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  texel_samples_ = samples;
   texel_curves_->set_texel_samples(samples);
 }
 

@@ -29,6 +29,20 @@ class SceneRenderer {
   SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const scene::Scene& scene, uint32_t width,
                 uint32_t height, const passes::ShadowOptions& shadow_options = {});
 
+  // Hands the renderer another scene (or the same one edited) without rebuilding
+  // its pipelines: uploads geometry, hair, volumes and lights and sets the shadow
+  // maps up again. Waits for the device to idle first. Probes, quality and light
+  // images stay enabled; texel samples that no longer fit the maps are dropped.
+  // Throws std::invalid_argument for a scene the passes cannot render; the
+  // renderer is then left half-updated, so set the previous scene again.
+  void set_scene(const scene::Scene& scene, const passes::ShadowOptions& shadow_options);
+  // New output size (waits for the device to idle).
+  void set_size(uint32_t width, uint32_t height);
+  void set_exposure(float exposure) { exposure_ = exposure; }
+  float exposure() const { return exposure_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+
   // Declares this frame's passes and binds the output images to `executor`.
   rg::Graph build_frame(rg::vulkan::Executor& executor, const passes::View& view);
 
@@ -70,8 +84,13 @@ class SceneRenderer {
   static constexpr VkImageLayout kOutputLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
 
  private:
+  void create_outputs();
+
   gpu::Context& ctx_;
   uint32_t width_, height_;
+  float exposure_ = 1.0f;
+  std::vector<glm::vec3> probe_points_;
+  std::vector<passes::TexelSample> texel_samples_;
   gpu::Buffer lights_;
   uint32_t light_count_ = 0;
   passes::OpaquePass opaque_;

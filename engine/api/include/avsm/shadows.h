@@ -1,0 +1,167 @@
+#pragma once
+// The engine inside another renderer: adaptive volumetric shadow maps (Salvi et al.,
+// EGSR 2010) for the host's own lights and casters, added to the host's own frame
+// graph and read by the host's own shading passes.
+//
+//   // Once: create the device with what the engine needs, then adopt it.
+//   avsm::gpu::DeviceRequirements needs(physical_device);    // extensions() + features()
+//   ... vkCreateDevice(...) ...
+//   avsm::gpu::Context context(avsm::gpu::AdoptedDevice{instance, physical_device, device, queue, family});
+//   avsm::Shadows shadows(context, avsm::ShaderLocation::of_package());
+//   shadows.set_light(light, casters_bounds);
+//
+//   // Every frame: the host's graph and executor (rendergraph/).
+//   rg::Graph graph;
+//   avsm::ShadowInputs maps = shadows.add_to_graph(graph, executor, camera, casters);
+//   graph.add_pass<...>("my shading", ...,
+//       [&](rg::PassBuilder& b, ...) { maps.declare_reads(b); ... },
+//       [=](..., rg::PassContext& c) { avsm::gpu::Bindings bindings(context, pipeline);
+//                                      maps.bind(bindings, 4, c); ... });
+//   executor.record(graph, cmd); submit, wait;
+//   shadows.finish_frame();
+//
+// In the shading pass's GLSL (include directory: ShaderLocation::glsl_include_dir()):
+//   #define AVSM_SHADOW_BINDING 4                  // maps.bind(bindings, 4, c)
+//   #include "common/shadow_lookup.glsl"
+//   float t = surface_light_transmittance(light_index, p, normal, to_light);  // surfaces
+//   float t = light_transmittance(light_index, p);                            // volumes, hair
+// The shader is the host's: compile it with compile_glsl() or with glslangValidator and
+// -I <glsl_include_dir>. Bindings go through push descriptors (VK_KHR_push_descriptor,
+// avsm::gpu::Pipeline/Bindings); ShadowInputs' fields hold the raw handles for hosts that
+// write their own descriptor sets.
+#include <rendergraph/graph.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "passes/shadow_casters.h"
+#include "passes/shadow_inputs.h"
+#include "scene/bounds.h"
+
+namespace rg::vulkan {
+class Executor;
+}
+namespace avsm::gpu {
+class Context;
+}
+
+namespace avsm {
+
+using passes::CasterVertex;
+using passes::MeshCasters;
+using passes::MeshDraw;
+using passes::ShadowCasters;
+using passes::ShadowInputs;
+using passes::StrandCasters;
+using passes::StrandParameters;
+using passes::StrandSegment;
+using passes::VolumeCasters;
+using scene::Bounds;
+
+// Where the engine's shaders are: GLSL under glsl_root/shaders/, SPIR-V compiled at
+// build time under spirv_root/shaders/ (<name>.spv).
+struct ShaderLocation {
+  std::filesystem::path glsl_root;
+  std::filesystem::path spirv_root;
+  bool compile_from_source = false;  // compile the GLSL at run time instead of loading the SPIR-V
+
+  // The include directory for a host shader's #include "common/shadow_lookup.glsl".
+  std::filesystem::path glsl_include_dir() const { return glsl_root / "shaders"; }
+
+  // The shaders of the package this code was built against: the installed package
+  // (avsmConfig.cmake defines where it is, relative to itself, so the install can move)
+  // or, inside the engine's own build, its source and build trees. Defined inline below
+  // from AVSM_PACKAGE_GLSL_ROOT / AVSM_PACKAGE_SPIRV_ROOT, which linking avsm::shadows
+  // defines; code built otherwise fills the two paths itself.
+  static ShaderLocation of_package();
+};
+
+enum class LightType { directional, spot };
+enum class ShadowFilter { point, bilinear, trilinear };
+
+// A shadowed light. Directional lights fit an orthographic map around the casters'
+// bounds; spot lights a perspective map of their outer cone.
+struct Light {
+  std::string name;
+  LightType type = LightType::directional;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here)
+  glm::vec3 position{0.0f};                // spot only
+  float outer_cone_radians = 0.5f;         // spot only: half angle of the cone
+  uint32_t nodes = 8;                      // AVSM nodes per texel: 4, 8, 12 or 16
+  uint32_t resolution = 512;               // map texels per side
+  ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
+  bool sort = true;                        // sort each texel's segments first: the same map every run
+};
+
+// The camera the host shades from; only trilinear filtering uses it (a pixel's
+// footprint picks the map's mip level).
+struct Camera {
+  glm::vec3 position{0.0f};
+  float vertical_fov_radians = 1.0f;
+  uint32_t height_pixels = 1;
+};
+
+// One light's figures for the frame that finish_frame() closed.
+struct LightStats {
+  std::string name;
+  uint32_t nodes = 0, resolution = 0, mip_levels = 0;
+  uint64_t map_bytes = 0;           // the persistent AVSM map
+  uint64_t capture_bytes = 0;       // transient capture lists this frame
+  uint64_t segments_captured = 0;   // what the casters asked for
+  uint64_t segment_capacity = 0;    // what the capture buffer held this frame
+  bool overflowed = false;          // segments were dropped: lighter shadows this frame
+  bool grew = false;                // the capture buffer grew: the next frame fits
+};
+
+class Shadows {
+ public:
+  static constexpr uint32_t kMaxLights = passes::kMaxShadowedLights;
+
+  // Pipelines are built here, from `shaders`, on `context` (owned or adopted; it must outlive this).
+  Shadows(gpu::Context& context, const ShaderLocation& shaders);
+  ~Shadows();
+  Shadows(const Shadows&) = delete;
+  Shadows& operator=(const Shadows&) = delete;
+
+  // The lights that cast (at most kMaxLights), their maps fitted around `casters_bounds`
+  // (everything that casts or receives). Light i is light_index i in the shader.
+  // Throws std::invalid_argument for an unusable light (bad node count, resolution, direction).
+  void set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds);
+  void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
+
+  // Declares this frame's passes for every light in `graph` (capture, sort, resolve,
+  // mips) and binds their persistent maps to `executor`. The casters' buffers must stay
+  // alive and unchanged until the frame completes. The result is what the host's
+  // shading passes declare as reads and bind.
+  ShadowInputs add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const Camera& camera,
+                            const ShadowCasters& casters);
+
+  // After the frame's command buffer completed: reads the capture counters and grows
+  // an overflowed capture buffer for the next frame.
+  std::vector<LightStats> finish_frame();
+
+  // Bindings that leave every light unshadowed (for a pass drawn without maps).
+  ShadowInputs unshadowed_inputs() const;
+
+  const ShaderLocation& shader_location() const;
+  // Include directories for a host shader that uses the lookup (the engine's GLSL, NanoVDB).
+  std::vector<std::filesystem::path> glsl_include_dirs() const;
+  // Compiles a host GLSL file (.vert .frag .comp .geom) with those include directories;
+  // throws gpu::ShaderCompileError with the file and line of the first error.
+  std::vector<uint32_t> compile_glsl(const std::filesystem::path& file) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+#if defined(AVSM_PACKAGE_GLSL_ROOT) && defined(AVSM_PACKAGE_SPIRV_ROOT)
+inline ShaderLocation ShaderLocation::of_package() { return {AVSM_PACKAGE_GLSL_ROOT, AVSM_PACKAGE_SPIRV_ROOT}; }
+#endif
+
+}  // namespace avsm

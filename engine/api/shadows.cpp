@@ -1,0 +1,112 @@
+#include "avsm/shadows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gpu/context.h"
+#include "gpu/shader_compiler.h"
+#include "passes/shadow_maps.h"
+#include "passes/view.h"
+
+#ifndef AVSM_NANOVDB_INCLUDE_DIR
+#define AVSM_NANOVDB_INCLUDE_DIR "/usr/include"
+#endif
+
+namespace avsm {
+namespace {
+
+scene::ShadowFilter to_scene(ShadowFilter filter) {
+  switch (filter) {
+    case ShadowFilter::point: return scene::ShadowFilter::point;
+    case ShadowFilter::bilinear: return scene::ShadowFilter::bilinear;
+    case ShadowFilter::trilinear: return scene::ShadowFilter::trilinear;
+  }
+  return scene::ShadowFilter::bilinear;
+}
+
+// The facade's light as the shadow pipeline's scene light; the rest of its checks
+// (nodes, resolution) are ShadowMaps' own, so both paths give the same messages.
+scene::Light to_scene(const Light& light, size_t index) {
+  const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
+  const float length = glm::length(light.direction);
+  if (!std::isfinite(length) || length < 1e-6f) throw std::invalid_argument(who + ": direction has no length");
+  if (light.type == LightType::spot && !(light.outer_cone_radians > 0.0f && light.outer_cone_radians < 1.55f))
+    throw std::invalid_argument(who + ": a spot light's outer cone must be in (0, 1.55) radians");
+  scene::Light out;
+  out.name = light.name;
+  out.type = light.type == LightType::spot ? scene::LightType::spot : scene::LightType::directional;
+  out.direction = light.direction / length;
+  out.position = light.position;
+  out.inner_cone_angle = light.outer_cone_radians;
+  out.outer_cone_angle = light.outer_cone_radians;
+  out.shadow.technique = scene::ShadowTechnique::avsm;
+  out.shadow.nodes = int(light.nodes);
+  out.shadow.resolution = int(light.resolution);
+  out.shadow.filter = to_scene(light.filter);
+  out.shadow.sort = light.sort;
+  return out;
+}
+
+// What the shadow parameters need of a camera: its position, and a projection whose
+// [1][1] is 1 / tan(fov / 2) (a pixel's angle for trilinear filtering).
+passes::View to_view(const Camera& camera) {
+  passes::View view;
+  view.camera_position = camera.position;
+  view.projection[1][1] = 1.0f / std::tan(0.5f * camera.vertical_fov_radians);
+  view.height = std::max(camera.height_pixels, 1u);
+  return view;
+}
+
+}  // namespace
+
+struct Shadows::Impl {
+  Impl(gpu::Context& context, const ShaderLocation& location)
+      : location(location),
+        library({location.glsl_root, location.spirv_root}, location.compile_from_source),
+        maps(context, library) {}
+  ShaderLocation location;
+  gpu::ShaderLibrary library;
+  passes::ShadowMaps maps;
+};
+
+Shadows::Shadows(gpu::Context& context, const ShaderLocation& shaders)
+    : impl_(std::make_unique<Impl>(context, shaders)) {}
+
+Shadows::~Shadows() = default;
+
+void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds) {
+  std::vector<scene::Light> scene_lights;
+  for (size_t i = 0; i < lights.size(); ++i) scene_lights.push_back(to_scene(lights[i], i));
+  impl_->maps.set_lights(scene_lights, casters_bounds);
+}
+
+ShadowInputs Shadows::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const Camera& camera,
+                                   const ShadowCasters& casters) {
+  return impl_->maps.add_to_graph(graph, executor, to_view(camera), casters);
+}
+
+std::vector<LightStats> Shadows::finish_frame() {
+  impl_->maps.finish_frame();
+  std::vector<LightStats> result;
+  for (const passes::LightShadowStats& s : impl_->maps.frame_stats())
+    result.push_back({s.light, s.nodes, s.resolution, s.mip_levels, s.map_bytes, s.capture_bytes, s.capture_requested,
+                      s.capture_capacity, s.overflowed, s.grew});
+  return result;
+}
+
+ShadowInputs Shadows::unshadowed_inputs() const { return impl_->maps.unshadowed_inputs(); }
+
+const ShaderLocation& Shadows::shader_location() const { return impl_->location; }
+
+std::vector<std::filesystem::path> Shadows::glsl_include_dirs() const {
+  return {impl_->location.glsl_include_dir(), AVSM_NANOVDB_INCLUDE_DIR};
+}
+
+std::vector<uint32_t> Shadows::compile_glsl(const std::filesystem::path& file) const {
+  gpu::ShaderCompileOptions options;
+  options.include_dirs = glsl_include_dirs();
+  return gpu::compile_glsl_file(file, options).spirv;
+}
+
+}  // namespace avsm

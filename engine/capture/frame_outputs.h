@@ -1,0 +1,92 @@
+#pragma once
+// What one captured frame leaves on disk, written the same way by avsm-capture
+// and by the viewer's screenshot key:
+//   frame.png (tonemapped), frame.exr (linear HDR), timings.json (per pass GPU and
+//   CPU-record ms, min/median/max over the measured frames), trace.json (Chrome
+//   trace of every frame), graph.json and graph.dot (the compiled frame graph),
+//   memory.json (transient bytes, per light map and capture figures) and
+//   light<i>_transmittance.png when the renderer draws light images.
+#include <rendergraph/vulkan/executor.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "capture/trace.h"
+
+namespace avsm::gpu {
+class Context;
+}
+namespace avsm::renderer {
+class SceneRenderer;
+}
+namespace avsm::scene {
+struct Scene;
+}
+
+namespace avsm::capture {
+
+// When the steps of one frame ended on the CPU clock.
+struct FrameClock {
+  std::chrono::steady_clock::time_point start, built, recorded, completed;
+};
+
+// Per-pass timings of the measured frames, and a trace of every frame logged.
+class FrameTimingLog {
+ public:
+  // Trace times are in ms from `origin`.
+  explicit FrameTimingLog(std::chrono::steady_clock::time_point origin = std::chrono::steady_clock::now());
+
+  // Logs a frame that just completed (its wall time ends now): always on the trace,
+  // in the statistics only when `measured` (warm-up frames are not). Returns the
+  // frame's wall time in ms.
+  double add_frame(const FrameClock& clock, const std::vector<rg::vulkan::PassTiming>& passes, bool measured);
+
+  // Forgets every frame (the viewer keeps only the frames since the last change).
+  void clear();
+
+  // One pass's samples over the measured frames.
+  struct PassSamples {
+    std::string name;
+    rg::QueueType queue = rg::QueueType::Graphics;
+    std::vector<double> gpu_ms, cpu_record_ms;
+  };
+  const std::vector<PassSamples>& passes() const { return passes_; }  // in the order first seen
+  // Per measured frame: the passes' GPU ms summed, the wall time, and submit to completion.
+  const std::vector<double>& frame_gpu_ms() const { return frame_gpu_ms_; }
+  const std::vector<double>& frame_wall_ms() const { return frame_wall_ms_; }
+  const std::vector<double>& frame_submit_ms() const { return frame_submit_ms_; }
+  const TraceWriter& trace() const { return trace_; }
+  uint32_t frames_logged() const { return frames_logged_; }
+
+ private:
+  std::chrono::steady_clock::time_point origin_;
+  TraceWriter trace_;
+  uint32_t frames_logged_ = 0;
+  std::vector<PassSamples> passes_;
+  std::map<std::string, size_t> pass_index_;
+  std::vector<double> frame_gpu_ms_, frame_wall_ms_, frame_submit_ms_;
+};
+
+// Everything write_frame_outputs reads; the frame must have completed.
+struct FrameOutputSources {
+  gpu::Context& ctx;
+  const renderer::SceneRenderer& renderer;
+  const rg::vulkan::Executor& executor;
+  const scene::Scene& scene;  // the scene as rendered (overrides applied)
+  const FrameTimingLog& timings;
+  uint64_t frames_with_capture_overflow = 0;
+};
+
+struct FrameOutputFiles {
+  std::filesystem::path png, exr, timings;
+};
+
+// Creates out_dir and writes the files listed at the top of this header.
+// Throws std::runtime_error naming a file that cannot be written.
+FrameOutputFiles write_frame_outputs(const std::filesystem::path& out_dir, const FrameOutputSources& frame);
+
+}  // namespace avsm::capture

@@ -1,0 +1,253 @@
+#include "live/live_renderer.h"
+
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/description.h"
+#include "scene/load_error.h"
+
+namespace avsm::live {
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::file_time_type write_time(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_time_type time = fs::last_write_time(file, ec);
+  return ec ? fs::file_time_type::min() : time;  // a file that vanished counts as changed
+}
+
+// The external buffers and images of a .gltf (not data URIs): re-exporting a
+// model often rewrites only its .bin. Unreadable JSON adds nothing; loading
+// the model reports it.
+std::vector<fs::path> gltf_resources(const fs::path& gltf) {
+  std::vector<fs::path> files;
+  if (gltf.extension() != ".gltf") return files;
+  std::ifstream in(gltf);
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!json.is_object()) return files;
+  for (const char* list : {"buffers", "images"}) {
+    auto entries = json.find(list);
+    if (entries == json.end() || !entries->is_array()) continue;
+    for (const nlohmann::json& entry : *entries) {
+      auto uri = entry.find("uri");
+      if (uri == entry.end() || !uri->is_string()) continue;
+      const std::string text = uri->get<std::string>();
+      if (text.rfind("data:", 0) != 0) files.push_back(gltf.parent_path() / text);
+    }
+  }
+  return files;
+}
+
+// The files a scene is made of: the scene file and every asset it references.
+std::vector<fs::path> scene_files(const scene::SceneDescription& description) {
+  std::vector<fs::path> files{description.file};
+  for (const scene::ModelEntry& model : description.models) {
+    files.push_back(model.file);
+    for (const fs::path& resource : gltf_resources(model.file)) files.push_back(resource);
+  }
+  for (const scene::VolumeEntry& volume : description.volumes) files.push_back(volume.file);
+  for (const scene::HairEntry& hair : description.hair) files.push_back(hair.file);
+  return files;
+}
+
+// The line of a message worth showing next to file:line: glslang's first
+// "ERROR: file:line: what" without its location, else the first line without a
+// leading "file: " (loaders name the file first).
+std::string headline(const std::string& message, const fs::path& file) {
+  std::istringstream lines(message);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t error = line.find("ERROR: ");
+    if (error == std::string::npos) continue;
+    const size_t what = line.find(": ", line.find(':', line.find(':', error + 7) + 1));
+    return what == std::string::npos ? line.substr(error + 7) : line.substr(what + 2);
+  }
+  std::string first = message.substr(0, message.find('\n'));
+  for (const std::string& prefix : {file.string() + ": ", file.filename().string() + ": "})
+    if (!prefix.empty() && first.rfind(prefix, 0) == 0) return first.substr(prefix.size());
+  return first;
+}
+
+}  // namespace
+
+std::string ReloadError::summary() const {
+  std::ostringstream out;
+  out << (file.empty() ? std::string("edit") : file.string());
+  if (line > 0) out << ':' << line;
+  out << ": " << headline(message, file);
+  return out.str();
+}
+
+// Time stamps of the files last loaded successfully; a change to any of them
+// triggers a reload on the next poll.
+struct LiveRenderer::Watched {
+  std::map<fs::path, fs::file_time_type> scene, shaders;
+
+  static void set(std::map<fs::path, fs::file_time_type>& watched, const std::vector<fs::path>& files) {
+    watched.clear();
+    for (const fs::path& file : files) watched[file] = write_time(file);
+  }
+  // Files whose time stamp changed since the last call; remembers the new stamps,
+  // so an edit that fails to load is reported once, not on every poll.
+  static std::vector<fs::path> take_changes(std::map<fs::path, fs::file_time_type>& watched) {
+    std::vector<fs::path> changed;
+    for (auto& [file, time] : watched) {
+      const fs::file_time_type now = write_time(file);
+      if (now == time) continue;
+      time = now;
+      changed.push_back(file);
+    }
+    return changed;
+  }
+};
+
+LiveRenderer::LiveRenderer(gpu::Context& ctx, LiveOptions options)
+    : ctx_(ctx),
+      options_(std::move(options)),
+      shaders_(std::make_unique<gpu::ShaderLibrary>(options_.shader_paths, /*compile_from_source=*/true)),
+      watched_(std::make_unique<Watched>()),
+      next_shadow_options_(options_.shadow_options) {
+  const scene::SceneDescription description = scene::read_scene_description(options_.scene_file);
+  loaded_ = scene::load_scene(description);
+  edited_ = loaded_;
+  renderer_ = make_renderer(edited_);
+  Watched::set(watched_->scene, scene_files(description));
+  Watched::set(watched_->shaders, shaders_->source_files());
+}
+
+LiveRenderer::~LiveRenderer() {
+  if (renderer_) vkDeviceWaitIdle(ctx_.device());
+}
+
+std::unique_ptr<renderer::SceneRenderer> LiveRenderer::make_renderer(const scene::Scene& scene) const {
+  auto fresh = std::make_unique<renderer::SceneRenderer>(ctx_, *shaders_, scene, options_.width, options_.height,
+                                                         options_.shadow_options);
+  if (setup_) setup_(*fresh);
+  return fresh;
+}
+
+void LiveRenderer::set_scene_edit(std::function<void(scene::Scene&)> edit) {
+  edit_ = std::move(edit);
+  edits_dirty_ = true;
+}
+
+void LiveRenderer::set_shadow_options(const passes::ShadowOptions& options) {
+  next_shadow_options_ = options;
+  edits_dirty_ = true;
+}
+
+void LiveRenderer::set_size(uint32_t width, uint32_t height) {
+  options_.width = width;
+  options_.height = height;
+  renderer_->set_size(width, height);
+}
+
+void LiveRenderer::set_scene_file(const fs::path& file) {
+  next_scene_file_ = file;
+  files_dirty_ = true;
+}
+
+void LiveRenderer::set_renderer_setup(std::function<void(renderer::SceneRenderer&)> setup) {
+  setup_ = std::move(setup);
+  if (setup_) setup_(*renderer_);
+}
+
+std::vector<fs::path> LiveRenderer::watched_files() const {
+  std::set<fs::path> files;
+  for (const auto& [file, time] : watched_->scene) files.insert(file);
+  for (const auto& [file, time] : watched_->shaders) files.insert(file);
+  return {files.begin(), files.end()};
+}
+
+PollResult LiveRenderer::poll() {
+  PollResult result;
+  const std::vector<fs::path> scene_changes = Watched::take_changes(watched_->scene);
+  const std::vector<fs::path> shader_changes = Watched::take_changes(watched_->shaders);
+  result.changed = scene_changes;
+  result.changed.insert(result.changed.end(), shader_changes.begin(), shader_changes.end());
+  if (!scene_changes.empty()) files_dirty_ = true;
+
+  // The scene first, so new pipelines are built for the scene they will draw.
+  if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, result);
+  if (!shader_changes.empty()) reload_shaders(result);
+  error_ = shader_error_ ? shader_error_ : scene_error_;
+  return result;
+}
+
+void LiveRenderer::reload_shaders(PollResult& result) {
+  std::unique_ptr<renderer::SceneRenderer> fresh;
+  try {
+    fresh = make_renderer(edited_);
+  } catch (const gpu::ShaderCompileError& e) {
+    shader_error_ = ReloadError{e.file(), e.line(), e.what()};
+    result.failed = true;
+    return;
+  } catch (const std::exception& e) {
+    // Pipeline creation or a missing file: name the last changed shader.
+    shader_error_ = ReloadError{result.changed.empty() ? fs::path() : result.changed.back(), 0, e.what()};
+    result.failed = true;
+    return;
+  }
+  shader_error_.reset();
+  vkDeviceWaitIdle(ctx_.device());  // the old pipelines may still be in flight
+  renderer_ = std::move(fresh);
+  // A new include may have appeared; watch what the good shaders are made of now.
+  Watched::set(watched_->shaders, shaders_->source_files());
+  result.shaders_reloaded = true;
+}
+
+void LiveRenderer::reload_scene(bool read_files, PollResult& result) {
+  const fs::path file = next_scene_file_.value_or(options_.scene_file);
+  files_dirty_ = false;
+  edits_dirty_ = false;
+  next_scene_file_.reset();
+
+  scene::SceneDescription description;
+  scene::Scene fresh_loaded;
+  try {
+    if (read_files) {
+      description = scene::read_scene_description(file);
+      fresh_loaded = scene::load_scene(description);
+    } else {
+      fresh_loaded = loaded_;
+    }
+  } catch (const scene::LoadError& e) {
+    scene_error_ = ReloadError{e.file(), 0, e.what()};
+    result.failed = true;
+    return;
+  } catch (const std::exception& e) {
+    scene_error_ = ReloadError{file, 0, e.what()};
+    result.failed = true;
+    return;
+  }
+
+  scene::Scene fresh_edited = fresh_loaded;
+  try {
+    if (edit_) edit_(fresh_edited);
+    renderer_->set_scene(fresh_edited, next_shadow_options_);
+  } catch (const std::exception& e) {
+    // The renderer may be half-updated: give it the last good scene back.
+    renderer_->set_scene(edited_, options_.shadow_options);
+    // Settings from the files, or the editor's own (no file to blame).
+    scene_error_ = ReloadError{read_files ? file : fs::path(), 0, e.what()};
+    result.failed = true;
+    return;
+  }
+  scene_error_.reset();
+  loaded_ = std::move(fresh_loaded);
+  edited_ = std::move(fresh_edited);
+  options_.shadow_options = next_shadow_options_;
+  if (read_files) {
+    options_.scene_file = file;
+    Watched::set(watched_->scene, scene_files(description));
+  }
+  result.scene_reloaded = true;
+}
+
+}  // namespace avsm::live

@@ -1,0 +1,113 @@
+#pragma once
+// The authoring loop's renderer: a SceneRenderer that follows its files. It
+// watches the scene file, every asset the scene references and every shader
+// source (with its #includes), and on the next poll() after an edit it reloads
+// what changed:
+//   - a shader: recompiles it (glslang, from source) and rebuilds the pipelines;
+//   - the scene file or an asset: loads the scene again and hands it to the renderer;
+//   - the editor's overrides (set_scene_edit): re-applies them to the loaded scene.
+// A reload that fails (a compile error, a malformed file) changes nothing: the
+// last good scene and pipelines keep rendering and error() says what failed,
+// naming the file and, for shaders, the line. The next successful reload clears it.
+// Nothing here needs a window: the viewer drives it, and so do the tests.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/shader_compiler.h"
+#include "passes/shadow_maps.h"
+#include "renderer/scene_renderer.h"
+#include "scene/scene.h"
+
+namespace avsm::live {
+
+// What a failed reload reports; the previous content stays in use.
+struct ReloadError {
+  std::filesystem::path file;  // the file at fault (a shader, the scene file, an asset); empty for an edit
+  int line = 0;                // 0 when unknown (asset and scene errors)
+  std::string message;         // the loader's or compiler's full message
+  std::string summary() const; // "file:line: what went wrong" (one line; "edit: ..." without a file)
+};
+
+struct LiveOptions {
+  std::filesystem::path scene_file;
+  uint32_t width = 640, height = 360;
+  passes::ShadowOptions shadow_options;
+  // Shader sources to compile and watch (source_root/shaders/...); spirv_root is unused.
+  gpu::ShaderLibrary::Paths shader_paths = gpu::ShaderLibrary::default_paths();
+};
+
+// What one poll() did.
+struct PollResult {
+  std::vector<std::filesystem::path> changed;  // watched files whose time stamp changed
+  bool shaders_reloaded = false;               // new pipelines are in use
+  bool scene_reloaded = false;                 // the scene (file, assets or edits) was handed to the renderer again
+  bool failed = false;                         // a reload failed; error() has it
+  bool anything_new() const { return shaders_reloaded || scene_reloaded; }
+};
+
+class LiveRenderer {
+ public:
+  // Loads the scene and compiles every shader from source. Throws (std::runtime_error,
+  // scene::LoadError, gpu::ShaderCompileError) when this first load fails: there is
+  // nothing yet to fall back to.
+  LiveRenderer(gpu::Context& ctx, LiveOptions options);
+  ~LiveRenderer();
+
+  // Overrides applied to the loaded scene before rendering (light settings,
+  // extinction scale, hair width...), now and after every reload of the scene.
+  // Takes effect on the next poll().
+  void set_scene_edit(std::function<void(scene::Scene&)> edit);
+  // Takes effect on the next poll() (a failure there keeps the old ones).
+  void set_shadow_options(const passes::ShadowOptions& options);
+  void set_size(uint32_t width, uint32_t height);
+  // Loads another scene file on the next poll() (same rules: a bad file keeps the current scene).
+  void set_scene_file(const std::filesystem::path& file);
+  // Called on the renderer now and on every new one (a shader reload builds a new
+  // SceneRenderer): enable probes, light images, texel samples, exposure here.
+  void set_renderer_setup(std::function<void(renderer::SceneRenderer&)> setup);
+
+  // Checks the watched files' time stamps and reloads what changed or was asked
+  // for. Cheap when nothing changed. Waits for the device to idle before it
+  // replaces anything, so call it between frames.
+  PollResult poll();
+
+  // The last failed reload; empty once a reload succeeds.
+  const std::optional<ReloadError>& error() const { return error_; }
+
+  renderer::SceneRenderer& renderer() { return *renderer_; }
+  const scene::Scene& scene() const { return edited_; }        // what is being rendered
+  const scene::Scene& loaded_scene() const { return loaded_; }  // as read from the files
+  const LiveOptions& options() const { return options_; }
+  const gpu::ShaderLibrary& shaders() const { return *shaders_; }
+  // Every file being watched (scene, assets, shader sources and includes).
+  std::vector<std::filesystem::path> watched_files() const;
+
+ private:
+  struct Watched;
+  void reload_shaders(PollResult& result);
+  void reload_scene(bool read_files, PollResult& result);
+
+  std::unique_ptr<renderer::SceneRenderer> make_renderer(const scene::Scene& scene) const;
+
+  gpu::Context& ctx_;
+  LiveOptions options_;
+  std::unique_ptr<gpu::ShaderLibrary> shaders_;
+  std::unique_ptr<renderer::SceneRenderer> renderer_;
+  scene::Scene loaded_, edited_;
+  std::function<void(scene::Scene&)> edit_;
+  std::function<void(renderer::SceneRenderer&)> setup_;
+  std::unique_ptr<Watched> watched_;
+  std::optional<ReloadError> shader_error_, scene_error_;
+  std::optional<ReloadError> error_;  // the shader error if any, else the scene error
+  bool files_dirty_ = false;   // read the scene and its assets again
+  bool edits_dirty_ = false;   // apply edits / shadow options / size again
+  std::optional<std::filesystem::path> next_scene_file_;
+  passes::ShadowOptions next_shadow_options_;
+};
+
+}  // namespace avsm::live

@@ -1,0 +1,97 @@
+#include "viewer/control_commands.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace avsm::viewer {
+
+namespace {
+
+float parse_number(const std::string& text, const std::string& what) {
+  try {
+    size_t used = 0;
+    const float value = std::stof(text, &used);
+    if (used == text.size()) return value;
+  } catch (const std::exception&) {
+  }
+  throw std::invalid_argument(what + " expects a number, got '" + text + "'");
+}
+
+int parse_whole(const std::string& text, const std::string& what) {
+  const float value = parse_number(text, what);
+  if (value != float(int(value)) || value < 0) throw std::invalid_argument(what + " expects a whole number, got '" + text + "'");
+  return int(value);
+}
+
+bool parse_on_off(const std::string& text, const std::string& what) {
+  if (text == "on") return true;
+  if (text == "off") return false;
+  throw std::invalid_argument(what + " expects on or off, got '" + text + "'");
+}
+
+}  // namespace
+
+ControlCommand parse_control_command(const std::string& line) {
+  std::istringstream words(line);
+  std::string name, rest;
+  words >> name;
+  ControlCommand command;
+  auto argument = [&](const char* what) {
+    std::string word;
+    if (!(words >> word)) throw std::invalid_argument("'" + name + "' needs " + what);
+    return word;
+  };
+  if (name == "frame") {
+    command.kind = ControlCommand::Kind::frame;
+  } else if (name == "inspect") {
+    command.kind = ControlCommand::Kind::inspect;
+    const std::string xy = argument("X,Y");
+    const size_t comma = xy.find(',');
+    if (comma == std::string::npos) throw std::invalid_argument("'inspect' expects X,Y, got '" + xy + "'");
+    command.pixel = {parse_number(xy.substr(0, comma), "inspect"), parse_number(xy.substr(comma + 1), "inspect")};
+  } else if (name == "screenshot") {
+    command.kind = ControlCommand::Kind::screenshot;
+    command.directory = argument("a folder");
+  } else if (name == "light") {
+    command.kind = ControlCommand::Kind::light;
+    command.light = uint32_t(parse_whole(argument("a light index"), "light"));
+    command.field = argument("a field");
+    command.value = argument("a value");
+  } else if (name == "exposure") {
+    command.kind = ControlCommand::Kind::exposure;
+    command.exposure = parse_number(argument("a number"), "exposure");
+  } else if (name == "quit") {
+    command.kind = ControlCommand::Kind::quit;
+  } else {
+    throw std::invalid_argument("unknown command '" + name +
+                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, quit)");
+  }
+  if (words >> rest) throw std::invalid_argument("'" + name + "': unexpected '" + rest + "'");
+  return command;
+}
+
+void set_light_field(SceneOverrides& overrides, uint32_t light, const std::string& field, const std::string& value) {
+  LightOverride& o = overrides.light(light);
+  const std::string what = "light " + field;
+  if (field == "technique") {
+    const std::optional<scene::ShadowTechnique> technique = scene::shadow_technique_from_string(value);
+    if (!technique) throw std::invalid_argument(what + ": unknown technique '" + value + "'");
+    o.technique = *technique;
+  } else if (field == "filter") {
+    const std::optional<scene::ShadowFilter> filter = scene::shadow_filter_from_string(value);
+    if (!filter) throw std::invalid_argument(what + ": unknown filter '" + value + "'");
+    o.filter = *filter;
+  } else if (field == "nodes") {
+    o.nodes = parse_whole(value, what);
+  } else if (field == "resolution") {
+    o.resolution = parse_whole(value, what);
+  } else if (field == "sort") {
+    o.sort = parse_on_off(value, what);
+  } else if (field == "on") {
+    o.enabled = parse_on_off(value, what);
+  } else {
+    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, on)");
+  }
+}
+
+}  // namespace avsm::viewer

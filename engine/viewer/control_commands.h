@@ -1,0 +1,39 @@
+#pragma once
+// avsm-viewer --control: the viewer driven by commands on stdin, one per line, for
+// tests and tools that have no input devices (under Xvfb nobody clicks). After each
+// command the viewer prints one JSON line on stdout. Commands:
+//   frame                    poll the watched files, render a scene frame, present
+//   inspect X,Y              click pixel (X, Y) (x right, y down): plot its texel curves
+//   screenshot DIR           write one avsm-capture frame's outputs and window.png
+//   light I FIELD VALUE      set a panel field of light I: technique (avsm, ...), nodes,
+//                            resolution, filter (point, ...), sort (on/off), on (on/off)
+//   exposure V               the tonemapper's exposure
+//   quit                     stop (the exit status still reports validation messages)
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "viewer/scene_overrides.h"
+
+namespace avsm::viewer {
+
+struct ControlCommand {
+  enum class Kind { frame, inspect, screenshot, light, exposure, quit };
+  Kind kind = Kind::frame;
+  glm::vec2 pixel{0.0f};             // inspect
+  std::filesystem::path directory;   // screenshot
+  uint32_t light = 0;                // light
+  std::string field, value;          // light
+  float exposure = 1.0f;             // exposure
+};
+
+// Throws std::invalid_argument saying what is wrong with the line.
+ControlCommand parse_control_command(const std::string& line);
+
+// Sets light `light`'s `field` to `value` in the overrides (the panel's fields, by
+// name). Throws std::invalid_argument for an unknown field or a bad value.
+void set_light_field(SceneOverrides& overrides, uint32_t light, const std::string& field, const std::string& value);
+
+}  // namespace avsm::viewer

@@ -1,0 +1,305 @@
+#include "viewer/panel.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace avsm::viewer {
+
+namespace {
+
+constexpr std::array kTechniques{scene::ShadowTechnique::avsm, scene::ShadowTechnique::uncompressed,
+                                 scene::ShadowTechnique::dsm, scene::ShadowTechnique::osm,
+                                 scene::ShadowTechnique::fom};
+constexpr std::array kFilters{scene::ShadowFilter::point, scene::ShadowFilter::bilinear,
+                              scene::ShadowFilter::trilinear};
+constexpr std::array kNodeCounts{4, 8, 12, 16};
+constexpr std::array kResolutions{64, 128, 256, 512, 1024, 2048};
+
+const ImVec4 kErrorColour{1.0f, 0.35f, 0.3f, 1.0f};
+const ImU32 kReferenceColour = IM_COL32(235, 235, 235, 255);
+const ImU32 kTechniqueColour = IM_COL32(230, 60, 50, 255);
+
+std::string bytes_text(uint64_t bytes) {
+  char text[32];
+  if (bytes >= (1ull << 20))
+    std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1ull << 20));
+  else
+    std::snprintf(text, sizeof(text), "%.1f KiB", double(bytes) / 1024.0);
+  return text;
+}
+
+// A combo over `options`, labelled by `name`; returns the newly chosen one.
+template <class T, size_t N, class Name>
+std::optional<T> choose(const char* label, const T& current, const std::array<T, N>& options, Name name) {
+  std::optional<T> chosen;
+  const std::string preview = name(current);
+  if (ImGui::BeginCombo(label, preview.c_str())) {
+    for (const T& option : options) {
+      const bool selected = option == current;
+      if (ImGui::Selectable(name(option).c_str(), selected) && !selected) chosen = option;
+    }
+    ImGui::EndCombo();
+  }
+  return chosen;
+}
+
+std::string technique_name(scene::ShadowTechnique t) { return std::string(scene::to_string(t)); }
+std::string filter_name(scene::ShadowFilter f) { return std::string(scene::to_string(f)); }
+std::string number_name(int n) { return std::to_string(n); }
+
+// The technique's curve (red) over the exact one (white) across the light's depth
+// range, the stored AVSM nodes as dots and the picked point's depth as a line.
+void plot_curve(const TexelCurve& curve) {
+  const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 120.0f), 140.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("curve", size);
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  draw.AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(25, 25, 30, 255));
+  const float span = std::max(curve.far_depth - curve.near_depth, 1e-6f);
+  auto at = [&](float depth, float t) {
+    return ImVec2(origin.x + (depth - curve.near_depth) / span * size.x,
+                  origin.y + (1.0f - std::clamp(t, 0.0f, 1.0f)) * size.y);
+  };
+  for (float t : {0.25f, 0.5f, 0.75f})
+    draw.AddLine(at(curve.near_depth, t), at(curve.far_depth, t), IM_COL32(60, 60, 70, 255));
+  auto polyline = [&](const std::vector<float>& values, ImU32 colour, float thickness) {
+    std::vector<ImVec2> points;
+    for (size_t i = 0; i < values.size() && i < curve.depths.size(); ++i) points.push_back(at(curve.depths[i], values[i]));
+    draw.AddPolyline(points.data(), int(points.size()), colour, ImDrawFlags_None, thickness);
+  };
+  polyline(curve.reference_values, kReferenceColour, 2.5f);
+  polyline(curve.technique_values, kTechniqueColour, 1.5f);
+  for (const capture::CurveNode& node : curve.nodes)
+    if (node.depth >= curve.near_depth && node.depth <= curve.far_depth)
+      draw.AddCircleFilled(at(node.depth, node.transmittance), 3.0f, kTechniqueColour);
+  if (!std::isnan(curve.point_depth))
+    draw.AddLine(at(curve.point_depth, 0.0f), at(curve.point_depth, 1.0f), IM_COL32(90, 160, 255, 255));
+  if (ImGui::IsItemHovered()) {
+    const float depth = curve.near_depth + (ImGui::GetIO().MousePos.x - origin.x) / size.x * span;
+    const size_t k = size_t(std::clamp((depth - curve.near_depth) / span, 0.0f, 1.0f) * float(curve.depths.size() - 1));
+    if (k < curve.technique_values.size())
+      ImGui::SetTooltip("depth %.3f\n%s %.4f\nexact %.4f", curve.depths[k], curve.technique.c_str(),
+                        curve.technique_values[k], curve.reference_values[k]);
+  }
+}
+
+}  // namespace
+
+double FrameStats::gpu_ms() const {
+  double total = 0;
+  for (const rg::vulkan::PassTiming& pass : passes) total += pass.gpu_ms;
+  return total;
+}
+
+Panel::Panel(const std::string& scene_file) : scene_file_(scene_file) {
+  std::snprintf(scene_path_, sizeof(scene_path_), "%s", scene_file.c_str());
+}
+
+PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings) {
+  PanelRequests requests;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(std::min(420.0f, display.x * 0.42f), display.y - 12), ImGuiCond_FirstUseEver);
+  ImGui::Begin("AVSM viewer");
+  draw_status(view, requests);
+  if (ImGui::CollapsingHeader("Texel inspection", ImGuiTreeNodeFlags_DefaultOpen)) draw_inspection(view, requests);
+  if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_lights(view, settings, requests);
+  if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(view);
+  if (ImGui::CollapsingHeader("Smoke and hair")) draw_media(view, settings, requests);
+  if (ImGui::CollapsingHeader("Display")) draw_display(settings, requests);
+  if (ImGui::CollapsingHeader("Memory")) draw_memory(view);
+  if (ImGui::CollapsingHeader("Frame graph plan")) draw_plan(view);
+  if (ImGui::CollapsingHeader("Scene file")) draw_scene_file(requests);
+  ImGui::End();
+  return requests;
+}
+
+void Panel::draw_status(const PanelView& view, PanelRequests& requests) {
+  if (const std::optional<live::ReloadError>& error = view.live.error()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
+    ImGui::TextWrapped("%s", error->summary().c_str());
+    ImGui::PopStyleColor();
+    if (ImGui::TreeNode("full message")) {
+      ImGui::TextWrapped("%s", error->message.c_str());
+      ImGui::TreePop();
+    }
+    ImGui::TextDisabled("still showing the last good version");
+  }
+  if (view.frame.number)
+    ImGui::Text("frame %llu: %.1f ms (GPU %.1f ms)", (unsigned long long)view.frame.number, view.frame.wall_ms,
+                view.frame.gpu_ms());
+  if (ImGui::Button("Screenshot (F12)")) requests.screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset camera")) requests.reset_camera = true;
+  int mode = view.camera_mode == CameraMode::orbit ? 0 : 1;
+  if (ImGui::RadioButton("orbit", &mode, 0)) requests.camera_mode = CameraMode::orbit;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("fly (WASDQE)", &mode, 1)) requests.camera_mode = CameraMode::fly;
+  if (!view.status.empty()) ImGui::TextWrapped("%s", view.status.c_str());
+}
+
+void Panel::draw_scene_file(PanelRequests& requests) {
+  ImGui::InputText("file", scene_path_, sizeof(scene_path_));
+  if (ImGui::Button("Load")) requests.load_scene = std::string(scene_path_);
+  ImGui::SameLine();
+  ImGui::TextDisabled("edits to the file and its assets reload by themselves");
+}
+
+void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
+  const scene::Scene& scene = view.live.scene();
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scene::Light& light = scene.lights[i];
+    const scene::ShadowSettings& shadow = light.shadow;
+    ImGui::PushID(int(i));
+    const std::string title = "light " + std::to_string(i) + " '" + light.name + "' (" +
+                              std::string(scene::to_string(light.type)) + ")";
+    if (ImGui::TreeNode(title.c_str())) {
+      LightOverride& o = settings.overrides.light(i);
+      bool on = o.enabled.value_or(true);
+      if (ImGui::Checkbox("on", &on)) o.enabled = on, requests.scene_edited = true;
+      ImGui::SameLine();
+      bool sort = shadow.sort;
+      if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
+      if (auto t = choose("technique", shadow.technique, kTechniques, technique_name))
+        o.technique = *t, requests.scene_edited = true;
+      if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;
+      if (auto r = choose("map resolution", shadow.resolution, kResolutions, number_name))
+        o.resolution = *r, requests.scene_edited = true;
+      if (auto f = choose("filter", shadow.filter, kFilters, filter_name)) o.filter = *f, requests.scene_edited = true;
+      glm::vec3 direction = light.direction;
+      if (ImGui::DragFloat3("direction", &direction.x, 0.01f, -1.0f, 1.0f))
+        o.direction = direction, requests.scene_edited = true;
+      if (light.type == scene::LightType::spot) {
+        glm::vec3 position = light.position;
+        if (ImGui::DragFloat3("position", &position.x, 0.02f)) o.position = position, requests.scene_edited = true;
+      }
+      if (i < view.light_maps.size()) {
+        // The map as the light sees it; click a texel to plot its curve. Row 0 of the
+        // picture is the map's top row (texel y = resolution - 1).
+        const float side = std::min(ImGui::GetContentRegionAvail().x, 256.0f);
+        const ImVec2 corner = ImGui::GetCursorScreenPos();
+        ImGui::Image(view.light_maps[i], ImVec2(side, side));
+        if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
+          const ImVec2 mouse = ImGui::GetIO().MousePos;
+          const float res = float(shadow.resolution);
+          const uint32_t x = uint32_t(std::clamp((mouse.x - corner.x) / side * res, 0.0f, res - 1.0f));
+          const uint32_t row = uint32_t(std::clamp((mouse.y - corner.y) / side * res, 0.0f, res - 1.0f));
+          requests.inspect_light_texel = {{uint32_t(i), glm::uvec2(x, uint32_t(res) - 1 - row)}};
+        }
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
+
+void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
+  const scene::Scene& scene = view.live.scene();
+  for (size_t i = 0; i < scene.volumes.size(); ++i) {
+    const scene::Volume& volume = scene.volumes[i];
+    ImGui::PushID(int(1000 + i));
+    ImGui::Text("volume '%s'", volume.name.c_str());
+    VolumeOverride& o = settings.overrides.volume(i);
+    float extinction = volume.extinction_scale;
+    if (ImGui::DragFloat("extinction scale", &extinction, std::max(extinction * 0.01f, 0.001f), 0.0f, 1e6f, "%.3f"))
+      o.extinction_scale = extinction, requests.scene_edited = true;
+    glm::vec3 albedo = volume.albedo;
+    if (ImGui::ColorEdit3("albedo", &albedo.x)) o.albedo = albedo, requests.scene_edited = true;
+    ImGui::PopID();
+  }
+  if (!scene.hair.empty()) {
+    ImGui::Text("hair (%zu grooms): scales every strand", scene.hair.size());
+    if (ImGui::SliderFloat("opacity x", &settings.overrides.hair_opacity_scale, 0.0f, 4.0f, "%.2f"))
+      requests.scene_edited = true;
+    if (ImGui::SliderFloat("width x", &settings.overrides.hair_width_scale, 0.1f, 10.0f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic))
+      requests.scene_edited = true;
+  }
+  if (scene.volumes.empty() && scene.hair.empty()) ImGui::TextDisabled("the scene has no smoke or hair");
+}
+
+void Panel::draw_display(ViewerSettings& settings, PanelRequests& requests) {
+  if (ImGui::SliderFloat("exposure", &settings.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+    requests.exposure_changed = true;
+  if (ImGui::Checkbox("exponential interpolation", &settings.shadow_options.exponential_interpolation))
+    requests.shadow_options_changed = true;
+  if (ImGui::SliderFloat("normal offset (texels)", &settings.shadow_options.normal_offset_texels, 0.0f, 8.0f))
+    requests.shadow_options_changed = true;
+}
+
+void Panel::draw_timings(const PanelView& view) {
+  if (view.frame.passes.empty()) {
+    ImGui::TextDisabled("no frame yet");
+    return;
+  }
+  double longest = 0;
+  for (const rg::vulkan::PassTiming& pass : view.frame.passes) longest = std::max(longest, pass.gpu_ms);
+  if (ImGui::BeginTable("timings", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch, 3.0f);
+    ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("00000.00").x);
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 2.0f);
+    ImGui::TableHeadersRow();
+    for (const rg::vulkan::PassTiming& pass : view.frame.passes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(pass.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", pass.gpu_ms);
+      ImGui::TableNextColumn();
+      ImGui::ProgressBar(longest > 0 ? float(pass.gpu_ms / longest) : 0.0f, ImVec2(-1, 0), "");
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("total %.2f ms GPU", view.frame.gpu_ms());
+}
+
+void Panel::draw_memory(const PanelView& view) {
+  const rg::PlanStats& stats = view.plan.stats;
+  ImGui::Text("transient: %s aliased in %zu heaps (%s without aliasing)", bytes_text(stats.transient_bytes_aliased).c_str(),
+              view.plan.heaps.size(), bytes_text(stats.transient_bytes_unaliased).c_str());
+  for (const passes::LightShadowStats& light : view.live.renderer().shadows().frame_stats()) {
+    ImGui::Text("%s: %s %ux%u, map %s, capture %s", light.light.c_str(), std::string(scene::to_string(light.technique)).c_str(),
+                light.resolution, light.resolution, bytes_text(light.map_bytes).c_str(), bytes_text(light.capture_bytes).c_str());
+    ImGui::Text("  segments %llu of %llu%s", (unsigned long long)light.capture_requested,
+                (unsigned long long)light.capture_capacity, light.overflowed ? " (overflowed: buffer grows)" : "");
+  }
+}
+
+void Panel::draw_plan(const PanelView& view) {
+  ImGui::Text("%zu passes, %u barriers, %zu culled", view.plan.passes.size(), view.plan.stats.barrier_count,
+              view.plan.culled_passes.size());
+  for (size_t i = 0; i < view.plan.passes.size(); ++i) {
+    const rg::PlannedPass& pass = view.plan.passes[i];
+    ImGui::Text("%2zu %-8s %s (%zu barriers)", i, rg::to_string(pass.queue), pass.name.c_str(), pass.barriers.size());
+  }
+  for (const rg::PlannedPass& pass : view.plan.culled_passes) ImGui::TextDisabled("   culled: %s", pass.name.c_str());
+}
+
+void Panel::draw_inspection(const PanelView& view, PanelRequests& requests) {
+  const TexelInspector& inspector = view.inspector;
+  if (!inspector.active()) {
+    ImGui::TextDisabled("click the image (or a light map) to plot a texel's transmittance curve");
+    return;
+  }
+  if (ImGui::SmallButton("clear")) requests.clear_inspection = true;
+  ImGui::SameLine();
+  ImGui::TextWrapped("%s", inspector.description().c_str());
+  if (inspector.curves().empty()) ImGui::TextDisabled("the point is outside every light's map");
+  for (const TexelCurve& curve : inspector.curves()) {
+    ImGui::PushID(int(curve.light));
+    ImGui::Text("light %u '%s' texel (%u, %u): %s", curve.light, curve.light_name.c_str(), curve.texel.x,
+                curve.texel.y, curve.technique.c_str());
+    if (curve.has_values()) {
+      ImGui::Text("max |T - T_exact| %.4f; white: exact, red: technique", curve.max_difference());
+      plot_curve(curve);
+    } else {
+      ImGui::TextDisabled("rendering...");
+    }
+    ImGui::PopID();
+  }
+}
+
+}  // namespace avsm::viewer

@@ -1,0 +1,50 @@
+#include "viewer/scene_overrides.h"
+
+#include <algorithm>
+
+namespace avsm::viewer {
+
+namespace {
+
+void apply_light(const LightOverride& o, scene::Light& light) {
+  scene::ShadowSettings& shadow = light.shadow;
+  if (o.technique) shadow.technique = *o.technique;
+  if (o.nodes) shadow.nodes = *o.nodes;
+  if (o.resolution) shadow.resolution = *o.resolution;
+  if (o.filter) shadow.filter = *o.filter;
+  if (o.sort) shadow.sort = *o.sort;
+  if (o.enabled && !*o.enabled) light.intensity = 0.0f;
+  if (o.position) light.position = *o.position;
+  if (o.direction && glm::length(*o.direction) > 0.0f) light.direction = glm::normalize(*o.direction);
+}
+
+void apply_volume(const VolumeOverride& o, scene::Volume& volume) {
+  if (o.extinction_scale) volume.extinction_scale = std::max(*o.extinction_scale, 0.0f);
+  if (o.albedo) volume.albedo = glm::clamp(*o.albedo, 0.0f, 1.0f);
+}
+
+void scale_hair(scene::HairGroom& groom, float opacity_scale, float width_scale) {
+  for (float& opacity : groom.strand_opacity) opacity = std::clamp(opacity * opacity_scale, 0.0f, 1.0f);
+  for (float& width : groom.strand_width) width *= width_scale;
+}
+
+}  // namespace
+
+LightOverride& SceneOverrides::light(size_t index) {
+  if (lights.size() <= index) lights.resize(index + 1);
+  return lights[index];
+}
+
+VolumeOverride& SceneOverrides::volume(size_t index) {
+  if (volumes.size() <= index) volumes.resize(index + 1);
+  return volumes[index];
+}
+
+void SceneOverrides::apply(scene::Scene& scene) const {
+  for (size_t i = 0; i < lights.size() && i < scene.lights.size(); ++i) apply_light(lights[i], scene.lights[i]);
+  for (size_t i = 0; i < volumes.size() && i < scene.volumes.size(); ++i) apply_volume(volumes[i], scene.volumes[i]);
+  if (hair_opacity_scale != 1.0f || hair_width_scale != 1.0f)
+    for (scene::HairGroom& groom : scene.hair) scale_hair(groom, hair_opacity_scale, hair_width_scale);
+}
+
+}  // namespace avsm::viewer

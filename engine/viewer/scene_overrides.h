@@ -1,0 +1,45 @@
+#pragma once
+// The viewer's edits to a loaded scene, kept apart from it so they survive a
+// reload of the scene file: each field is set only once the user touched it, and
+// apply() writes the set ones over whatever the files say (LiveRenderer calls it
+// after every load through set_scene_edit).
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace avsm::viewer {
+
+struct LightOverride {
+  std::optional<scene::ShadowTechnique> technique;
+  std::optional<int> nodes;
+  std::optional<int> resolution;
+  std::optional<scene::ShadowFilter> filter;
+  std::optional<bool> sort;
+  // Off: the light contributes nothing (intensity 0); its shadow map is still built,
+  // so its timings and curves stay comparable.
+  std::optional<bool> enabled;
+  std::optional<glm::vec3> position;   // spot lights
+  std::optional<glm::vec3> direction;  // normalised when applied
+};
+
+struct VolumeOverride {
+  std::optional<float> extinction_scale;
+  std::optional<glm::vec3> albedo;
+};
+
+struct SceneOverrides {
+  std::vector<LightOverride> lights;    // by light index; lights beyond the scene's are ignored
+  std::vector<VolumeOverride> volumes;  // by volume index
+  // Every hair groom: strand opacities (clamped to [0, 1]) and widths are multiplied.
+  float hair_opacity_scale = 1.0f;
+  float hair_width_scale = 1.0f;
+
+  LightOverride& light(size_t index);
+  VolumeOverride& volume(size_t index);
+  void apply(scene::Scene& scene) const;
+};
+
+}  // namespace avsm::viewer

@@ -1,0 +1,87 @@
+#include "viewer/scene_picking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace avsm::viewer {
+
+namespace {
+
+constexpr float kNoHit = std::numeric_limits<float>::infinity();
+
+// Slab test: the ray's entry and exit distances through a box (entry > exit: missed).
+std::pair<float, float> box_span(const Ray& ray, const scene::Bounds& box) {
+  float enter = 0.0f, leave = kNoHit;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float inverse = 1.0f / ray.direction[axis];  // +-inf for axis-parallel rays: the slab test still works
+    float t0 = (box.min[axis] - ray.origin[axis]) * inverse;
+    float t1 = (box.max[axis] - ray.origin[axis]) * inverse;
+    if (t0 > t1) std::swap(t0, t1);
+    if (!std::isnan(t0)) enter = std::max(enter, t0);
+    if (!std::isnan(t1)) leave = std::min(leave, t1);
+  }
+  return {enter, leave};
+}
+
+// Moeller-Trumbore; both faces count (the frame draws double-sided materials too).
+float triangle_hit(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 ab = b - a, ac = c - a;
+  const glm::vec3 p = glm::cross(ray.direction, ac);
+  const float det = glm::dot(ab, p);
+  if (std::abs(det) < 1e-12f) return kNoHit;
+  const float inverse = 1.0f / det;
+  const glm::vec3 s = ray.origin - a;
+  const float u = glm::dot(s, p) * inverse;
+  if (u < 0.0f || u > 1.0f) return kNoHit;
+  const glm::vec3 q = glm::cross(s, ab);
+  const float v = glm::dot(ray.direction, q) * inverse;
+  if (v < 0.0f || u + v > 1.0f) return kNoHit;
+  const float t = glm::dot(ac, q) * inverse;
+  return t > 0.0f ? t : kNoHit;
+}
+
+float mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
+  const auto [enter, leave] = box_span(ray, mesh.bounds);
+  if (enter > leave || enter >= nearest) return kNoHit;
+  float best = kNoHit;
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    best = std::min(best, triangle_hit(ray, mesh.positions[mesh.indices[i]], mesh.positions[mesh.indices[i + 1]],
+                                       mesh.positions[mesh.indices[i + 2]]));
+  return best;
+}
+
+}  // namespace
+
+Ray pixel_ray(const passes::View& view, glm::vec2 pixel) {
+  // Clip y is +1 at the top row (the renderer flips the viewport).
+  const glm::vec2 ndc((pixel.x + 0.5f) / float(view.width) * 2.0f - 1.0f,
+                      1.0f - (pixel.y + 0.5f) / float(view.height) * 2.0f);
+  auto unproject = [&](float z) {
+    const glm::vec4 p = view.inverse_view_projection * glm::vec4(ndc, z, 1.0f);
+    return glm::vec3(p) / p.w;
+  };
+  const glm::vec3 near_point = unproject(0.0f), far_point = unproject(1.0f);
+  return {near_point, glm::normalize(far_point - near_point)};
+}
+
+std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel) {
+  const Ray ray = pixel_ray(view, pixel);
+  float nearest = kNoHit;
+  const scene::Mesh* hit_mesh = nullptr;
+  for (const scene::Mesh& mesh : scene.meshes) {
+    const float t = mesh_hit(ray, mesh, nearest);
+    if (t < nearest) nearest = t, hit_mesh = &mesh;
+  }
+  if (hit_mesh) return PickedPoint{ray.origin + nearest * ray.direction, "mesh '" + hit_mesh->name + "'"};
+
+  for (const scene::Volume& volume : scene.volumes) {
+    const auto [enter, leave] = box_span(ray, volume.world_bounds);
+    if (enter <= leave && leave < kNoHit)
+      return PickedPoint{ray.origin + 0.5f * (enter + leave) * ray.direction, "volume '" + volume.name + "'"};
+  }
+  return std::nullopt;
+}
+
+}  // namespace avsm::viewer
+

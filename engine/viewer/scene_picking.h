@@ -1,0 +1,32 @@
+#pragma once
+// What lies under a pixel: a CPU ray cast from the camera through the pixel centre
+// against the scene's meshes (the opaque surfaces the frame shows), else into the
+// fog volumes (the middle of the ray's stretch inside the first volume's bounds).
+// Hair is not hit: strands are thinner than a pixel and the volume or the surface
+// behind them is what the light ray through that pixel mostly crosses.
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <string>
+
+#include "passes/view.h"
+#include "scene/scene.h"
+
+namespace avsm::viewer {
+
+struct PickedPoint {
+  glm::vec3 world{0.0f};
+  std::string what;  // "mesh 'floor'", "volume 'smoke'"
+};
+
+// `pixel`: x right, y down from the top-left corner of the view's image, in pixels.
+std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel);
+
+struct Ray {
+  glm::vec3 origin, direction;  // direction unit length
+};
+// The camera ray through a pixel's centre (the same convention as the renderer's:
+// row 0 at the top).
+Ray pixel_ray(const passes::View& view, glm::vec2 pixel);
+
+}  // namespace avsm::viewer

@@ -1,0 +1,72 @@
+#pragma once
+// The window's swapchain and the per-frame synchronisation around it: acquire an
+// image, record into it, submit and present, one frame in flight (lavapipe renders
+// slowly; the viewer waits for each frame anyway). Images are B8G8R8A8/R8G8B8A8
+// UNORM, so the renderer's tonemapped values (already display-encoded) are copied
+// through unchanged, and carry TRANSFER_DST (the blit), COLOR_ATTACHMENT (the panel)
+// and, where the surface allows, TRANSFER_SRC (window screenshots).
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "gpu/resources.h"
+
+namespace avsm::gpu {
+class Context;
+}
+
+namespace avsm::viewer {
+
+class Swapchain {
+ public:
+  // Throws WindowError when the device's queue cannot present to `surface` or the
+  // surface lacks what the viewer needs.
+  Swapchain(gpu::Context& ctx, VkSurfaceKHR surface, VkExtent2D wanted);
+  ~Swapchain();
+  Swapchain(const Swapchain&) = delete;
+  Swapchain& operator=(const Swapchain&) = delete;
+
+  // A new chain for a new window size (waits for the device to idle).
+  void recreate(VkExtent2D wanted);
+
+  // The image to draw this frame into, in UNDEFINED layout; nullopt when the chain
+  // is out of date (recreate it and try again).
+  std::optional<uint32_t> acquire();
+  // Submits `cmd` (which must leave the image in PRESENT_SRC_KHR), presents it and
+  // waits for the frame to finish. Returns false when the chain should be recreated.
+  bool submit_and_present(VkCommandBuffer cmd, uint32_t image);
+
+  VkImage image(uint32_t index) const { return images_[index]; }
+  VkImageView view(uint32_t index) const { return views_[index]; }
+  VkFormat format() const { return format_; }
+  VkExtent2D extent() const { return extent_; }
+  bool can_read_back() const { return readable_; }
+
+  // Records a copy of swapchain image `index` (in TRANSFER_SRC_OPTIMAL) into
+  // `buffer` (host-readable, extent.width * extent.height * 4 bytes).
+  void record_readback(VkCommandBuffer cmd, uint32_t index, const gpu::Buffer& buffer) const;
+  // The copied bytes as RGBA8 rows, top to bottom, whatever the chain's channel order.
+  std::vector<uint8_t> to_rgba(const uint8_t* bytes) const;
+
+ private:
+  void create(VkExtent2D wanted);
+  void destroy_chain();
+
+  gpu::Context& ctx_;
+  VkSurfaceKHR surface_;
+  VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  VkFormat format_ = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent_{};
+  bool readable_ = false;
+  std::vector<VkImage> images_;
+  std::vector<VkImageView> views_;
+  // One per image: a semaphore may only be signalled again once its present is done,
+  // which is known when that image is acquired again.
+  std::vector<VkSemaphore> rendered_;
+  VkSemaphore acquired_ = VK_NULL_HANDLE;
+  VkFence frame_done_ = VK_NULL_HANDLE;
+};
+
+}  // namespace avsm::viewer

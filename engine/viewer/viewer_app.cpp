@@ -1,0 +1,578 @@
+#include "viewer/viewer_app.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "capture/frame_outputs.h"
+#include "gpu/barriers.h"
+#include "gpu/context.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/shader_compiler.h"
+#include "gpu/vk_check.h"
+#include "io/image_io.h"
+#include "live/live_renderer.h"
+#include "viewer/camera_controller.h"
+#include "viewer/control_commands.h"
+#include "viewer/imgui_renderer.h"
+#include "viewer/light_map_textures.h"
+#include "viewer/panel.h"
+#include "viewer/swapchain.h"
+#include "viewer/texel_inspector.h"
+#include "viewer/window.h"
+
+namespace avsm::viewer {
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A click is a press and release that moved less than this (pixels squared); more is a drag.
+constexpr float kClickSlopSquared = 9.0f;
+// How long an idle loop sleeps waiting for input before it polls the files again.
+constexpr double kIdleWaitSeconds = 0.1;
+
+gpu::ContextDesc context_desc(const ViewerOptions& options, const Window& window) {
+  gpu::ContextDesc desc;
+  desc.app_name = "avsm-viewer";
+  desc.validation = options.validation;
+  desc.device = options.device;
+  desc.echo_validation = true;
+  desc.instance_extensions = window.required_instance_extensions();
+  desc.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  return desc;
+}
+
+// The first folder out_dir/shot-NNN that does not exist yet.
+fs::path next_shot_dir(const fs::path& out_dir) {
+  for (int n = 1;; ++n) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "shot-%03d", n);
+    if (!fs::exists(out_dir / name)) return out_dir / name;
+  }
+}
+
+void write_rgba_png(const fs::path& path, const std::vector<uint8_t>& rgba, VkExtent2D extent) {
+  gpu::ImageRGBA32F image;
+  image.width = extent.width;
+  image.height = extent.height;
+  image.pixels.resize(rgba.size());
+  for (size_t i = 0; i < rgba.size(); ++i) image.pixels[i] = float(rgba[i]) / 255.0f;
+  io::write_png_raw(path, image);
+}
+
+VkImageSubresourceRange colour_range() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}; }
+
+class ViewerApp {
+ public:
+  explicit ViewerApp(const ViewerOptions& options);
+  int run();
+
+ private:
+  // One loop iteration: input, watched files, panel, a scene frame when something
+  // changed (or `render`), present.
+  void iterate(bool render);
+  int run_controlled();
+  nlohmann::json execute(const ControlCommand& command);
+  // One loop iteration's parts.
+  void follow_window_size();
+  void poll_live();
+  void handle_input();
+  void apply(const PanelRequests& requests);
+  void render_scene_frame();
+  void present(const ImDrawData& draw_data);
+  void record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back);
+  void write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba);
+
+  void inspect_pixel(glm::vec2 pixel);
+  void refresh_inspection();
+  void ensure_reference();
+  passes::View current_view();
+  void set_status(const std::string& text);
+  int finish();
+
+  ViewerOptions options_;
+  Window window_;
+  gpu::Context ctx_;
+  Surface surface_;
+  Swapchain swapchain_;
+  gpu::ShaderLibrary builtin_shaders_;  // prebuilt SPIR-V: timestamp calibration and the panel
+  gpu::TimestampCalibration calibration_;
+  ImGuiWindowInput imgui_input_;
+  ImGuiRenderer imgui_renderer_;
+  ViewerSettings settings_;
+  std::unique_ptr<live::LiveRenderer> live_;
+  rg::vulkan::Executor executor_;
+  CameraController camera_;
+  Panel panel_;
+  TexelInspector inspector_;
+  LightMapTextures light_maps_;
+  std::vector<ImTextureID> light_map_ids_;
+  FrameStats frame_stats_;
+  capture::FrameTimingLog timing_log_;
+  uint64_t overflowed_frames_ = 0;
+  VkCommandBuffer scene_cmd_ = VK_NULL_HANDLE, window_cmd_ = VK_NULL_HANDLE;
+  gpu::Buffer window_readback_;
+
+  bool scene_dirty_ = true;     // the next iteration renders a scene frame
+  bool edits_pending_ = false;  // the live renderer applies edits on its next poll: render after it
+  bool ldr_valid_ = false;      // the renderer's ldr() holds a frame of the current size
+  std::optional<fs::path> screenshot_dir_;  // written at the next present
+  fs::path scene_file_;
+  std::string status_;
+  Clock::time_point last_iteration_ = Clock::now();
+  bool failed_ = false;
+  // What poll() reported since the last control reply.
+  std::vector<std::string> reloaded_files_;
+  bool shaders_reloaded_ = false, scene_reloaded_ = false;
+};
+
+live::LiveOptions live_options(const ViewerOptions& options, VkExtent2D size, const passes::ShadowOptions& shadows) {
+  live::LiveOptions live;
+  live.scene_file = options.scene;
+  live.width = size.width;
+  live.height = size.height;
+  live.shadow_options = shadows;
+  return live;
+}
+
+ViewerApp::ViewerApp(const ViewerOptions& options)
+    : options_(options),
+      window_("avsm-viewer", options.width, options.height),
+      ctx_(context_desc(options, window_)),
+      surface_(ctx_.instance(), window_),
+      swapchain_(ctx_, surface_.handle(), window_.framebuffer_size()),
+      calibration_(gpu::calibrate_timestamps(ctx_, builtin_shaders_)),
+      imgui_input_(window_),
+      imgui_renderer_(ctx_, builtin_shaders_, swapchain_.format()),
+      settings_{.shadow_options = {.keep_reference = options.inspect_pixel.has_value()}},
+      live_(std::make_unique<live::LiveRenderer>(
+          ctx_, live_options(options, swapchain_.extent(), settings_.shadow_options))),
+      executor_(ctx_, calibration_.mode),
+      camera_(live_->scene().cameras.front()),
+      panel_(options.scene.string()),
+      light_maps_(ctx_),
+      scene_file_(options.scene) {
+  scene_cmd_ = ctx_.allocate_command_buffer("scene frame");
+  window_cmd_ = ctx_.allocate_command_buffer("window frame");
+  // Every renderer the live renderer builds (a shader reload builds a new one) gets
+  // the viewer's exposure and light pictures.
+  live_->set_renderer_setup([this](renderer::SceneRenderer& renderer) {
+    renderer.set_exposure(settings_.exposure);
+    renderer.enable_light_images();
+  });
+  std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, scene %s\n", ctx_.info().name.c_str(),
+               ctx_.info().driver_info.c_str(), swapchain_.extent().width, swapchain_.extent().height,
+               options.scene.c_str());
+  if (options.inspect_pixel) inspect_pixel(*options.inspect_pixel);
+}
+
+int ViewerApp::run() {
+  if (options_.control) return run_controlled();
+  const bool scripted = options_.frames > 0;
+  while (!window_.should_close() && !failed_ && !(scripted && frame_stats_.number >= options_.frames))
+    iterate(/*render=*/scripted);
+  if (scripted && !options_.screenshot_dir.empty() && !failed_) {
+    // One more present, of the last frame with the panel showing its timings.
+    screenshot_dir_ = options_.screenshot_dir;
+    iterate(/*render=*/false);
+  }
+  return finish();
+}
+
+void ViewerApp::iterate(bool render) {
+  window_.poll_events(render || scene_dirty_ || edits_pending_ ? 0.0 : kIdleWaitSeconds);
+  follow_window_size();
+  poll_live();
+
+  imgui_input_.new_frame();
+  handle_input();
+  apply(panel_.draw({*live_, executor_.plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_},
+                    settings_));
+  ImGui::Render();
+  // Edits waiting for the next poll would make this frame stale: render after it.
+  if ((scene_dirty_ || render) && !edits_pending_ && swapchain_.extent().width > 0) render_scene_frame();
+  present(*ImGui::GetDrawData());
+}
+
+int ViewerApp::run_controlled() {
+  std::string line;
+  while (!failed_ && std::getline(std::cin, line)) {
+    if (line.empty()) continue;
+    nlohmann::json reply;
+    bool quit = false;
+    try {
+      const ControlCommand command = parse_control_command(line);
+      quit = command.kind == ControlCommand::Kind::quit;
+      reply = execute(command);
+      reply["command"] = line;
+    } catch (const std::invalid_argument& e) {
+      reply = {{"command", line}, {"rejected", e.what()}};
+    }
+    std::cout << reply.dump() << std::endl;
+    if (quit) break;
+  }
+  return finish();
+}
+
+nlohmann::json ViewerApp::execute(const ControlCommand& command) {
+  nlohmann::json reply = nlohmann::json::object();
+  switch (command.kind) {
+    case ControlCommand::Kind::frame: {
+      const uint64_t before = frame_stats_.number;
+      iterate(/*render=*/true);
+      reply["frame"] = frame_stats_.number;
+      reply["rendered"] = frame_stats_.number > before;
+      reply["ms"] = frame_stats_.wall_ms;
+      reply["changed"] = reloaded_files_;
+      reply["shaders_reloaded"] = shaders_reloaded_;
+      reply["scene_reloaded"] = scene_reloaded_;
+      reply["error"] = live_->error() ? nlohmann::json(live_->error()->summary()) : nlohmann::json(nullptr);
+      reloaded_files_.clear();
+      shaders_reloaded_ = scene_reloaded_ = false;
+      break;
+    }
+    case ControlCommand::Kind::inspect:
+      inspect_pixel(command.pixel);
+      reply["inspect"] = inspector_.active() ? nlohmann::json(inspector_.description()) : nlohmann::json(nullptr);
+      break;
+    case ControlCommand::Kind::screenshot:
+      if (frame_stats_.number == 0) throw std::invalid_argument("screenshot: no frame rendered yet");
+      screenshot_dir_ = command.directory;
+      iterate(/*render=*/false);
+      reply["screenshot"] = command.directory.string();
+      reply["status"] = status_;
+      break;
+    case ControlCommand::Kind::light:
+      if (command.light >= live_->scene().lights.size())
+        throw std::invalid_argument("light " + std::to_string(command.light) + ": the scene has " +
+                                    std::to_string(live_->scene().lights.size()) + " lights");
+      set_light_field(settings_.overrides, command.light, command.field, command.value);
+      apply({.scene_edited = true});
+      break;
+    case ControlCommand::Kind::exposure:
+      settings_.exposure = command.exposure;
+      apply({.exposure_changed = true});
+      break;
+    case ControlCommand::Kind::quit: break;
+  }
+  return reply;
+}
+
+int ViewerApp::finish() {
+  vkDeviceWaitIdle(ctx_.device());
+  if (options_.inspect_pixel) {
+    const fs::path dir = options_.screenshot_dir.empty() ? options_.out_dir : options_.screenshot_dir;
+    if (!inspector_.has_values()) {
+      std::fprintf(stderr, "avsm-viewer: --inspect: no curve was evaluated (%s)\n",
+                   inspector_.active() ? "the point is outside every light's map" : "nothing under that pixel");
+      failed_ = true;
+    } else {
+      fs::create_directories(dir);
+      inspector_.write_json(dir / "inspect.json");
+      std::fprintf(stderr, "avsm-viewer: %s -> %s\n", inspector_.description().c_str(),
+                   (dir / "inspect.json").c_str());
+    }
+  }
+  const std::vector<gpu::ValidationMessage> messages = ctx_.validation_log().take();
+  if (!messages.empty()) {
+    std::fprintf(stderr, "avsm-viewer: validation reported problems:\n%s\n", gpu::describe(messages).c_str());
+    failed_ = true;
+  }
+  return failed_ ? 1 : 0;
+}
+
+void ViewerApp::follow_window_size() {
+  const VkExtent2D size = window_.framebuffer_size();
+  const VkExtent2D current = swapchain_.extent();
+  if (size.width == current.width && size.height == current.height) return;
+  swapchain_.recreate(size);
+  if (swapchain_.extent().width == 0 || swapchain_.extent().height == 0) return;  // minimised
+  live_->set_size(swapchain_.extent().width, swapchain_.extent().height);
+  ldr_valid_ = false;
+  scene_dirty_ = true;
+}
+
+void ViewerApp::poll_live() {
+  const live::PollResult result = live_->poll();
+  edits_pending_ = false;
+  if (result.failed && live_->error())
+    std::fprintf(stderr, "avsm-viewer: reload failed, keeping the last good version: %s\n",
+                 live_->error()->summary().c_str());
+  for (const fs::path& file : result.changed) reloaded_files_.push_back(file.string());
+  shaders_reloaded_ = shaders_reloaded_ || result.shaders_reloaded;
+  scene_reloaded_ = scene_reloaded_ || result.scene_reloaded;
+  if (!result.anything_new()) return;
+  // New pipelines come with a new renderer, whose output images hold no frame yet.
+  if (result.shaders_reloaded) ldr_valid_ = false;
+  for (const fs::path& file : result.changed) std::fprintf(stderr, "avsm-viewer: reloaded after %s changed\n", file.c_str());
+  if (live_->options().scene_file != scene_file_) {  // another scene: start from its camera
+    scene_file_ = live_->options().scene_file;
+    camera_.reset(live_->scene().cameras.front());
+  }
+  refresh_inspection();
+  scene_dirty_ = true;
+}
+
+void ViewerApp::handle_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const Clock::time_point now = Clock::now();
+  CameraInput input;
+  input.seconds = std::chrono::duration<float>(now - last_iteration_).count();
+  last_iteration_ = now;
+  input.viewport_height = float(swapchain_.extent().height);
+  if (!io.WantCaptureMouse) {
+    input.mouse_delta = glm::vec2(io.MouseDelta.x, io.MouseDelta.y) *
+                        glm::vec2(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y);
+    input.rotate = ImGui::IsMouseDown(ImGuiMouseButton_Left);
+    input.pan_or_look = ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle);
+    input.scroll = io.MouseWheel;
+    // A click (not a drag) on the image inspects the texel under it.
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < kClickSlopSquared)
+      inspect_pixel(glm::vec2(io.MouseClickedPos[0].x * io.DisplayFramebufferScale.x,
+                              io.MouseClickedPos[0].y * io.DisplayFramebufferScale.y));
+  }
+  if (!io.WantCaptureKeyboard) {
+    // ImGui 1.86 indexes keys by the backend's (GLFW's) key codes.
+    auto axis = [](int positive, int negative) {
+      return float(ImGui::IsKeyDown(positive)) - float(ImGui::IsKeyDown(negative));
+    };
+    input.move = {axis(GLFW_KEY_D, GLFW_KEY_A), axis(GLFW_KEY_E, GLFW_KEY_Q), axis(GLFW_KEY_W, GLFW_KEY_S)};
+    input.fast = io.KeyShift;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false))
+      apply({.screenshot = true});
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) window_.request_close();
+  }
+  if (camera_.update(input)) scene_dirty_ = true;
+}
+
+void ViewerApp::apply(const PanelRequests& requests) {
+  if (requests.scene_edited) {
+    live_->set_scene_edit([overrides = settings_.overrides](scene::Scene& scene) { overrides.apply(scene); });
+    edits_pending_ = true;
+  }
+  if (requests.shadow_options_changed) {
+    live_->set_shadow_options(settings_.shadow_options);
+    edits_pending_ = true;
+  }
+  if (requests.exposure_changed) {
+    live_->renderer().set_exposure(settings_.exposure);
+    scene_dirty_ = true;
+  }
+  if (requests.load_scene) {
+    live_->set_scene_file(*requests.load_scene);
+    edits_pending_ = true;
+  }
+  if (requests.reset_camera) {
+    camera_.reset(live_->scene().cameras.front());
+    scene_dirty_ = true;
+  }
+  if (requests.camera_mode) camera_.mode = *requests.camera_mode;
+  if (requests.inspect_light_texel) {
+    ensure_reference();
+    inspector_.inspect_light_texel(requests.inspect_light_texel->first, requests.inspect_light_texel->second);
+    refresh_inspection();
+  }
+  if (requests.clear_inspection) inspector_.clear();
+  if (requests.screenshot) {
+    if (frame_stats_.number == 0)
+      set_status("no frame to save yet");
+    else
+      screenshot_dir_ = next_shot_dir(options_.out_dir);
+  }
+}
+
+void ViewerApp::inspect_pixel(glm::vec2 pixel) {
+  const VkExtent2D size = swapchain_.extent();
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= float(size.width) || pixel.y >= float(size.height)) return;
+  if (!inspector_.inspect_pixel(live_->scene(), current_view(), pixel)) {
+    set_status("nothing under pixel (" + std::to_string(int(pixel.x)) + ", " + std::to_string(int(pixel.y)) + ")");
+    return;
+  }
+  ensure_reference();
+  refresh_inspection();
+}
+
+// The curves compare against the exact transmittance, which only frames that keep
+// the capture lists have. Switched on at the first inspection (it costs memory).
+void ViewerApp::ensure_reference() {
+  if (settings_.shadow_options.keep_reference) return;
+  settings_.shadow_options.keep_reference = true;
+  live_->set_shadow_options(settings_.shadow_options);
+  edits_pending_ = true;
+}
+
+void ViewerApp::refresh_inspection() {
+  if (!inspector_.active()) return;
+  renderer::SceneRenderer& renderer = live_->renderer();
+  const std::vector<passes::TexelSample> samples = inspector_.prepare(live_->scene(), renderer.shadows().light_views());
+  if (!samples.empty()) renderer.set_texel_samples(samples);
+  scene_dirty_ = true;
+}
+
+passes::View ViewerApp::current_view() {
+  const renderer::SceneRenderer& renderer = live_->renderer();
+  return passes::make_view(camera_.camera(), renderer.width(), renderer.height());
+}
+
+void ViewerApp::set_status(const std::string& text) {
+  status_ = text;
+  std::fprintf(stderr, "avsm-viewer: %s\n", text.c_str());
+}
+
+void ViewerApp::render_scene_frame() {
+  renderer::SceneRenderer& renderer = live_->renderer();
+  capture::FrameClock clock;
+  clock.start = Clock::now();
+  rg::Graph graph = renderer.build_frame(executor_, current_view());
+  clock.built = Clock::now();
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(scene_cmd_, &begin));
+  executor_.record(graph, scene_cmd_);
+  const bool new_textures = light_maps_.record_copies(scene_cmd_, renderer.light_images());
+  VK_CHECK(vkEndCommandBuffer(scene_cmd_));
+  clock.recorded = Clock::now();
+  ctx_.submit_and_wait(scene_cmd_);
+  clock.completed = Clock::now();
+  renderer.finish_frame();
+  ldr_valid_ = true;
+
+  if (new_textures) {
+    const std::vector<gpu::Image>& textures = light_maps_.textures();
+    light_map_ids_.resize(std::min(light_map_ids_.size(), textures.size()));
+    for (size_t i = 0; i < textures.size(); ++i) {
+      if (i < light_map_ids_.size())
+        imgui_renderer_.replace_texture(light_map_ids_[i], textures[i].view());
+      else
+        light_map_ids_.push_back(imgui_renderer_.add_texture(textures[i].view()));
+    }
+  }
+  // The screenshot's timings.json describes this frame alone.
+  timing_log_.clear();
+  const std::vector<rg::vulkan::PassTiming> timings = executor_.read_timings();
+  const double wall = timing_log_.add_frame(clock, timings, /*measured=*/true);
+  frame_stats_ = {frame_stats_.number + 1, wall, timings};
+
+  // A capture that overflowed dropped segments; its buffers grew, so render again.
+  scene_dirty_ = false;
+  bool overflowed = false;
+  for (const passes::LightShadowStats& light : renderer.shadows().frame_stats()) {
+    overflowed = overflowed || light.overflowed || light.pool_overflowed;
+    scene_dirty_ = scene_dirty_ || light.grew;
+  }
+  overflowed_frames_ += overflowed;
+  if (inspector_.active())
+    inspector_.read_results(renderer.texel_results(), ctx_, renderer.shadows(), live_->scene());
+  window_.set_title("avsm-viewer - " + scene_file_.filename().string() + " - " +
+                    std::to_string(int(wall)) + " ms per frame");
+}
+
+void ViewerApp::present(const ImDrawData& draw_data) {
+  const std::optional<uint32_t> image = swapchain_.acquire();
+  if (!image) {
+    swapchain_.recreate(window_.framebuffer_size());
+    return;
+  }
+  const bool read_back = screenshot_dir_ && swapchain_.can_read_back();
+  const VkExtent2D extent = swapchain_.extent();
+  if (read_back) {
+    const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
+    if (!window_readback_ || window_readback_.size() < bytes)
+      window_readback_ = gpu::Buffer::create(
+          ctx_, {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryLocation::HostReadback, "window readback"});
+  }
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(window_cmd_, &begin));
+  record_window(window_cmd_, *image, draw_data, read_back);
+  VK_CHECK(vkEndCommandBuffer(window_cmd_));
+  if (!swapchain_.submit_and_present(window_cmd_, *image)) swapchain_.recreate(window_.framebuffer_size());
+
+  if (screenshot_dir_) {
+    const fs::path dir = *screenshot_dir_;
+    screenshot_dir_.reset();
+    std::vector<uint8_t> window_rgba;
+    if (read_back) window_rgba = swapchain_.to_rgba(static_cast<const uint8_t*>(window_readback_.mapped()));
+    write_screenshot(dir, window_rgba);
+  }
+}
+
+// The frame into the swapchain image: the scene (blitted), then the panel, then
+// (for a screenshot) a copy into the readback buffer.
+void ViewerApp::record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back) {
+  const VkImage target = swapchain_.image(image);
+  const VkExtent2D extent = swapchain_.extent();
+  // The acquire semaphore's wait covers the transfer and colour-output stages.
+  const gpu::Access acquired{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT |
+                                 VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_NONE};
+  const gpu::Access blit_write{VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                               VK_ACCESS_2_TRANSFER_WRITE_BIT};
+  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     acquired, blit_write);
+  const renderer::SceneRenderer& renderer = live_->renderer();
+  if (ldr_valid_) {
+    // The tonemapped image holds display values: copied, not converted. Same size
+    // except right after a resize, when it is stretched until the next frame.
+    VkImageBlit region{};
+    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.srcOffsets[1] = {int32_t(renderer.width()), int32_t(renderer.height()), 1};
+    region.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
+    vkCmdBlitImage(cmd, renderer.ldr().handle(), renderer::SceneRenderer::kOutputLayout, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
+  } else {
+    const VkClearColorValue grey{{0.1f, 0.1f, 0.12f, 1.0f}};
+    const VkImageSubresourceRange range = colour_range();
+    vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &range);
+  }
+  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, blit_write,
+                     {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT});
+  imgui_renderer_.record(cmd, draw_data, swapchain_.view(image), extent);
+
+  const gpu::Access drawn{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  // Presentation needs no destination stage: the present waits on the semaphore.
+  const gpu::Access presented{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
+  if (!read_back) {
+    gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                       VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, drawn, presented);
+    return;
+  }
+  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, drawn, gpu::kTransferRead);
+  swapchain_.record_readback(cmd, image, window_readback_);
+  gpu::buffer_barrier(cmd, window_readback_.handle(), gpu::kTransferWrite, gpu::kHostRead);
+  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                     gpu::kTransferRead, presented);
+}
+
+void ViewerApp::write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba) {
+  try {
+    const renderer::SceneRenderer& renderer = live_->renderer();
+    capture::write_frame_outputs(dir, {ctx_, renderer, executor_, live_->scene(), timing_log_, overflowed_frames_});
+    if (!window_rgba.empty()) write_rgba_png(dir / "window.png", window_rgba, swapchain_.extent());
+    if (inspector_.has_values()) inspector_.write_json(dir / "inspect.json");
+    set_status("saved " + dir.string());
+  } catch (const std::exception& e) {
+    set_status(std::string("screenshot failed: ") + e.what());
+    if (options_.frames > 0) failed_ = true;  // a scripted run must not pass without its files
+  }
+}
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  ViewerApp app(options);
+  return app.run();
+}
+
+}  // namespace avsm::viewer

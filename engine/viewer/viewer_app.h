@@ -1,0 +1,45 @@
+#pragma once
+// avsm-viewer: a window on a LiveRenderer. Each loop iteration polls the watched
+// files (hot reload), takes input (camera, clicks, keys) and the panel's edits,
+// renders a scene frame only when something changed (lavapipe frames are slow),
+// blits the tonemapped image into the swapchain, draws the panel on top and presents.
+//
+// Scripted runs (tests and CI, where no one clicks): `frames` renders that many
+// scene frames and exits; `screenshot_dir` then receives what avsm-capture writes
+// for one frame plus window.png (the window as presented, panel included), and
+// `inspect_pixel` clicks a pixel first and writes inspect.json there as well.
+// `control` takes commands on stdin instead (engine/viewer/control_commands.h).
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace avsm::viewer {
+
+#ifndef AVSM_DEFAULT_SCENE
+#define AVSM_DEFAULT_SCENE "content/default/scene.json"
+#endif
+
+struct ViewerOptions {
+  std::filesystem::path scene = AVSM_DEFAULT_SCENE;
+  uint32_t width = 1280, height = 720;  // window size
+  bool validation = false;
+  std::string device;                    // see gpu::ContextDesc::device
+  std::filesystem::path out_dir = "out/viewer";  // where the screenshot key writes (shot-001, ...)
+  // Scripted mode.
+  uint32_t frames = 0;                   // > 0: render this many scene frames, then exit
+  std::filesystem::path screenshot_dir;  // after the last scripted frame
+  std::optional<glm::vec2> inspect_pixel;  // clicked before the first frame
+  // Driven by commands on stdin instead (control_commands.h); replies on stdout.
+  bool control = false;
+};
+
+// Runs until the window closes (or the scripted frames are done). Returns the exit
+// code: 0, or 1 after printing why (validation messages, a failed scripted step).
+// Throws WindowError when no window can be opened, and the LiveRenderer's errors
+// when the scene cannot be loaded at all.
+int run_viewer(const ViewerOptions& options);
+
+}  // namespace avsm::viewer

@@ -1,0 +1,80 @@
+#pragma once
+// What casts into the shadow maps, as plain views of GPU buffers: no scene format,
+// no ownership. The camera passes produce them for a loaded scene (OpaquePass::casters(),
+// HairPass::casters(), VolumePass::casters()); a host renderer fills them from its own
+// buffers. The buffers must hold their data before the frame is submitted and stay
+// unchanged and alive until it completes: the captures read them as static data, outside
+// the frame graph's synchronisation.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace avsm::passes {
+
+// One vertex as shaders/passes/capture_opaque.vert reads it (std430, 32 bytes); the
+// capture uses the position only, the camera passes the rest.
+struct CasterVertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+};
+static_assert(sizeof(CasterVertex) == 32);
+
+// A vkCmdDrawIndexed range of the shared index buffer.
+struct MeshDraw {
+  uint32_t first_index = 0;
+  uint32_t index_count = 0;
+  int32_t vertex_offset = 0;
+};
+
+// Opaque triangle meshes, world space, drawn from both sides.
+struct MeshCasters {
+  VkBuffer vertices = VK_NULL_HANDLE;  // CasterVertex[]; usage STORAGE_BUFFER
+  VkBuffer indices = VK_NULL_HANDLE;   // uint32 triangle list; usage INDEX_BUFFER
+  std::vector<MeshDraw> draws;
+  bool empty() const { return draws.empty() || vertices == VK_NULL_HANDLE || indices == VK_NULL_HANDLE; }
+};
+
+// std430 mirrors of shaders/passes/hair.vert's buffers. A strand is a polyline of
+// points; each segment joins point `first_point` and the next one.
+struct StrandSegment {
+  uint32_t first_point;
+  uint32_t strand;
+};
+struct StrandParameters {
+  float color[3];
+  float opacity;  // per strand crossing; the capture stores 1 - opacity
+  float width;    // world units (ribbons are widened to one map texel with opacity scaled down)
+  float pad[3];
+};
+static_assert(sizeof(StrandParameters) == 32);
+
+// Hair: ribbons facing the light.
+struct StrandCasters {
+  VkBuffer points = VK_NULL_HANDLE;    // vec4 per point (xyz world, w unused); usage STORAGE_BUFFER
+  VkBuffer segments = VK_NULL_HANDLE;  // StrandSegment[]; usage STORAGE_BUFFER
+  VkBuffer strands = VK_NULL_HANDLE;   // StrandParameters[]; usage STORAGE_BUFFER
+  uint32_t segment_count = 0;
+  bool empty() const { return segment_count == 0; }
+};
+
+// Fog volumes: NanoVDB float grids marched per light texel (passes/volume_pass.h
+// describes the buffers: grids 32-byte aligned in one buffer, majorant bricks, and one
+// GpuVolume parameter block per volume).
+struct VolumeCasters {
+  VkBuffer grids = VK_NULL_HANDLE;       // usage STORAGE_BUFFER
+  VkBuffer majorants = VK_NULL_HANDLE;   // usage STORAGE_BUFFER
+  VkBuffer parameters = VK_NULL_HANDLE;  // GpuVolume[]; usage STORAGE_BUFFER
+  uint32_t volume_count = 0;
+  bool empty() const { return volume_count == 0; }
+};
+
+// Everything that casts into every light's map this frame.
+struct ShadowCasters {
+  MeshCasters meshes;
+  StrandCasters strands;
+  VolumeCasters volumes;
+};
+
+}  // namespace avsm::passes

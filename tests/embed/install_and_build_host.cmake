@@ -1,0 +1,46 @@
+# cmake -DBUILD_DIR=<engine build> -DSOURCE_DIR=<repo> -DWORK=<scratch> [-DBUILD_TYPE=Release]
+#       -P install_and_build_host.cmake
+# Installs the engine into WORK/staging, moves the install to WORK/prefix (the package
+# must not depend on where it was installed, nor on the source and build trees), then
+# configures and builds examples/host_embed against it in a fresh WORK/host-build.
+if(NOT BUILD_TYPE)
+  set(BUILD_TYPE Release)
+endif()
+
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${result}):\n${output}")
+  endif()
+  message(STATUS "${what}: ok")
+endfunction()
+
+file(REMOVE_RECURSE "${WORK}")
+run_step("install into the staging prefix" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK}/staging")
+file(RENAME "${WORK}/staging" "${WORK}/prefix")
+
+# The package's CMake files may name system paths only.
+file(GLOB package_files "${WORK}/prefix/lib/cmake/avsm/*.cmake")
+if(NOT package_files)
+  message(FATAL_ERROR "no CMake package under ${WORK}/prefix/lib/cmake/avsm")
+endif()
+foreach(file IN LISTS package_files)
+  file(READ "${file}" text)
+  foreach(tree IN ITEMS "${SOURCE_DIR}" "${BUILD_DIR}" "${WORK}/staging")
+    string(FIND "${text}" "${tree}" at)
+    if(NOT at EQUAL -1)
+      message(FATAL_ERROR "${file} names ${tree}: the installed package must not depend on it")
+    endif()
+  endforeach()
+endforeach()
+foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/gpu/context.h include/avsm/rendergraph/graph.h
+                          share/avsm/shaders/common/shadow_lookup.glsl share/avsm/spirv/shaders/passes/avsm_resolve.comp.spv)
+  if(NOT EXISTS "${WORK}/prefix/${expected}")
+    message(FATAL_ERROR "the install lacks ${expected}")
+  endif()
+endforeach()
+
+run_step("configure examples/host_embed against the package"
+  ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/host_embed" -B "${WORK}/host-build"
+  -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
+run_step("build examples/host_embed" ${CMAKE_COMMAND} --build "${WORK}/host-build" -j 2)

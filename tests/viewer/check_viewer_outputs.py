@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Checks a scripted avsm-viewer run (tests/viewer/CMakeLists.txt).
+
+  check_viewer_outputs.py SHOT_DIR WIDTH HEIGHT [--capture CAPTURE_DIR] [--inspect]
+
+SHOT_DIR is the viewer's --screenshot folder. Checks:
+  - frame.png and window.png are WIDTHxHEIGHT and not uniform, and every file
+    avsm-capture writes for a frame is there;
+  - window.png is the frame with the panel drawn over it: right of the panel it
+    equals frame.png exactly (the blit copies display values), and the panel area
+    differs from the frame;
+  - with --capture: frame.png matches avsm-capture's frame.png of the same camera
+    and size (per channel |difference| <= 2 of 255 on 99.9% of pixels: both render
+    the same scene with the same passes; only float reordering may differ);
+  - with --inspect: inspect.json holds a curve per light; each curve's technique and
+    exact values start at 1, never increase (AVSM and the exact product of segments
+    are monotone), end lower than they start for at least one light, and the
+    technique stays close to the exact curve (mean |difference| <= 0.05).
+Only the Python standard library is used (PNG decoding through zlib).
+"""
+import json
+import struct
+import sys
+import zlib
+from pathlib import Path
+
+FRAME_FILES = ["frame.png", "frame.exr", "timings.json", "trace.json", "graph.json", "graph.dot",
+               "memory.json", "light0_transmittance.png"]
+
+
+def fail(message):
+    print(f"check_viewer_outputs: FAIL: {message}")
+    sys.exit(1)
+
+
+def read_png(path):
+    """8-bit RGB/RGBA, non-interlaced PNG -> (width, height, rows of RGBA tuples' flat bytes)."""
+    data = Path(path).read_bytes()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        fail(f"{path}: not a PNG")
+    pos, idat, header = 8, b"", None
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    width, height, depth, colour, _, _, interlace = header
+    channels = {2: 3, 6: 4}.get(colour)
+    if depth != 8 or channels is None or interlace:
+        fail(f"{path}: expected 8-bit RGB(A) non-interlaced, got depth {depth} colour type {colour}")
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b = previous[i]
+            c = previous[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line) if channels == 3 else bytes(v for j, v in enumerate(line) if j % 4 != 3))
+        previous = line
+    return width, height, rows  # rows hold RGB only
+
+
+def check_image(path, width, height):
+    w, h, rows = read_png(path)
+    if (w, h) != (width, height):
+        fail(f"{path}: {w}x{h}, expected {width}x{height}")
+    if len(set(rows[y][x * 3:x * 3 + 3] for y in range(0, h, 3) for x in range(0, w, 3))) < 16:
+        fail(f"{path}: (nearly) uniform: fewer than 16 distinct colours")
+    return rows
+
+
+def check_window(frame, window, width):
+    # The panel sits at the top left; find the first column from which the window
+    # equals the frame on every row: that must leave a real part of the image.
+    equal_from = width
+    for x in range(width - 1, -1, -1):
+        if any(frame[y][x * 3:x * 3 + 3] != window[y][x * 3:x * 3 + 3] for y in range(len(frame))):
+            break
+        equal_from = x
+    if equal_from > width * 0.7:
+        fail(f"window.png equals frame.png only right of column {equal_from} of {width}: the blit lost the frame")
+    panel_differs = sum(frame[y][:equal_from * 3] != window[y][:equal_from * 3] for y in range(len(frame)))
+    if equal_from == 0 or panel_differs < len(frame) // 2:
+        fail("window.png shows no panel over the frame")
+    print(f"window.png: frame exact right of column {equal_from}, panel over {panel_differs} rows")
+
+
+def check_against_capture(frame, capture_png, width, height):
+    reference = check_image(capture_png, width, height)
+    off = worst = 0
+    for y in range(height):
+        for a, b in zip(frame[y], reference[y]):
+            d = abs(a - b)
+            worst = max(worst, d)
+            off += d > 2
+    channels = width * height * 3
+    print(f"frame.png vs avsm-capture: {off} of {channels} channels differ by more than 2, worst {worst}")
+    if off > channels * 0.001:
+        fail(f"frame.png differs from avsm-capture's frame: {off} channels off by more than 2 (worst {worst})")
+
+
+def check_inspection(path):
+    if not Path(path).is_file():
+        fail(f"missing {path}: the inspected texel's curves were not written")
+    inspection = json.loads(Path(path).read_text())
+    curves = inspection.get("curves", [])
+    if not curves:
+        fail(f"{path}: no curves")
+    falls = False
+    for curve in curves:
+        name = f"light {curve['light']} texel {curve['texel']}"
+        technique, exact = curve["technique_values"], curve["reference_values"]
+        if len(technique) < 64 or len(technique) != len(exact) or len(exact) != len(curve["depths"]):
+            fail(f"{name}: {len(technique)} technique / {len(exact)} exact values for {len(curve['depths'])} depths")
+        for label, values in (("technique", technique), ("exact", exact)):
+            if abs(values[0] - 1.0) > 1e-3:
+                fail(f"{name}: the {label} curve starts at {values[0]}, not 1 (nothing lies before the near depth)")
+            rises = [i for i in range(1, len(values)) if values[i] > values[i - 1] + 1e-4]
+            if rises:
+                fail(f"{name}: the {label} curve rises at sample {rises[0]}: {values[rises[0] - 1]} -> {values[rises[0]]}")
+        falls = falls or exact[-1] < exact[0] - 0.1
+        mean = sum(abs(a - b) for a, b in zip(technique, exact)) / len(exact)
+        print(f"{name} ({curve['technique']}): {exact[0]:.3f} -> {exact[-1]:.3f}, mean |T - T_exact| {mean:.4f}, "
+              f"max {curve['max_abs_difference']:.4f}, {len(curve['nodes'])} nodes")
+        if mean > 0.05:
+            fail(f"{name}: technique curve too far from the exact one (mean |difference| {mean:.4f} > 0.05)")
+    if not falls:
+        fail(f"{path}: no light's curve falls: the inspected ray crosses nothing")
+
+
+def main():
+    args = sys.argv[1:]
+    if len(args) < 3:
+        fail(__doc__)
+    shot, width, height = Path(args[0]), int(args[1]), int(args[2])
+    for name in FRAME_FILES + ["window.png"]:
+        if not (shot / name).is_file() or (shot / name).stat().st_size == 0:
+            fail(f"missing or empty {shot / name}")
+    frame = check_image(shot / "frame.png", width, height)
+    window = check_image(shot / "window.png", width, height)
+    check_window(frame, window, width)
+    if "--capture" in args:
+        check_against_capture(frame, Path(args[args.index("--capture") + 1]) / "frame.png", width, height)
+    if "--inspect" in args:
+        check_inspection(shot / "inspect.json")
+    print("check_viewer_outputs: OK")
+
+
+if __name__ == "__main__":
+    main()

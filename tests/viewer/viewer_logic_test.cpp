@@ -1,0 +1,185 @@
+// The viewer's CPU-side logic, without a window: camera control, picking, the
+// light texel a point falls in, scene overrides and the --control commands.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "passes/light_view.h"
+#include "passes/view.h"
+#include "viewer/camera_controller.h"
+#include "viewer/control_commands.h"
+#include "viewer/scene_overrides.h"
+#include "viewer/scene_picking.h"
+#include "viewer/texel_inspector.h"
+
+namespace avsm::viewer {
+namespace {
+
+scene::Camera start_camera() {
+  scene::Camera camera;
+  camera.position = {0.0f, 1.0f, 5.0f};
+  camera.target = {0.0f, 1.0f, 0.0f};
+  return camera;
+}
+
+float distance_to_target(const scene::Camera& c) { return glm::length(c.position - c.target); }
+
+TEST(CameraController, UntouchedCameraIsTheStartCamera) {
+  CameraController controller(start_camera());
+  EXPECT_FALSE(controller.update({}));
+  EXPECT_EQ(controller.camera().position, start_camera().position);
+  EXPECT_EQ(controller.camera().target, start_camera().target);
+}
+
+TEST(CameraController, OrbitKeepsTheTargetAndDistance) {
+  CameraController controller(start_camera());
+  ASSERT_TRUE(controller.update({.mouse_delta = {120.0f, -40.0f}, .rotate = true}));
+  EXPECT_EQ(controller.camera().target, start_camera().target);
+  EXPECT_NEAR(distance_to_target(controller.camera()), 5.0f, 1e-4f);
+  // Dragging right moves the camera to the left of where it was (-x seen from +z).
+  EXPECT_LT(controller.camera().position.x, 0.0f);
+}
+
+TEST(CameraController, OrbitStopsShortOfThePole) {
+  CameraController controller(start_camera());
+  controller.update({.mouse_delta = {0.0f, 5000.0f}, .rotate = true});  // far past straight down
+  const glm::vec3 view = glm::normalize(controller.camera().target - controller.camera().position);
+  EXPECT_GT(glm::length(glm::cross(view, glm::vec3(0, 1, 0))), 0.01f);
+  EXPECT_NEAR(distance_to_target(controller.camera()), 5.0f, 1e-3f);
+}
+
+TEST(CameraController, WheelZoomsTowardsTheTarget) {
+  CameraController controller(start_camera());
+  controller.update({.scroll = 2.0f});
+  EXPECT_NEAR(distance_to_target(controller.camera()), 5.0f * 0.81f, 1e-4f);
+}
+
+TEST(CameraController, PanMovesCameraAndTargetTogether) {
+  CameraController controller(start_camera());
+  controller.update({.mouse_delta = {50.0f, 0.0f}, .pan_or_look = true, .viewport_height = 500.0f});
+  const scene::Camera& c = controller.camera();
+  EXPECT_NEAR(c.position.x - start_camera().position.x, c.target.x - start_camera().target.x, 1e-5f);
+  EXPECT_LT(c.target.x, 0.0f);  // the scene follows the mouse to the right: the camera moves left
+}
+
+TEST(CameraController, FlyMovesForwardAndLooks) {
+  CameraController controller(start_camera());
+  controller.mode = CameraMode::fly;
+  controller.update({.move = {0.0f, 0.0f, 1.0f}, .seconds = 1.0f});
+  EXPECT_NEAR(controller.camera().position.z, 5.0f - controller.fly_speed, 1e-4f);
+  controller.update({.mouse_delta = {100.0f, 0.0f}, .pan_or_look = true});
+  EXPECT_GT(controller.camera().target.x, controller.camera().position.x);  // looked right
+}
+
+// A 2x2 quad on the plane z = 0, facing the camera at z = 5.
+scene::Scene quad_scene() {
+  scene::Scene scene;
+  scene::Mesh quad;
+  quad.name = "quad";
+  quad.positions = {{-1, 0, 0}, {1, 0, 0}, {1, 2, 0}, {-1, 2, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  for (const glm::vec3& p : quad.positions) quad.bounds.extend(p);
+  scene.meshes.push_back(quad);
+  scene.cameras.push_back(start_camera());
+  return scene;
+}
+
+TEST(ScenePicking, CentrePixelHitsTheQuadInFrontOfTheCamera) {
+  const scene::Scene scene = quad_scene();
+  const passes::View view = passes::make_view(scene.cameras[0], 64, 64);
+  const std::optional<PickedPoint> hit = pick_point(scene, view, {31.5f, 31.5f});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->world.x, 0.0f, 1e-3f);
+  EXPECT_NEAR(hit->world.y, 1.0f, 1e-3f);
+  EXPECT_NEAR(hit->world.z, 0.0f, 1e-4f);
+  EXPECT_EQ(hit->what, "mesh 'quad'");
+}
+
+TEST(ScenePicking, RowZeroIsTheTopOfTheImage) {
+  const passes::View view = passes::make_view(start_camera(), 64, 64);
+  EXPECT_GT(pixel_ray(view, {32, 0}).direction.y, 0.0f);
+  EXPECT_LT(pixel_ray(view, {32, 63}).direction.y, 0.0f);
+  EXPECT_GT(pixel_ray(view, {63, 32}).direction.x, 0.0f);
+}
+
+TEST(ScenePicking, MissIsNothing) {
+  const scene::Scene scene = quad_scene();
+  const passes::View view = passes::make_view(scene.cameras[0], 64, 64);
+  EXPECT_FALSE(pick_point(scene, view, {0, 0}));  // the corner looks past the quad
+}
+
+// The texel centre's ray (as avsm-capture --plot-texel builds it) maps back to that texel.
+TEST(LightTexel, TexelCentreRayMapsBackToItsTexel) {
+  scene::Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  scene::Bounds casters;
+  casters.extend(glm::vec3(-2.0f));
+  casters.extend(glm::vec3(2.0f));
+  const passes::LightView view = passes::make_light_view(sun, casters, 64);
+  for (glm::uvec2 texel : {glm::uvec2(0, 0), glm::uvec2(10, 50), glm::uvec2(63, 63)}) {
+    const glm::vec2 ndc = (glm::vec2(texel) + 0.5f) / 64.0f * 2.0f - 1.0f;
+    const glm::vec4 p = view.world_from_light * glm::vec4(ndc, 0.5f, 1.0f);
+    const std::optional<glm::uvec2> found = light_texel(view, glm::vec3(p) / p.w);
+    ASSERT_TRUE(found);
+    EXPECT_EQ(*found, texel);
+  }
+  EXPECT_FALSE(light_texel(view, glm::vec3(100.0f, 0.0f, 0.0f)));  // outside the map
+}
+
+TEST(SceneOverrides, OnlyTouchedFieldsChange) {
+  scene::Scene scene;
+  scene.lights.resize(2);
+  scene.lights[0].intensity = 3.0f;
+  scene.lights[1].shadow.nodes = 16;
+  scene::HairGroom hair;
+  hair.strand_opacity = {0.4f, 0.8f};
+  hair.strand_width = {0.01f, 0.02f};
+  scene.hair.push_back(hair);
+
+  SceneOverrides overrides;
+  overrides.light(0).technique = scene::ShadowTechnique::uncompressed;
+  overrides.light(0).enabled = false;
+  overrides.light(0).direction = glm::vec3(0.0f, -2.0f, 0.0f);
+  overrides.light(5).nodes = 4;  // a light the scene does not have: ignored
+  overrides.hair_opacity_scale = 2.0f;
+  overrides.hair_width_scale = 0.5f;
+  overrides.apply(scene);
+
+  EXPECT_EQ(scene.lights[0].shadow.technique, scene::ShadowTechnique::uncompressed);
+  EXPECT_EQ(scene.lights[0].intensity, 0.0f);
+  EXPECT_EQ(scene.lights[0].direction, glm::vec3(0.0f, -1.0f, 0.0f));
+  EXPECT_EQ(scene.lights[1].shadow.nodes, 16);
+  EXPECT_FLOAT_EQ(scene.hair[0].strand_opacity[0], 0.8f);
+  EXPECT_FLOAT_EQ(scene.hair[0].strand_opacity[1], 1.0f);  // clamped
+  EXPECT_FLOAT_EQ(scene.hair[0].strand_width[1], 0.01f);
+}
+
+TEST(ControlCommands, ParsesEveryCommand) {
+  EXPECT_EQ(parse_control_command("frame").kind, ControlCommand::Kind::frame);
+  const ControlCommand inspect = parse_control_command("inspect 12,34");
+  EXPECT_EQ(inspect.kind, ControlCommand::Kind::inspect);
+  EXPECT_EQ(inspect.pixel, glm::vec2(12, 34));
+  EXPECT_EQ(parse_control_command("screenshot out/a").directory, "out/a");
+  const ControlCommand light = parse_control_command("light 1 technique dsm");
+  EXPECT_EQ(light.light, 1u);
+  EXPECT_EQ(light.field, "technique");
+  EXPECT_EQ(light.value, "dsm");
+  EXPECT_FLOAT_EQ(parse_control_command("exposure 0.5").exposure, 0.5f);
+  EXPECT_EQ(parse_control_command("quit").kind, ControlCommand::Kind::quit);
+}
+
+TEST(ControlCommands, RejectsMalformedLinesWithAReason) {
+  EXPECT_THROW(parse_control_command("jump"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("inspect 12"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("frame now"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("light x technique avsm"), std::invalid_argument);
+  SceneOverrides overrides;
+  EXPECT_THROW(set_light_field(overrides, 0, "technique", "best"), std::invalid_argument);
+  EXPECT_THROW(set_light_field(overrides, 0, "colour", "red"), std::invalid_argument);
+  set_light_field(overrides, 0, "sort", "off");
+  EXPECT_EQ(overrides.lights[0].sort, false);
+}
+
+}  // namespace
+}  // namespace avsm::viewer
