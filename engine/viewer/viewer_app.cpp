@@ -414,7 +414,14 @@ void ViewerApp::refresh_inspection() {
   if (!inspector_.active()) return;
   renderer::SceneRenderer& renderer = live_->renderer();
   const std::vector<passes::TexelSample> samples = inspector_.prepare(live_->scene(), renderer.shadows().light_views());
-  if (!samples.empty()) renderer.set_texel_samples(samples);
+  try {
+    // The first inspection builds the curve pass from source: a shader broken on disk
+    // right now (its edit waiting for a fix) must not take the viewer down.
+    if (!samples.empty()) renderer.set_texel_samples(samples);
+  } catch (const std::exception& e) {
+    set_status(std::string("texel inspection failed: ") + e.what());
+    return;
+  }
   scene_dirty_ = true;
 }
 
