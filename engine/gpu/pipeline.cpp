@@ -1,5 +1,9 @@
 #include "gpu/pipeline.h"
 
+#include <atomic>
+#include <cstring>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <utility>
 
@@ -22,8 +26,132 @@ static VkShaderModule create_module(const Context& ctx, std::span<const uint32_t
   return module;
 }
 
+// Owns what a Pipeline's handles point at; destroyed with the last Pipeline sharing it.
+struct Pipeline::Objects {
+  const Context* ctx = nullptr;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  ~Objects() {
+    if (pipeline) vkDestroyPipeline(ctx->device(), pipeline, nullptr);
+    if (layout) vkDestroyPipelineLayout(ctx->device(), layout, nullptr);
+    if (set_layout) vkDestroyDescriptorSetLayout(ctx->device(), set_layout, nullptr);
+  }
+};
+
+namespace {
+
+std::atomic<uint64_t> pipelines_created{0};
+
+// Pipelines alive, by device and by everything that went into them (kind, name,
+// SPIR-V, fixed-function state). Weak: the cache never keeps a pipeline alive.
+struct PipelineRegistry {
+  struct Entry {
+    std::weak_ptr<Pipeline::Objects> objects;
+    std::shared_ptr<const Pipeline> prototype;  // reflection and handles, no ownership
+  };
+  std::mutex mutex;
+  std::map<std::pair<VkDevice, std::string>, Entry> entries;
+};
+PipelineRegistry& registry() {
+  static PipelineRegistry instance;
+  return instance;
+}
+
+void append_bytes(std::string& key, const void* data, size_t bytes) {
+  key.append(reinterpret_cast<const char*>(&bytes), sizeof(bytes));
+  key.append(static_cast<const char*>(data), bytes);
+}
+void append_words(std::string& key, std::span<const uint32_t> words) {
+  append_bytes(key, words.data(), words.size_bytes());
+}
+template <class T>
+void append_value(std::string& key, const T& value) {
+  append_bytes(key, &value, sizeof(value));
+}
+
+}  // namespace
+
+uint64_t Pipeline::created_count() { return pipelines_created.load(); }
+
+Pipeline Pipeline::copy_sharing() const {
+  Pipeline p;
+  p.objects_ = objects_;
+  p.pipeline_ = pipeline_;
+  p.layout_ = layout_;
+  p.set_layout_ = set_layout_;
+  p.bind_point_ = bind_point_;
+  p.stages_ = stages_;
+  p.has_push_constants_ = has_push_constants_;
+  p.bindings_ = bindings_;
+  p.local_size_ = local_size_;
+  p.name_ = name_;
+  return p;
+}
+
+Pipeline Pipeline::shared(const Context& ctx, const std::string& key,
+                          Pipeline (*create)(const Context&, const void*), const void* request) {
+  PipelineRegistry& cache = registry();
+  std::unique_lock lock(cache.mutex);
+  const auto id = std::make_pair(ctx.device(), key);
+  auto found = cache.entries.find(id);
+  if (found != cache.entries.end()) {
+    if (std::shared_ptr<Objects> alive = found->second.objects.lock()) {
+      Pipeline p = found->second.prototype->copy_sharing();
+      p.objects_ = std::move(alive);
+      return p;
+    }
+  }
+  // Compiling takes long on a CPU device; other threads may use the cache meanwhile.
+  lock.unlock();
+  Pipeline created = create(ctx, request);
+  ++pipelines_created;
+  auto prototype = std::make_shared<Pipeline>(created.copy_sharing());
+  prototype->objects_.reset();
+  lock.lock();
+  for (auto it = cache.entries.begin(); it != cache.entries.end();)
+    it = it->second.objects.expired() ? cache.entries.erase(it) : std::next(it);
+  cache.entries[id] = {created.objects_, std::move(prototype)};
+  return created;
+}
+
+Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
+  std::string key = "compute";
+  append_bytes(key, name.data(), name.size());
+  append_words(key, spirv);
+  struct Request {
+    std::span<const uint32_t> spirv;
+    const std::string& name;
+  } request{spirv, name};
+  return shared(ctx, key, [](const Context& c, const void* r) {
+    const Request& req = *static_cast<const Request*>(r);
+    return create_compute(c, req.spirv, req.name);
+  }, &request);
+}
+
+Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc) {
+  std::string key = "graphics";
+  append_bytes(key, desc.name.data(), desc.name.size());
+  append_words(key, desc.vertex);
+  append_words(key, desc.geometry);
+  append_words(key, desc.fragment);
+  append_bytes(key, desc.color_formats.data(), desc.color_formats.size() * sizeof(VkFormat));
+  append_value(key, desc.depth_format);
+  append_value(key, desc.topology);
+  append_value(key, desc.cull_mode);
+  append_value(key, desc.front_face);
+  append_value(key, desc.depth_test);
+  append_value(key, desc.depth_write);
+  append_value(key, desc.depth_compare);
+  append_value(key, desc.blend);
+  return shared(ctx, key, [](const Context& c, const void* r) {
+    return create_graphics(c, *static_cast<const GraphicsPipelineDesc*>(r));
+  }, &desc);
+}
+
 void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages) {
-  ctx_ = &ctx;
+  objects_ = std::make_shared<Objects>();
+  objects_->ctx = &ctx;
   // Merge bindings across stages; the same binding must mean the same thing everywhere.
   for (const ShaderReflection& stage : stages) {
     stages_ |= stage.stage;
@@ -51,6 +179,7 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
   set_info.bindingCount = uint32_t(layout_bindings.size());
   set_info.pBindings = layout_bindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &set_info, nullptr, &set_layout_));
+  objects_->set_layout = set_layout_;
   ctx.set_name(set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name_ + " set layout");
 
   VkPushConstantRange range{stages_, 0, kPushConstantBytes};
@@ -60,10 +189,11 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
   layout_info.pushConstantRangeCount = has_push_constants_ ? 1 : 0;
   layout_info.pPushConstantRanges = &range;
   VK_CHECK(vkCreatePipelineLayout(ctx.device(), &layout_info, nullptr, &layout_));
+  objects_->layout = layout_;
   ctx.set_name(layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name_ + " layout");
 }
 
-Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
+Pipeline Pipeline::create_compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {
   Pipeline p;
   p.name_ = name;
   p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
@@ -82,6 +212,7 @@ Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, 
   VkResult result = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
   vkDestroyShaderModule(ctx.device(), module, nullptr);
   VK_CHECK(result);
+  p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
   return p;
 }
@@ -113,7 +244,7 @@ static VkPipelineColorBlendAttachmentState blend_state(BlendMode mode) {
   return s;
 }
 
-Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc) {
+Pipeline Pipeline::create_graphics(const Context& ctx, const GraphicsPipelineDesc& desc) {
   Pipeline p;
   p.name_ = desc.name;
   p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -181,6 +312,7 @@ Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc
   VkResult result = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
   for (VkShaderModule m : modules) vkDestroyShaderModule(ctx.device(), m, nullptr);
   VK_CHECK(result);
+  p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, desc.name);
   return p;
 }
@@ -191,7 +323,7 @@ Pipeline::Pipeline(Pipeline&& other) noexcept { *this = std::move(other); }
 Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
   if (this != &other) {
     release();
-    ctx_ = std::exchange(other.ctx_, nullptr);
+    objects_ = std::move(other.objects_);
     pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
     layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
     set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
@@ -206,10 +338,7 @@ Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
 }
 
 void Pipeline::release() {
-  if (!ctx_) return;
-  if (pipeline_) vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(ctx_->device(), layout_, nullptr);
-  if (set_layout_) vkDestroyDescriptorSetLayout(ctx_->device(), set_layout_, nullptr);
+  objects_.reset();
   pipeline_ = VK_NULL_HANDLE;
   layout_ = VK_NULL_HANDLE;
   set_layout_ = VK_NULL_HANDLE;

@@ -6,6 +6,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,11 +35,17 @@ struct GraphicsPipelineDesc {
   BlendMode blend = BlendMode::None;
 };
 
+// Pipelines built from the same SPIR-V and state share their Vulkan objects: a
+// second request for one that is alive returns it without compiling again. Hot
+// reload relies on this, rebuilding every pass while only the edited shaders'
+// pipelines are created anew. The objects go when the last Pipeline using them does.
 class Pipeline {
  public:
   Pipeline() = default;
   static Pipeline compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
   static Pipeline graphics(const Context& ctx, const GraphicsPipelineDesc& desc);
+  // How many pipelines the process created (not counting shared ones), for tests.
+  static uint64_t created_count();
   ~Pipeline();
   Pipeline(Pipeline&& other) noexcept;
   Pipeline& operator=(Pipeline&& other) noexcept;
@@ -63,10 +70,17 @@ class Pipeline {
 
   const DescriptorBinding& binding(uint32_t index) const;
 
+  struct Objects;  // the Vulkan objects, shared between equal pipelines
+
  private:
+  static Pipeline create_compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
+  static Pipeline create_graphics(const Context& ctx, const GraphicsPipelineDesc& desc);
+  static Pipeline shared(const Context& ctx, const std::string& key, Pipeline (*create)(const Context&, const void*),
+                         const void* request);
   void create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages);
   void release();
-  const Context* ctx_ = nullptr;
+  Pipeline copy_sharing() const;
+  std::shared_ptr<Objects> objects_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;

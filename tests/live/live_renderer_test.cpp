@@ -12,6 +12,7 @@
 #include <string>
 
 #include "gpu/context.h"
+#include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "gpu/vk_check.h"
@@ -162,7 +163,10 @@ TEST_F(LiveRendererTest, BrokenShaderKeepsTheLastPipelineAndFixedShaderSwapsIn) 
 
   // Fixed, and visibly different: a tonemapper that writes white everywhere.
   replace_in_file(tonemap, "vec3 mapped = filmic(c) oops;", "vec3 mapped = vec3(1.0);");
+  const uint64_t pipelines_before = gpu::Pipeline::created_count();
   PollResult fixed = live.poll();
+  // Only the edited shader's pipeline is new; the others are shared with the old renderer.
+  EXPECT_EQ(gpu::Pipeline::created_count(), pipelines_before + 1);
   EXPECT_TRUE(fixed.shaders_reloaded);
   EXPECT_FALSE(fixed.failed);
   EXPECT_FALSE(live.error());
