@@ -226,6 +226,39 @@ TEST_F(LiveRendererTest, BrokenSceneFileAndAssetKeepTheLastSceneThenReload) {
   EXPECT_NE(render(), before);
 }
 
+TEST_F(LiveRendererTest, BrokenVolumeKeepsTheSmokeThenReloads) {
+  fs::copy_file(fs::path(AVSM_DEFAULT_SCENE).parent_path() / "plume.vdb", root_ / "content/plume.vdb");
+  std::string with_smoke = kSceneJson;
+  with_smoke.replace(with_smoke.find("\"lights\""), 0,
+                     R"("volumes": [ { "name": "plume", "file": "plume.vdb", "grid": "density", "extinction_scale": 1.5,
+                                     "transform": { "translation": [-1.3, 0.0, -0.4] } } ],
+  )");
+  write_text(scene_file(), with_smoke);
+  LiveRenderer& live = start();
+  ASSERT_EQ(live.scene().volumes.size(), 1u);
+  const std::vector<float> before = render();
+
+  // A VDB cut short: the loader's error names it, the smoke stays.
+  const fs::path vdb = root_ / "content/plume.vdb";
+  const std::string bytes = read_text(vdb);
+  write_text(vdb, bytes.substr(0, bytes.size() / 3));
+  EXPECT_TRUE(live.poll().failed);
+  ASSERT_TRUE(live.error());
+  EXPECT_EQ(live.error()->file.filename(), "plume.vdb") << live.error()->summary();
+  EXPECT_EQ(live.scene().volumes.size(), 1u);
+  EXPECT_EQ(render(), before);
+
+  // Restored, and thinned by half in the scene file: reloads, the picture changes.
+  write_text(vdb, bytes);
+  std::string thinner = with_smoke;
+  const std::string thick = "\"extinction_scale\": 1.5";
+  thinner.replace(thinner.find(thick), thick.size(), "\"extinction_scale\": 0.5");
+  write_text(scene_file(), thinner);
+  EXPECT_TRUE(live.poll().scene_reloaded);
+  EXPECT_FALSE(live.error()) << live.error()->summary();
+  EXPECT_NE(render(), before);
+}
+
 TEST_F(LiveRendererTest, EditsApplyToEveryReloadAndBadEditsAreRejected) {
   LiveRenderer& live = start();
   live.set_scene_edit([](scene::Scene& scene) { scene.lights[0].shadow.nodes = 8; });
