@@ -23,10 +23,9 @@ class HairPass {
   HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   void set_scene(const scene::Scene& scene);
   uint32_t segment_count() const { return segment_count_; }
-  // The strands, shared with the light capture (passes/capture_hair_pass.h).
+  // Strand vertices (vec4), read by the hair quality pass.
   const gpu::Buffer& points() const { return points_; }
-  const gpu::Buffer& segments() const { return segments_; }
-  const gpu::Buffer& strands() const { return strands_; }
+  // The strands as shadow casters (passes/capture_hair_pass.h).
   StrandCasters casters() const { return {points_.handle(), segments_.handle(), strands_.handle(), segment_count_}; }
 
   // Draws onto `color` (loaded), testing against `depth`; returns the new colour version.

@@ -29,16 +29,7 @@ class OpaquePass {
     rg::TextureHandle color;  // written as ColorAttachment
     rg::TextureHandle depth;  // written as DepthAttachmentWrite
   };
-  // The geometry, shared with the light captures (passes/capture_opaque_pass.h).
-  struct Draw {
-    uint32_t first_index, index_count;
-    int32_t vertex_offset;
-    uint32_t material;
-  };
-  const gpu::Buffer& vertices() const { return vertices_; }
-  const gpu::Buffer& indices() const { return indices_; }
-  const std::vector<Draw>& draws() const { return draws_; }
-  // The same geometry as shadow casters (vertices are CasterVertex).
+  // The geometry as shadow casters (vertices are CasterVertex; passes/capture_opaque_pass.h).
   MeshCasters casters() const;
 
   // Clears `color` to the sky colour and a new transient depth buffer to far,
@@ -47,6 +38,11 @@ class OpaquePass {
                        uint32_t light_count, const ShadowInputs& shadows);
 
  private:
+  struct Draw {
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+    uint32_t material;
+  };
   void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
               uint32_t light_count, const ShadowInputs& shadows) const;
   VkImageView texture_view(int texture) const;

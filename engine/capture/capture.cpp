@@ -10,6 +10,7 @@
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
+#include "capture/files.h"
 #include "capture/frame_outputs.h"
 #include "capture/quality.h"
 #include "capture/report.h"
@@ -36,23 +37,6 @@ const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& w
   throw std::runtime_error("scene has no camera '" + wanted + "'; cameras:" + names);
 }
 
-void write_json(const fs::path& path, const nlohmann::json& json) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << json.dump(2) << "\n";
-}
-
-void apply_shadow_overrides(const CaptureOptions& options, scene::Scene& scene) {
-  for (scene::Light& light : scene.lights) {
-    scene::ShadowSettings& shadow = light.shadow;
-    if (options.technique) shadow.technique = *options.technique;
-    if (options.nodes) shadow.nodes = *options.nodes;
-    if (options.sort) shadow.sort = *options.sort;
-    if (options.filter) shadow.filter = *options.filter;
-    if (options.shadow_resolution) shadow.resolution = *options.shadow_resolution;
-    for (const auto& [name, value] : options.shadow_parameters) shadow.parameters[name] = value;
-  }
-}
 
 // A JSON array of [x, y, z] world positions.
 std::vector<glm::vec3> read_probe_points(const fs::path& file) {
@@ -128,7 +112,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
 
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
-  apply_shadow_overrides(options, scene);
+  for (scene::Light& light : scene.lights) options.shadow.apply(light.shadow);
   const std::vector<glm::vec3> probe_points =
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   std::vector<TexelPlot> plots = options.plot_texels;
@@ -173,22 +157,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   FrameTimingLog timing_log;
   constexpr uint32_t kMaxOverflowRetries = 4;
 
-  auto render_frame = [&]() {
-    FrameClock clock;
-    clock.start = std::chrono::steady_clock::now();
-    rg::Graph graph = frame.build_frame(executor, view);
-    clock.built = std::chrono::steady_clock::now();
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    executor.record(graph, cmd);
-    VK_CHECK(vkEndCommandBuffer(cmd));
-    clock.recorded = std::chrono::steady_clock::now();
-    ctx.submit_and_wait(cmd);
-    clock.completed = std::chrono::steady_clock::now();
-    frame.finish_frame();
-    return clock;
-  };
+  auto render_frame = [&] { return render_timed_frame(ctx, frame, executor, cmd, view); };
 
   for (uint32_t index = 0; index < options.frames; ++index) {
     FrameClock clock = render_frame();

@@ -29,13 +29,8 @@ struct CaptureOptions {
   bool progress = true;  // progress lines on stderr
 
   // Shadow overrides applied to every light (unset: the scene's own settings).
-  std::optional<scene::ShadowTechnique> technique;
-  std::optional<int> nodes;
-  std::optional<bool> sort;
-  std::optional<scene::ShadowFilter> filter;
-  std::optional<int> shadow_resolution;
-  // Technique parameters (dsm error, osm slices, fom terms, depth_bias), set on every light.
-  std::map<std::string, double> shadow_parameters;
+  // Technique parameters (dsm error, osm slices, fom terms, depth_bias) go in shadow.parameters.
+  scene::ShadowOverrides shadow;
   bool exponential_interpolation = false;
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).

@@ -1,12 +1,13 @@
 #include "capture/frame_outputs.h"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "capture/files.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
+#include "gpu/vk_check.h"
 #include "io/image_io.h"
 #include "passes/shadow_debug_pass.h"
 #include "renderer/scene_renderer.h"
@@ -32,14 +33,6 @@ Stats stats_of(std::vector<double> values) {
 }
 
 nlohmann::json to_json(const Stats& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << text;
-}
-
-void write_json(const fs::path& path, const nlohmann::json& json) { write_text(path, json.dump(2) + "\n"); }
 
 nlohmann::json frame_samples_json(const FrameTimingLog& log) {
   nlohmann::json frames = nlohmann::json::array();
@@ -118,6 +111,26 @@ void write_light_images(const FrameOutputSources& frame, const fs::path& out_dir
 }
 
 }  // namespace
+
+FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
+                              VkCommandBuffer cmd, const passes::View& view,
+                              const std::function<void(VkCommandBuffer)>& also_record) {
+  FrameClock clock;
+  clock.start = std::chrono::steady_clock::now();
+  rg::Graph graph = renderer.build_frame(executor, view);
+  clock.built = std::chrono::steady_clock::now();
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  executor.record(graph, cmd);
+  if (also_record) also_record(cmd);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  clock.recorded = std::chrono::steady_clock::now();
+  ctx.submit_and_wait(cmd);
+  clock.completed = std::chrono::steady_clock::now();
+  renderer.finish_frame();
+  return clock;
+}
 
 FrameTimingLog::FrameTimingLog(std::chrono::steady_clock::time_point origin) : origin_(origin) {}
 

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ class SceneRenderer;
 namespace avsm::scene {
 struct Scene;
 }
+namespace avsm::passes {
+struct View;
+}
 
 namespace avsm::capture {
 
@@ -33,6 +37,13 @@ namespace avsm::capture {
 struct FrameClock {
   std::chrono::steady_clock::time_point start, built, recorded, completed;
 };
+
+// Renders one frame of `renderer` into `cmd` (begun here, one-time submit), submits
+// it, waits, and reads the shadow counters (finish_frame). `also_record` adds
+// commands after the frame graph's (the viewer copies its light maps there).
+FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
+                              VkCommandBuffer cmd, const passes::View& view,
+                              const std::function<void(VkCommandBuffer)>& also_record = {});
 
 // Per-pass timings of the measured frames, and a trace of every frame logged.
 class FrameTimingLog {

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -14,6 +13,7 @@
 #include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
+#include "capture/files.h"
 #include "capture/report.h"
 #include "io/image_io.h"
 #include "passes/shadow_maps.h"
@@ -65,12 +65,6 @@ void write_error_image(const fs::path& path, const passes::PixelShadowError* err
       heat_colour(std::max(surface ? e.surface : 0.0f, smoke ? e.smoke_max : 0.0f), rgb);
     }
   io::write_png_raw(path, image);
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << text;
 }
 
 std::optional<uint32_t> parse_uint(const std::string& text) {
@@ -376,9 +370,7 @@ fs::path write_quality(const fs::path& out_dir, const scene::Scene& scene,
       {"lights", list},
   };
   const fs::path path = out_dir / "quality.json";
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << json.dump(2) << "\n";
+  write_json(path, json);
   return path;
 }
 

@@ -1,8 +1,9 @@
 #include "capture/trace.h"
 
+#include "capture/files.h"
+
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <stdexcept>
 
 namespace avsm::capture {
@@ -35,9 +36,7 @@ void TraceWriter::write(const std::filesystem::path& path) const {
     if (!e.category.empty()) event["cat"] = e.category;
     events.push_back(event);
   }
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << nlohmann::json{{"traceEvents", events}, {"displayTimeUnit", "ms"}}.dump() << "\n";
+  write_json(path, {{"traceEvents", events}, {"displayTimeUnit", "ms"}}, /*indent=*/-1);
 }
 
 }  // namespace avsm::capture

@@ -1,7 +1,6 @@
 #include "gpu/pipeline.h"
 
 #include <atomic>
-#include <cstring>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -89,8 +88,7 @@ Pipeline Pipeline::copy_sharing() const {
   return p;
 }
 
-Pipeline Pipeline::shared(const Context& ctx, const std::string& key,
-                          Pipeline (*create)(const Context&, const void*), const void* request) {
+Pipeline Pipeline::shared(const Context& ctx, const std::string& key, const std::function<Pipeline()>& create) {
   PipelineRegistry& cache = registry();
   std::unique_lock lock(cache.mutex);
   const auto id = std::make_pair(ctx.device(), key);
@@ -104,7 +102,7 @@ Pipeline Pipeline::shared(const Context& ctx, const std::string& key,
   }
   // Compiling takes long on a CPU device; other threads may use the cache meanwhile.
   lock.unlock();
-  Pipeline created = create(ctx, request);
+  Pipeline created = create();
   ++pipelines_created;
   auto prototype = std::make_shared<Pipeline>(created.copy_sharing());
   prototype->objects_.reset();
@@ -119,14 +117,7 @@ Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, 
   std::string key = "compute";
   append_bytes(key, name.data(), name.size());
   append_words(key, spirv);
-  struct Request {
-    std::span<const uint32_t> spirv;
-    const std::string& name;
-  } request{spirv, name};
-  return shared(ctx, key, [](const Context& c, const void* r) {
-    const Request& req = *static_cast<const Request*>(r);
-    return create_compute(c, req.spirv, req.name);
-  }, &request);
+  return shared(ctx, key, [&] { return create_compute(ctx, spirv, name); });
 }
 
 Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc) {
@@ -144,9 +135,7 @@ Pipeline Pipeline::graphics(const Context& ctx, const GraphicsPipelineDesc& desc
   append_value(key, desc.depth_write);
   append_value(key, desc.depth_compare);
   append_value(key, desc.blend);
-  return shared(ctx, key, [](const Context& c, const void* r) {
-    return create_graphics(c, *static_cast<const GraphicsPipelineDesc*>(r));
-  }, &desc);
+  return shared(ctx, key, [&] { return create_graphics(ctx, desc); });
 }
 
 void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages) {

@@ -6,6 +6,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -75,8 +76,8 @@ class Pipeline {
  private:
   static Pipeline create_compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
   static Pipeline create_graphics(const Context& ctx, const GraphicsPipelineDesc& desc);
-  static Pipeline shared(const Context& ctx, const std::string& key, Pipeline (*create)(const Context&, const void*),
-                         const void* request);
+  // The live pipeline made from `key`, else create()'s, remembered under `key`.
+  static Pipeline shared(const Context& ctx, const std::string& key, const std::function<Pipeline()>& create);
   void create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages);
   void release();
   Pipeline copy_sharing() const;

@@ -12,6 +12,8 @@
 #include <regex>
 #include <sstream>
 
+#include "io/file_time.h"
+
 #ifndef AVSM_DEFAULT_SOURCE_DIR
 #define AVSM_DEFAULT_SOURCE_DIR "."
 #endif
@@ -163,23 +165,13 @@ ShaderLibrary::Paths ShaderLibrary::default_paths() {
   return paths;
 }
 
-namespace {
-// A file's modification time, or the minimum for a file that is gone (which
-// counts as a change).
-std::filesystem::file_time_type write_time(const std::filesystem::path& file) {
-  std::error_code ec;
-  const auto time = std::filesystem::last_write_time(file, ec);
-  return ec ? std::filesystem::file_time_type::min() : time;
-}
-}  // namespace
-
 struct ShaderLibrary::Cache {
   struct Entry {
     CompiledShader shader;
     std::vector<std::filesystem::file_time_type> times;  // of shader.files, when compiled
     bool current() const {
       for (size_t i = 0; i < shader.files.size(); ++i)
-        if (write_time(shader.files[i]) != times[i]) return false;
+        if (io::write_time_or_min(shader.files[i]) != times[i]) return false;
       return true;
     }
   };
@@ -212,7 +204,7 @@ std::vector<uint32_t> ShaderLibrary::load(const std::string& relative_path) cons
     if (found != cache_->entries.end() && found->second.current()) return found->second.shader.spirv;
     Cache::Entry entry;
     entry.shader = compile(relative_path);  // throws before the cache changes
-    for (const std::filesystem::path& file : entry.shader.files) entry.times.push_back(write_time(file));
+    for (const std::filesystem::path& file : entry.shader.files) entry.times.push_back(io::write_time_or_min(file));
     return (cache_->entries[relative_path] = std::move(entry)).shader.spirv;
   }
   return read_spirv_file(paths_.spirv_root / (relative_path + ".spv"));

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/file_time.h"
 #include "scene/description.h"
 #include "scene/load_error.h"
 
@@ -16,12 +17,6 @@ namespace avsm::live {
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::file_time_type write_time(const fs::path& file) {
-  std::error_code ec;
-  const fs::file_time_type time = fs::last_write_time(file, ec);
-  return ec ? fs::file_time_type::min() : time;  // a file that vanished counts as changed
-}
 
 // The external buffers and images of a .gltf (not data URIs): re-exporting a
 // model often rewrites only its .bin. Unreadable JSON adds nothing; loading
@@ -91,14 +86,14 @@ struct LiveRenderer::Watched {
 
   static void set(std::map<fs::path, fs::file_time_type>& watched, const std::vector<fs::path>& files) {
     watched.clear();
-    for (const fs::path& file : files) watched[file] = write_time(file);
+    for (const fs::path& file : files) watched[file] = io::write_time_or_min(file);
   }
   // Files whose time stamp changed since the last call; remembers the new stamps,
   // so an edit that fails to load is reported once, not on every poll.
   static std::vector<fs::path> take_changes(std::map<fs::path, fs::file_time_type>& watched) {
     std::vector<fs::path> changed;
     for (auto& [file, time] : watched) {
-      const fs::file_time_type now = write_time(file);
+      const fs::file_time_type now = io::write_time_or_min(file);
       if (now == time) continue;
       time = now;
       changed.push_back(file);

@@ -54,12 +54,7 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
     hair_quality_.reset();
   }
   if (texel_curves_) {
-    std::vector<passes::TexelSample> still_valid;
-    for (const passes::TexelSample& sample : texel_samples_)
-      if (sample.light < shadows_.light_count() && sample.texel.x < shadows_.light_views()[sample.light].resolution &&
-          sample.texel.y < shadows_.light_views()[sample.light].resolution)
-        still_valid.push_back(sample);
-    texel_samples_ = still_valid;
+    std::erase_if(texel_samples_, [&](const passes::TexelSample& s) { return !texel_sample_problem(s).empty(); });
     if (texel_samples_.empty())
       texel_curves_.reset();
     else
@@ -114,17 +109,20 @@ void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
   probes_->set_points(points, light_count_);
 }
 
+std::string SceneRenderer::texel_sample_problem(const passes::TexelSample& sample) const {
+  if (sample.light >= shadows_.light_count())
+    return "texel sample of light " + std::to_string(sample.light) + ": the scene has " +
+           std::to_string(shadows_.light_count()) + " lights";
+  const uint32_t resolution = shadows_.light_views()[sample.light].resolution;
+  if (sample.texel.x >= resolution || sample.texel.y >= resolution)
+    return "texel (" + std::to_string(sample.texel.x) + ", " + std::to_string(sample.texel.y) + ") is outside light " +
+           std::to_string(sample.light) + "'s " + std::to_string(resolution) + "x" + std::to_string(resolution) + " map";
+  return {};
+}
+
 void SceneRenderer::set_texel_samples(const std::vector<passes::TexelSample>& samples) {
-  for (const passes::TexelSample& sample : samples) {
-    if (sample.light >= shadows_.light_count())
-      throw std::invalid_argument("texel sample of light " + std::to_string(sample.light) + ": the scene has " +
-                                  std::to_string(shadows_.light_count()) + " lights");
-    const uint32_t resolution = shadows_.light_views()[sample.light].resolution;
-    if (sample.texel.x >= resolution || sample.texel.y >= resolution)
-      throw std::invalid_argument("texel (" + std::to_string(sample.texel.x) + ", " + std::to_string(sample.texel.y) +
-                                  ") is outside light " + std::to_string(sample.light) + "'s " +
-                                  std::to_string(resolution) + "x" + std::to_string(resolution) + " map");
-  }
+  for (const passes::TexelSample& sample : samples)
+    if (std::string problem = texel_sample_problem(sample); !problem.empty()) throw std::invalid_argument(problem);
   if (!texel_curves_) texel_curves_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
   texel_samples_ = samples;
   texel_curves_->set_texel_samples(samples);

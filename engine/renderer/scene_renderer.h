@@ -7,6 +7,7 @@
 #include <rendergraph/vulkan/executor.h>
 
 #include <memory>
+#include <string>
 
 #include "gpu/resources.h"
 #include "passes/hair_pass.h"
@@ -85,6 +86,8 @@ class SceneRenderer {
 
  private:
   void create_outputs();
+  // Why the shadow maps cannot evaluate `sample` (empty when they can).
+  std::string texel_sample_problem(const passes::TexelSample& sample) const;
 
   gpu::Context& ctx_;
   uint32_t width_, height_;

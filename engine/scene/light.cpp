@@ -45,4 +45,13 @@ std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
   return value_of<ShadowFilter>(kFilters, text);
 }
 
+void ShadowOverrides::apply(ShadowSettings& settings) const {
+  if (technique) settings.technique = *technique;
+  if (nodes) settings.nodes = *nodes;
+  if (resolution) settings.resolution = *resolution;
+  if (filter) settings.filter = *filter;
+  if (sort) settings.sort = *sort;
+  for (const auto& [name, value] : parameters) settings.parameters[name] = value;
+}
+
 }  // namespace avsm::scene

@@ -32,6 +32,19 @@ struct ShadowSettings {
   }
 };
 
+// Shadow settings written over a light's own (the capture's flags, the viewer's
+// edits): unset fields keep what the scene file says.
+struct ShadowOverrides {
+  std::optional<ShadowTechnique> technique;
+  std::optional<int> nodes;
+  std::optional<int> resolution;
+  std::optional<ShadowFilter> filter;
+  std::optional<bool> sort;
+  std::map<std::string, double> parameters;  // set on top of the light's own
+
+  void apply(ShadowSettings& settings) const;
+};
+
 enum class LightType { directional, spot };
 
 struct Light {

@@ -7,12 +7,7 @@ namespace avsm::viewer {
 namespace {
 
 void apply_light(const LightOverride& o, scene::Light& light) {
-  scene::ShadowSettings& shadow = light.shadow;
-  if (o.technique) shadow.technique = *o.technique;
-  if (o.nodes) shadow.nodes = *o.nodes;
-  if (o.resolution) shadow.resolution = *o.resolution;
-  if (o.filter) shadow.filter = *o.filter;
-  if (o.sort) shadow.sort = *o.sort;
+  o.apply(light.shadow);
   if (o.enabled && !*o.enabled) light.intensity = 0.0f;
   if (o.position) light.position = *o.position;
   if (o.direction && glm::length(*o.direction) > 0.0f) light.direction = glm::normalize(*o.direction);

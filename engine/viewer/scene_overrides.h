@@ -12,12 +12,8 @@
 
 namespace avsm::viewer {
 
-struct LightOverride {
-  std::optional<scene::ShadowTechnique> technique;
-  std::optional<int> nodes;
-  std::optional<int> resolution;
-  std::optional<scene::ShadowFilter> filter;
-  std::optional<bool> sort;
+// The shadow fields come from scene::ShadowOverrides (shared with avsm-capture's flags).
+struct LightOverride : scene::ShadowOverrides {
   // Off: the light contributes nothing (intensity 0); its shadow map is still built,
   // so its timings and curves stay comparable.
   std::optional<bool> enabled;

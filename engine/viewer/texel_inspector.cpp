@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "capture/files.h"
 #include "passes/shadow_maps.h"
 #include "viewer/scene_picking.h"
 
@@ -139,9 +139,7 @@ void TexelInspector::write_json(const fs::path& path) const {
   nlohmann::json json = {{"description", description_}, {"curves", curves}};
   if (target_ && target_->pixel) json["pixel"] = {target_->pixel->x, target_->pixel->y};
   if (target_ && target_->world) json["point"] = {target_->world->x, target_->world->y, target_->world->z};
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << json.dump(1) << "\n";
+  capture::write_json(path, json, /*indent=*/1);
 }
 
 }  // namespace avsm::viewer

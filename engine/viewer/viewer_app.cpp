@@ -437,20 +437,11 @@ void ViewerApp::set_status(const std::string& text) {
 
 void ViewerApp::render_scene_frame() {
   renderer::SceneRenderer& renderer = live_->renderer();
-  capture::FrameClock clock;
-  clock.start = Clock::now();
-  rg::Graph graph = renderer.build_frame(executor_, current_view());
-  clock.built = Clock::now();
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(scene_cmd_, &begin));
-  executor_.record(graph, scene_cmd_);
-  const bool new_textures = light_maps_.record_copies(scene_cmd_, renderer.light_images());
-  VK_CHECK(vkEndCommandBuffer(scene_cmd_));
-  clock.recorded = Clock::now();
-  ctx_.submit_and_wait(scene_cmd_);
-  clock.completed = Clock::now();
-  renderer.finish_frame();
+  bool new_textures = false;
+  const capture::FrameClock clock =
+      capture::render_timed_frame(ctx_, renderer, executor_, scene_cmd_, current_view(), [&](VkCommandBuffer cmd) {
+        new_textures = light_maps_.record_copies(cmd, renderer.light_images());
+      });
   ldr_valid_ = true;
 
   if (new_textures) {

@@ -99,23 +99,23 @@ int main(int argc, char** argv) {
       options.report = true;
     } else if (arg == "--technique") {
       const std::string name = value();
-      options.technique = avsm::scene::shadow_technique_from_string(name);
-      if (!options.technique)
+      options.shadow.technique = avsm::scene::shadow_technique_from_string(name);
+      if (!options.shadow.technique)
         usage_error("--technique expects avsm, uncompressed, dsm, osm or fom, got '" + name + "'");
     } else if (arg == "--nodes") {
       const uint32_t n = parse_count(arg, value());
       if (n != 4 && n != 8 && n != 12 && n != 16) usage_error("--nodes expects 4, 8, 12 or 16");
-      options.nodes = int(n);
+      options.shadow.nodes = int(n);
     } else if (arg == "--sort") {
-      options.sort = parse_on_off(arg, value());
+      options.shadow.sort = parse_on_off(arg, value());
     } else if (arg == "--filter") {
       const std::string name = value();
-      options.filter = avsm::scene::shadow_filter_from_string(name);
-      if (!options.filter) usage_error("--filter expects point, bilinear or trilinear, got '" + name + "'");
+      options.shadow.filter = avsm::scene::shadow_filter_from_string(name);
+      if (!options.shadow.filter) usage_error("--filter expects point, bilinear or trilinear, got '" + name + "'");
     } else if (arg == "--shadow-res") {
       const uint32_t r = parse_count(arg, value());
       if (r > 16384) usage_error("--shadow-res expects at most 16384");
-      options.shadow_resolution = int(r);
+      options.shadow.resolution = int(r);
     } else if (arg == "--interpolation") {
       const std::string name = value();
       if (name != "linear" && name != "exponential")
@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
       } catch (const std::exception&) {
         usage_error("--shadow-param expects NAME=NUMBER (e.g. error=0.01, slices=32, terms=16), got '" + text + "'");
       }
-      options.shadow_parameters[text.substr(0, equals)] = number;
+      options.shadow.parameters[text.substr(0, equals)] = number;
     } else if (arg == "--compare-to") {
       const std::string name = value();
       if (name != "uncompressed")
