@@ -7,7 +7,7 @@
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/capture_hair.frag: hair.vert's block, then the capture's.
+// Mirrors shaders/passes/capture_hair.vert and .frag.
 struct Push {
   glm::mat4 view_projection;
   glm::vec4 camera_position;  // where ribbons face: the light
@@ -31,7 +31,7 @@ glm::vec3 ribbon_facing_point(const LightView& light) {
 CaptureHairPass::CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
   gpu::GraphicsPipelineDesc desc;
   desc.name = "capture hair";
-  desc.vertex = shaders.load("shaders/passes/hair.vert");
+  desc.vertex = shaders.load("shaders/passes/capture_hair.vert");
   desc.fragment = shaders.load("shaders/passes/capture_hair.frag");
   desc.cull_mode = VK_CULL_MODE_NONE;
   pipeline_ = gpu::Pipeline::graphics(ctx, desc);

@@ -1,6 +1,6 @@
 #pragma once
 // Light-space capture of hair: the strands drawn as ribbons facing the light
-// (shaders/passes/hair.vert, at least one map texel wide with opacity scaled by
+// (shaders/common/hair_ribbon.glsl, at least one map texel wide with opacity scaled by
 // the widening), each fragment appending a short segment whose transmittance is
 // one minus the strand's opacity.
 #include <rendergraph/graph.h>

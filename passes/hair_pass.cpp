@@ -2,6 +2,8 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include <algorithm>
+
 #include "gpu/context.h"
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
@@ -12,7 +14,7 @@ namespace avsm::passes {
 
 namespace {
 
-// std430 mirrors of shaders/passes/hair.vert.
+// std430 mirrors of shaders/common/hair_ribbon.glsl and hair.vert.
 struct GpuStrand {
   glm::vec4 color_opacity;
   float width;
@@ -24,8 +26,21 @@ struct HairPush {
   glm::vec4 camera_position;
   glm::vec2 viewport;
   uint32_t light_count;
-  float pad;
+  uint32_t flags;
 };
+constexpr uint32_t kFlagLightPerFragment = 1u;
+
+// Central differences inside a strand, one-sided at its ends.
+void add_tangents(const scene::HairGroom& groom, std::vector<glm::vec4>& tangents) {
+  for (size_t s = 0; s < groom.strand_count(); ++s) {
+    const uint32_t first = groom.strand_offsets[s], last = groom.strand_offsets[s + 1] - 1;
+    for (uint32_t p = first; p <= last; ++p) {
+      const glm::vec3 d = groom.points[std::min(p + 1, last)] - groom.points[p > first ? p - 1 : p];
+      const float length = glm::length(d);
+      tangents.emplace_back(length > 0.0f ? d / length : glm::vec3(0.0f, 1.0f, 0.0f), 0.0f);
+    }
+  }
+}
 
 }  // namespace
 
@@ -43,12 +58,13 @@ HairPass::HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(
 }
 
 void HairPass::set_scene(const scene::Scene& scene) {
-  std::vector<glm::vec4> points;
+  std::vector<glm::vec4> points, tangents;
   std::vector<glm::uvec2> segments;  // (first point, strand)
   std::vector<GpuStrand> strands;
   for (const scene::HairGroom& groom : scene.hair) {
     uint32_t point_base = uint32_t(points.size());
     for (const glm::vec3& p : groom.points) points.emplace_back(p, 1.0f);
+    add_tangents(groom, tangents);
     for (size_t s = 0; s < groom.strand_count(); ++s) {
       uint32_t strand = uint32_t(strands.size());
       strands.push_back({glm::vec4(groom.strand_color[s], groom.strand_opacity[s]), groom.strand_width[s], {}});
@@ -57,25 +73,29 @@ void HairPass::set_scene(const scene::Scene& scene) {
     }
   }
   segment_count_ = uint32_t(segments.size());
+  point_count_ = uint32_t(points.size());
+  tangents_ = gpu::create_buffer_from(ctx_, std::move(tangents), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair tangents");
   points_ = gpu::create_buffer_from(ctx_, std::move(points), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair points");
   segments_ = gpu::create_buffer_from(ctx_, std::move(segments), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair segments");
   strands_ = gpu::create_buffer_from(ctx_, std::move(strands), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "hair strands");
 }
 
 rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                         const View& view, const gpu::Buffer& lights, uint32_t light_count,
-                                         const ShadowInputs& shadows) {
+                                         const View& view, rg::BufferHandle vertex_lights, bool light_per_fragment,
+                                         const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows) {
+  if (segment_count_ == 0) return color;
   struct Targets {
     rg::TextureHandle color, depth;
+    rg::BufferHandle vertex_lights;
   };
   const Targets& targets = graph.add_pass<Targets>("hair", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Targets& d) {
         d.color = b.read_write(color, rg::Usage::ColorAttachment);
         d.depth = b.read(depth, rg::Usage::DepthAttachmentRead);
+        d.vertex_lights = b.read(vertex_lights, rg::Usage::StorageRead);
         shadows.declare_reads(b);
       },
-      [this, view, &lights, light_count, shadows](const Targets& d, rg::PassContext& c) {
-        if (segment_count_ == 0) return;
+      [this, view, &lights, light_count, shadows, light_per_fragment](const Targets& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         gpu::ColorTarget color_target{c.view(d.color), c.layout(d.color), {}, /*load=*/true};
         gpu::DepthTarget depth_target{c.view(d.depth), c.layout(d.depth), 1.0f, /*store=*/false, /*read_only=*/true};
@@ -85,11 +105,13 @@ rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle col
         bindings.buffer(0, points_.handle())
             .buffer(1, segments_.handle())
             .buffer(2, strands_.handle())
-            .buffer(3, lights.handle());
+            .buffer(3, lights.handle())
+            .buffer(8, c.buffer(d.vertex_lights));
         shadows.bind(bindings, 4, c);
         bindings.push(cmd);
         pipeline_.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
-                                               glm::vec2(view.width, view.height), light_count, 0.0f});
+                                               glm::vec2(view.width, view.height), light_count,
+                                               light_per_fragment ? kFlagLightPerFragment : 0u});
         vkCmdDraw(cmd, segment_count_ * 6, 1, 0, 0);
         vkCmdEndRendering(cmd);
       });

@@ -36,7 +36,7 @@ struct MeshCasters {
   bool empty() const { return draws.empty() || vertices == VK_NULL_HANDLE || indices == VK_NULL_HANDLE; }
 };
 
-// std430 mirrors of shaders/passes/hair.vert's buffers. A strand is a polyline of
+// std430 mirrors of shaders/common/hair_ribbon.glsl's buffers. A strand is a polyline of
 // points; each segment joins point `first_point` and the next one.
 struct StrandSegment {
   uint32_t first_point;

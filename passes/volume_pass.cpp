@@ -94,7 +94,8 @@ GpuVolume to_gpu(const scene::Volume& volume, uint64_t grid_byte_offset, uint64_
   gpu.brick_size = volume.majorant.brick_size;
   gpu.majorant_dims = volume.majorant.dims;
   gpu.majorant_offset = uint32_t(majorant_offset);
-  return gpu;
+  gpu.voxel_size = smallest_voxel_edge(volume);
+  return gpu;  // the atlas fields are set by VolumeDensityAtlas::build
 }
 
 gpu::Buffer storage_buffer(const gpu::Context& ctx, const void* data, size_t bytes, const char* name) {
@@ -137,11 +138,32 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   grids_ = gpu::Buffer();
   majorants_ = gpu::Buffer();
   parameters_ = gpu::Buffer();
+  boxes_.clear();
+  atlas_.clear();
+  atlas_.build(ctx_, volumes, parameters);
+  if (!placeholder_) placeholder_ = gpu::create_buffer_from(ctx_, std::vector<GpuVolume>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "no volumes");
   if (volumes.empty()) return;
+  for (const scene::Volume& volume : volumes)
+    boxes_.push_back({volume.world_from_index, glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1),
+                      smallest_voxel_edge(volume), volume.majorant.brick_size, volume.world_bounds,
+                      volume.lighting_cache_downsample});
   grids_ = storage_buffer(ctx_, grids.data(), grids.size(), "volume nanovdb grids");
   majorants_ = storage_buffer(ctx_, majorants.data(), majorants.size() * sizeof(float), "volume majorants");
   parameters_ = storage_buffer(ctx_, parameters.data(), parameters.size() * sizeof(GpuVolume), "volume parameters");
   volume_count_ = uint32_t(volumes.size());
+}
+
+void VolumeBindings::bind(gpu::Bindings& bindings, uint32_t first, bool with_atlas) const {
+  bindings.buffer(first, grids).buffer(first + 1, majorants).buffer(first + 2, parameters);
+  if (with_atlas)
+    bindings.image(first + 3, atlas, VolumeDensityAtlas::kLayout, atlas_sampler).buffer(first + 4, slots);
+}
+
+VolumeBindings VolumePass::bindings() const {
+  const VkBuffer none = placeholder_.handle();
+  if (volume_count_ == 0) return {none, none, none, atlas_.slots().handle(), atlas_.view(), atlas_.sampler(), 0};
+  return {grids_.handle(), majorants_.handle(), parameters_.handle(), atlas_.slots().handle(),
+          atlas_.view(), atlas_.sampler(), volume_count_};
 }
 
 rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

@@ -27,11 +27,12 @@
 #include "passes/shadow_casters.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
+#include "passes/volume_density_atlas.h"
 #include "scene/volume.h"
 
 namespace avsm::passes {
 
-// std430, 144 bytes; mirrors struct GpuVolume in shaders/common/volume.glsl.
+// std430, 176 bytes; mirrors struct GpuVolume in shaders/common/volume.glsl.
 struct GpuVolume {
   glm::mat4 index_from_world;
   glm::vec3 support_min;        // index space: where the trilinear density can be non-zero
@@ -43,11 +44,40 @@ struct GpuVolume {
   glm::ivec3 majorant_origin;   // index coordinate of the corner of brick (0, 0, 0)
   int32_t brick_size;           // voxels per brick edge
   glm::ivec3 majorant_dims;     // bricks per axis, x fastest
-  uint32_t majorant_offset;     // start of this volume's bricks in the shared majorant buffer
+  uint32_t majorant_offset;     // start of this volume's bricks in the shared majorant (and slot) buffer
+  glm::ivec3 atlas_slots;       // this volume's region of the density atlas, slots per axis
+  int32_t atlas_first_slice;    // atlas z of the region's first voxel slice
+  float atlas_density_scale;    // density = atlas value * this
+  float voxel_size;             // smallest voxel edge, world units
+  float pad[2];
 };
-static_assert(sizeof(GpuVolume) == 144);
+static_assert(sizeof(GpuVolume) == 176);
 static_assert(offsetof(GpuVolume, step_length) == 76 && offsetof(GpuVolume, grid_byte_offset) == 108 &&
-              offsetof(GpuVolume, majorant_offset) == 140);
+              offsetof(GpuVolume, majorant_offset) == 140 && offsetof(GpuVolume, atlas_first_slice) == 156 &&
+              offsetof(GpuVolume, voxel_size) == 164);
+
+using scene::VolumeShading;
+
+// Where the volumes' data lies for a pass that binds it: the NanoVDB grids, the
+// majorants and the parameter blocks at `first` .. +2, the density atlas at +3 and
+// its brick slots at +4 (AVSM_VOLUME_BINDING_* = first .. in the shader).
+struct VolumeBindings {
+  VkBuffer grids = VK_NULL_HANDLE, majorants = VK_NULL_HANDLE, parameters = VK_NULL_HANDLE, slots = VK_NULL_HANDLE;
+  VkImageView atlas = VK_NULL_HANDLE;
+  VkSampler atlas_sampler = VK_NULL_HANDLE;
+  uint32_t count = 0;
+  void bind(gpu::Bindings& bindings, uint32_t first, bool with_atlas) const;
+};
+
+// What the lighting cache needs of one volume on the CPU (passes/volume_lighting_cache_pass.h).
+struct VolumeBox {
+  glm::mat4 world_from_index{1.0f};
+  glm::vec3 support_min{0.0f}, support_max{0.0f};  // index space
+  float voxel_size = 1.0f;                          // smallest voxel edge, world units
+  int brick_size = 8;
+  scene::Bounds world_bounds;
+  float cache_downsample = 2.0f;                    // voxels per cache cell, at least
+};
 
 class VolumePass {
  public:
@@ -78,6 +108,7 @@ class VolumePass {
   // Debug switch: march through empty bricks too. The image must not change; it only
   // exists so tests can check that skipping never drops density.
   void set_majorant_skipping(bool enabled) { majorant_skipping_ = enabled; }
+  bool majorant_skipping() const { return majorant_skipping_; }
 
   uint32_t volume_count() const { return volume_count_; }
   // The volumes, shared with the light capture (passes/capture_smoke_pass.h).
@@ -85,6 +116,11 @@ class VolumePass {
   const gpu::Buffer& majorants() const { return majorants_; }
   const gpu::Buffer& parameters() const { return parameters_; }
   VolumeCasters casters() const { return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_}; }
+  // Every buffer and image of the volumes, for the fast path's passes; valid (with
+  // placeholders) when there are no volumes, so shaders always have something to bind.
+  VolumeBindings bindings() const;
+  const std::vector<VolumeBox>& boxes() const { return boxes_; }
+  const VolumeDensityAtlas& atlas() const { return atlas_; }
 
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
@@ -98,6 +134,9 @@ class VolumePass {
   gpu::Buffer grids_;       // every NanoVDB grid, 32-byte aligned
   gpu::Buffer majorants_;   // every majorant grid, floats
   gpu::Buffer parameters_;  // one GpuVolume per volume
+  gpu::Buffer placeholder_;  // bound for the volume buffers when there are no volumes
+  VolumeDensityAtlas atlas_;
+  std::vector<VolumeBox> boxes_;
   uint32_t volume_count_ = 0;
   bool majorant_skipping_ = true;
 };

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -14,11 +16,13 @@
 #include "capture/frame_outputs.h"
 #include "capture/quality.h"
 #include "capture/report.h"
+#include "capture/volume_comparison.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/vk_check.h"
+#include "io/image_io.h"
 #include "passes/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
@@ -100,6 +104,68 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
   return grew;
 }
 
+PassMedians pass_medians(const FrameTimingLog& log) {
+  PassMedians medians;
+  for (const FrameTimingLog::PassSamples& pass : log.passes()) {
+    if (pass.gpu_ms.empty()) continue;
+    std::vector<double> sorted = pass.gpu_ms;
+    std::sort(sorted.begin(), sorted.end());
+    medians[pass.name] = sorted[sorted.size() / 2];
+  }
+  return medians;
+}
+
+std::string describe(const scene::VolumeShading& shading) {
+  return std::string(scene::to_string(shading.mode)) + ", resolution divisor " +
+         std::to_string(shading.resolution_divisor) + ", step " + std::to_string(shading.step_voxels) + " voxels";
+}
+
+// The reference and hidden-volume frames of --compare-volume-shading, each timed on
+// its own executor (their graphs differ from the main frame's).
+class VolumeShadingRun {
+ public:
+  VolumeShadingRun(gpu::Context& ctx, gpu::TimestampMode mode, renderer::SceneRenderer& frame)
+      : ctx_(ctx), frame_(frame), main_(frame.volume_shading()), executor_(ctx, mode) {}
+
+  // One reference frame; `keep` reads its HDR image back.
+  void render_reference(VkCommandBuffer cmd, const passes::View& view, bool measured, bool keep) {
+    render_as(scene::VolumeShading::Mode::reference, cmd, view, measured, keep ? &reference_ : nullptr);
+  }
+  // After the last main frame was written: the hidden frame, and the comparison files.
+  fs::path finish(const fs::path& out_dir, VkCommandBuffer cmd, const passes::View& view,
+                  const FrameTimingLog& main_log) {
+    const gpu::ImageRGBA32F fast = gpu::read_image(ctx_, frame_.hdr(), renderer::SceneRenderer::kOutputLayout);
+    gpu::ImageRGBA32F hidden, error;
+    FrameTimingLog unused;
+    render_as(scene::VolumeShading::Mode::hidden, cmd, view, false, &hidden, &unused);
+    const VolumeShadingComparison comparison = compare_volume_shading(fast, reference_, hidden, &error);
+    io::write_png_raw(out_dir / "volume_error.png", error);
+    io::write_exr(out_dir / "frame_reference.exr", reference_);
+    const fs::path file = out_dir / "volume_quality.json";
+    write_volume_comparison(file, comparison, describe(main_), pass_medians(main_log), pass_medians(log_));
+    return file;
+  }
+
+ private:
+  void render_as(scene::VolumeShading::Mode mode, VkCommandBuffer cmd, const passes::View& view, bool measured,
+                 gpu::ImageRGBA32F* keep, FrameTimingLog* log = nullptr) {
+    scene::VolumeShading shading = main_;
+    shading.mode = mode;
+    frame_.set_volume_shading(shading);
+    const FrameClock clock = render_timed_frame(ctx_, frame_, executor_, cmd, view);
+    (log ? *log : log_).add_frame(clock, executor_.read_timings(), measured);
+    if (keep) *keep = gpu::read_image(ctx_, frame_.hdr(), renderer::SceneRenderer::kOutputLayout);
+    frame_.set_volume_shading(main_);
+  }
+
+  gpu::Context& ctx_;
+  renderer::SceneRenderer& frame_;
+  scene::VolumeShading main_;
+  rg::vulkan::Executor executor_;
+  FrameTimingLog log_;
+  gpu::ImageRGBA32F reference_;
+};
+
 }  // namespace
 
 CaptureOutputs run_capture(const CaptureOptions& options) {
@@ -113,6 +179,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
   for (scene::Light& light : scene.lights) options.shadow.apply(light.shadow);
+  options.volume_shading.apply(scene.volume_shading);
   const std::vector<glm::vec3> probe_points =
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   std::vector<TexelPlot> plots = options.plot_texels;
@@ -158,8 +225,14 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   constexpr uint32_t kMaxOverflowRetries = 4;
 
   auto render_frame = [&] { return render_timed_frame(ctx, frame, executor, cmd, view); };
+  std::optional<VolumeShadingRun> volume_run;
+  if (options.compare_volume_shading) volume_run.emplace(ctx, calibration.mode, frame);
 
   for (uint32_t index = 0; index < options.frames; ++index) {
+    // Interleaved with the main frames, so both paths see the same machine load.
+    if (volume_run)
+      volume_run->render_reference(cmd, view, /*measured=*/index > 0 || options.frames == 1,
+                                   /*keep=*/index + 1 == options.frames);
     FrameClock clock = render_frame();
     // A frame whose capture overflowed lacks segments; when the buffers could grow,
     // render it again rather than keep it (a few times at most: growth has headroom).
@@ -180,6 +253,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (options.compare_to_uncompressed)
     out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,
                                 {frame.hair_quality_results(), frame.hair_receiver_count()});
+  if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, cmd, view, timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   if (options.report) write_report(options.out_dir, options.out_dir / "report.html");

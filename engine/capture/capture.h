@@ -31,6 +31,13 @@ struct CaptureOptions {
   // Shadow overrides applied to every light (unset: the scene's own settings).
   // Technique parameters (dsm error, osm slices, fom terms, depth_bias) go in shadow.parameters.
   scene::ShadowOverrides shadow;
+  // Volume shading overrides (unset: the scene's volume_shading).
+  scene::VolumeShadingOverrides volume_shading;
+  // --compare-volume-shading: every frame is also rendered with the reference volume
+  // shading (interleaved, timed apart), and once with the volumes hidden to find the
+  // smoke pixels: writes volume_quality.json, volume_error.png and frame_reference.exr
+  // (capture/volume_comparison.h).
+  bool compare_volume_shading = false;
   bool exponential_interpolation = false;
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).
@@ -52,6 +59,7 @@ struct CaptureOutputs {
   std::filesystem::path exr;
   std::filesystem::path timings;
   std::filesystem::path quality;               // empty without --compare-to
+  std::filesystem::path volume_quality;        // empty without --compare-volume-shading
   std::vector<std::filesystem::path> curves;   // --plot-texel
 };
 

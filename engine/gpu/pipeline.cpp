@@ -1,5 +1,7 @@
 #include "gpu/pipeline.h"
 
+#include <algorithm>
+
 #include <atomic>
 #include <map>
 #include <mutex>
@@ -160,6 +162,10 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
       if (!merged) bindings_.push_back(b);
     }
   }
+  // In binding order: the validation layer (1.3.239) lost track of pushed descriptors
+  // whose binding came after a higher-numbered one in the layout.
+  std::sort(bindings_.begin(), bindings_.end(),
+            [](const DescriptorBinding& a, const DescriptorBinding& b) { return a.binding < b.binding; });
   std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
   for (const DescriptorBinding& b : bindings_)
     layout_bindings.push_back({b.binding, b.type, b.count, stages_, nullptr});

@@ -27,6 +27,10 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
       opaque_(ctx, shaders),
       hair_(ctx, shaders),
       volumes_(ctx, shaders),
+      cache_(ctx, shaders),
+      cached_march_(ctx, shaders),
+      upsample_(ctx, shaders),
+      hair_lighting_(ctx, shaders),
       shadows_(ctx, shaders),
       shaders_(shaders),
       tonemap_(ctx, shaders) {
@@ -42,6 +46,7 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
+  set_volume_shading(scene.volume_shading);
   shadows_.set_scene(scene, shadow_options);
 
   // Output passes enabled before follow the new lights.
@@ -60,6 +65,16 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
     else
       texel_curves_->set_texel_samples(texel_samples_);
   }
+}
+
+void SceneRenderer::set_volume_shading(const scene::VolumeShading& shading) {
+  if (shading.resolution_divisor != 1 && shading.resolution_divisor != 2 && shading.resolution_divisor != 4)
+    throw std::invalid_argument("volume shading: the resolution divisor must be 1, 2 or 4, got " +
+                                std::to_string(shading.resolution_divisor));
+  if (!(shading.step_voxels >= 0.125f && shading.step_voxels <= 4.0f))
+    throw std::invalid_argument("volume shading: the march step must be 0.125 to 4 voxels, got " +
+                                std::to_string(shading.step_voxels));
+  volume_shading_ = shading;
 }
 
 void SceneRenderer::set_size(uint32_t width, uint32_t height) {
@@ -90,8 +105,18 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
   const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
   passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_, shadows);
-  rg::TextureHandle color = hair_.add_to_graph(graph, opaque.color, opaque.depth, view, lights_, light_count_, shadows);
-  color = volumes_.add_to_graph(graph, color, opaque.depth, view, lights_, light_count_, shadows);
+  std::optional<passes::VolumeLightingCache> cache;
+  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, view, shadows, cache);
+  // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
+  // Hidden volumes keep the reference shading of everything else (it is the
+  // reference's smoke-free twin in comparisons).
+  const bool reference = volume_shading_.mode != scene::VolumeShading::Mode::fast;
+  const rg::BufferHandle hair_lights =
+      hair_lighting_.add_to_graph(graph, hair_, view, volumes_, cache ? &*cache : nullptr, cache_.sampler(),
+                                  volume_shading_, lights_, light_count_, shadows,
+                                  /*fog=*/volume_shading_.mode != scene::VolumeShading::Mode::hidden);
+  color = hair_.add_to_graph(graph, color, opaque.depth, view, hair_lights, /*light_per_fragment=*/reference, lights_,
+                             light_count_, shadows);
 
   tonemap_.add_to_graph(graph, color, ldr, exposure_);
   if (quality_)
@@ -101,6 +126,19 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   if (texel_curves_) texel_curves_->add_to_graph(graph, executor, shadows);
   if (light_images_) light_images_->add_to_graph(graph, executor, shadows);
   return graph;
+}
+
+rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                                             const passes::View& view, const passes::ShadowInputs& shadows,
+                                             std::optional<passes::VolumeLightingCache>& cache) {
+  if (volumes_.volume_count() == 0 || volume_shading_.mode == scene::VolumeShading::Mode::hidden) return color;
+  if (volume_shading_.mode == scene::VolumeShading::Mode::reference)
+    return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, shadows);
+  const uint32_t divisor = uint32_t(volume_shading_.resolution_divisor);
+  cache = cache_.add_to_graph(graph, volumes_, view, divisor, lights_, light_count_, shadows);
+  const passes::VolumeMarchImage march =
+      cached_march_.add_to_graph(graph, depth, view, volumes_, *cache, cache_.sampler(), volume_shading_);
+  return upsample_.add_to_graph(graph, color, depth, view, march, volumes_, *cache, cache_.sampler(), volume_shading_);
 }
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {

@@ -1,15 +1,20 @@
 #pragma once
 // Renders a loaded scene through the frame graph: per light its transmittance
-// map (passes/shadow_maps.h), then opaque geometry, hair, fog volumes, all shaded
-// with those maps, then tonemapping. Owns the per-scene GPU data and the frame's output
+// map (passes/shadow_maps.h), then opaque geometry, fog volumes, hair, all shaded
+// with those maps, then tonemapping. The volumes are seen the fast way (lighting
+// cache, reduced-resolution march and upsample, per-vertex hair lighting) or the
+// reference way (full-resolution march with shadow lookups along every ray), as the
+// scene's volume_shading says. Owns the per-scene GPU data and the frame's output
 // images; each frame declares its passes anew (the executor reuses the plan).
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "gpu/resources.h"
+#include "passes/hair_lighting_pass.h"
 #include "passes/hair_pass.h"
 #include "passes/opaque_pass.h"
 #include "passes/shadow_maps.h"
@@ -19,7 +24,10 @@
 #include "passes/shadow_quality_pass.h"
 #include "passes/tonemap_pass.h"
 #include "passes/view.h"
+#include "passes/volume_cached_march_pass.h"
+#include "passes/volume_lighting_cache_pass.h"
 #include "passes/volume_pass.h"
+#include "passes/volume_upsample_pass.h"
 
 #include "scene/scene.h"
 
@@ -40,6 +48,12 @@ class SceneRenderer {
   // New output size (waits for the device to idle).
   void set_size(uint32_t width, uint32_t height);
   void set_exposure(float exposure) { exposure_ = exposure; }
+  // How the camera sees the volumes; set_scene() takes the scene's. Throws
+  // std::invalid_argument for a divisor other than 1, 2, 4 or a step outside 0.125..4 voxels.
+  void set_volume_shading(const scene::VolumeShading& shading);
+  const scene::VolumeShading& volume_shading() const { return volume_shading_; }
+  // Cells in the last frame's lighting cache (0 in the reference path).
+  uint64_t lighting_cache_cells() const { return volume_shading_.mode == scene::VolumeShading::Mode::fast ? cache_.cell_count() : 0; }
   float exposure() const { return exposure_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
@@ -86,6 +100,10 @@ class SceneRenderer {
 
  private:
   void create_outputs();
+  // Adds the volume passes of the fast or the reference path; returns the new colour.
+  rg::TextureHandle add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                                const passes::View& view, const passes::ShadowInputs& shadows,
+                                std::optional<passes::VolumeLightingCache>& cache);
   // Why the shadow maps cannot evaluate `sample` (empty when they can).
   std::string texel_sample_problem(const passes::TexelSample& sample) const;
 
@@ -99,6 +117,11 @@ class SceneRenderer {
   passes::OpaquePass opaque_;
   passes::HairPass hair_;
   passes::VolumePass volumes_;
+  passes::VolumeLightingCachePass cache_;
+  passes::VolumeCachedMarchPass cached_march_;
+  passes::VolumeUpsamplePass upsample_;
+  passes::HairLightingPass hair_lighting_;
+  scene::VolumeShading volume_shading_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;

@@ -288,6 +288,13 @@ VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene
   entry.majorant_brick_size = object.integer_or("majorant_brick_size", 8);
   object.check(entry.majorant_brick_size >= 2 && entry.majorant_brick_size <= 64, "majorant_brick_size",
                "must be 2 to 64 voxels");
+  if (const json* cache = object.optional("lighting_cache")) {
+    ObjectReader cache_object(object.reader(), *cache, object.path_of("lighting_cache"));
+    entry.lighting_cache_downsample = cache_object.number_or("downsample", entry.lighting_cache_downsample);
+    cache_object.check(entry.lighting_cache_downsample >= 1.0f && entry.lighting_cache_downsample <= 8.0f, "downsample",
+                       "must be 1 to 8 voxels per cache cell");
+    cache_object.finish();
+  }
   return entry;
 }
 
@@ -347,6 +354,23 @@ ShadowSettings read_shadow(const Reader& reader, const json& value, const std::s
   }
   object.finish();
   return shadow;
+}
+
+VolumeShading read_volume_shading(const Reader& reader, const json& value) {
+  ObjectReader object(reader, value, "volume_shading");
+  VolumeShading shading;
+  shading.mode = choice<VolumeShading::Mode>(object, "mode", shading.mode,
+                                             {{"fast", VolumeShading::Mode::fast},
+                                              {"reference", VolumeShading::Mode::reference},
+                                              {"hidden", VolumeShading::Mode::hidden}});
+  shading.resolution_divisor = object.integer_or("resolution_divisor", shading.resolution_divisor);
+  object.check(shading.resolution_divisor == 1 || shading.resolution_divisor == 2 || shading.resolution_divisor == 4,
+               "resolution_divisor", "must be 1, 2 or 4, got " + std::to_string(shading.resolution_divisor));
+  shading.step_voxels = object.number_or("step_voxels", shading.step_voxels);
+  object.check(shading.step_voxels >= 0.125f && shading.step_voxels <= 4.0f, "step_voxels",
+               "must be 0.125 to 4 voxels");
+  object.finish();
+  return shading;
 }
 
 Light read_light(ObjectReader& object, std::size_t index) {
@@ -502,6 +526,7 @@ SceneDescription parse_scene_description(std::string_view json_text, const std::
   scene.hair = read_list<HairEntry>(top, "hair", [&](ObjectReader& o, std::size_t) { return read_hair(o, scene_dir); });
   scene.lights = read_list<Light>(top, "lights", read_light);
   scene.cameras = read_list<Camera>(top, "cameras", read_camera);
+  if (const json* shading = top.optional("volume_shading")) scene.volume_shading = read_volume_shading(reader, *shading);
   reader.expect(top.has("cameras"), "cameras", "required key is missing (a scene needs at least one camera)");
   reader.expect(!scene.cameras.empty(), "cameras", "a scene needs at least one camera");
   top.finish();

@@ -7,6 +7,7 @@
 #include "scene/camera.h"
 #include "scene/light.h"
 #include "scene/mesh.h"
+#include "scene/volume.h"
 
 #include <glm/glm.hpp>
 
@@ -35,6 +36,7 @@ struct VolumeEntry {  // "volumes": OpenVDB fog volumes
   float extinction_scale = 1.0f;  // sigma_t = extinction_scale * density, per world unit
   glm::vec3 albedo{1.0f};
   int majorant_brick_size = 8;
+  float lighting_cache_downsample = 2.0f;  // "lighting_cache": {"downsample": N}
 };
 
 struct HairEntry {  // "hair": .tfx, .hair, or the line primitives of a .gltf/.glb
@@ -54,6 +56,7 @@ struct SceneDescription {
   std::vector<HairEntry> hair;
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // at least one
+  VolumeShading volume_shading;  // "volume_shading"
 };
 
 // Reads and checks a scene file; asset paths come back resolved against its folder.

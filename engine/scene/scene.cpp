@@ -81,6 +81,7 @@ Scene load_scene(const SceneDescription& description) {
   scene.file = description.file;
   scene.lights = description.lights;
   scene.cameras = description.cameras;
+  scene.volume_shading = description.volume_shading;
 
   for (std::size_t i = 0; i < description.models.size(); ++i) {
     const ModelEntry& entry = description.models[i];
@@ -101,6 +102,7 @@ Scene load_scene(const SceneDescription& description) {
     const std::string where = "volumes[" + std::to_string(i) + "]";
     Volume volume = with_context(description, where, [&] { return load_vdb_volume(entry.file, options); });
     volume.name = entry.name;
+    volume.lighting_cache_downsample = entry.lighting_cache_downsample;
     scene.volumes.push_back(std::move(volume));
   }
   for (std::size_t i = 0; i < description.hair.size(); ++i) {

@@ -181,6 +181,22 @@ void convert_to_nanovdb(Volume& volume, const openvdb::FloatGrid& grid, const st
 
 }  // namespace
 
+const char* to_string(VolumeShading::Mode mode) {
+  switch (mode) {
+    case VolumeShading::Mode::fast: return "fast";
+    case VolumeShading::Mode::reference: return "reference";
+    case VolumeShading::Mode::hidden: return "hidden";
+  }
+  return "?";
+}
+
+std::optional<VolumeShading::Mode> volume_shading_mode_from_string(const std::string& name) {
+  if (name == "fast") return VolumeShading::Mode::fast;
+  if (name == "reference") return VolumeShading::Mode::reference;
+  if (name == "hidden") return VolumeShading::Mode::hidden;
+  return std::nullopt;
+}
+
 Volume load_vdb_volume(const std::filesystem::path& file, const VolumeOptions& options) {
   if (options.majorant_brick_size < 2 || options.majorant_brick_size > 64)
     throw LoadError(file, "majorant brick size " + std::to_string(options.majorant_brick_size) + " is outside 2 to 64");

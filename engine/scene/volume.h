@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,33 @@ struct MajorantGrid {
   }
 };
 
+// How the camera sees fog volumes (scene file "volume_shading"; avsm-capture
+// --volume-shading, --volume-resolution-divisor, --volume-step).
+struct VolumeShading {
+  enum class Mode {
+    fast,       // lighting cache, brick-atlas density, reduced-resolution march, per-vertex hair lighting
+    reference,  // full resolution, quarter-voxel NanoVDB steps, shadow lookups along every ray
+    hidden,     // the camera does not see the volumes (they still cast shadows): comparisons, masks
+  };
+  Mode mode = Mode::fast;
+  int resolution_divisor = 2;  // fast: the march runs at 1/divisor of the output per axis (1, 2 or 4)
+  float step_voxels = 1.0f;    // fast: march step in voxels (of the smallest voxel edge)
+};
+const char* to_string(VolumeShading::Mode mode);
+std::optional<VolumeShading::Mode> volume_shading_mode_from_string(const std::string& name);
+
+// What avsm-capture's and the viewer's flags change of a scene's VolumeShading.
+struct VolumeShadingOverrides {
+  std::optional<VolumeShading::Mode> mode;
+  std::optional<int> resolution_divisor;
+  std::optional<float> step_voxels;
+  void apply(VolumeShading& shading) const {
+    if (mode) shading.mode = *mode;
+    if (resolution_divisor) shading.resolution_divisor = *resolution_divisor;
+    if (step_voxels) shading.step_voxels = *step_voxels;
+  }
+};
+
 struct Volume {
   std::string name;
   std::string grid_name;
@@ -74,6 +102,9 @@ struct Volume {
   glm::vec3 albedo{1.0f};           // sigma_s = albedo * sigma_t
   glm::mat4 transform{1.0f};        // the placement applied: scene world from VDB world
   glm::mat4 world_from_majorant{1.0f};  // brick coordinates (brick units) to scene world
+  // Lighting cache cells per axis are the support's voxels / at least this (scene file
+  // "lighting_cache": {"downsample": N}); more when the volume is small on screen.
+  float lighting_cache_downsample = 2.0f;
 
   float max_extinction() const { return extinction_scale * stats.max; }
 };

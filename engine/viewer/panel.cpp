@@ -198,6 +198,7 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
 
 void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
   const scene::Scene& scene = view.live.scene();
+  if (!scene.volumes.empty()) draw_volume_shading(scene.volume_shading, settings, requests);
   for (size_t i = 0; i < scene.volumes.size(); ++i) {
     const scene::Volume& volume = scene.volumes[i];
     ImGui::PushID(int(1000 + i));
@@ -219,6 +220,24 @@ void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelReq
       requests.scene_edited = true;
   }
   if (scene.volumes.empty() && scene.hair.empty()) ImGui::TextDisabled("the scene has no smoke or hair");
+}
+
+// The scene's volume_shading (already overridden): how the camera sees the smoke.
+void Panel::draw_volume_shading(const scene::VolumeShading& shading, ViewerSettings& settings,
+                                PanelRequests& requests) {
+  scene::VolumeShadingOverrides& o = settings.overrides.volume_shading;
+  const char* modes[] = {"fast", "reference", "hidden"};
+  int mode = int(shading.mode);
+  if (ImGui::Combo("volume shading", &mode, modes, 3))
+    o.mode = scene::VolumeShading::Mode(mode), requests.scene_edited = true;
+  if (shading.mode != scene::VolumeShading::Mode::fast) return;
+  const char* divisors[] = {"1 (full)", "2", "4"};
+  int divisor = shading.resolution_divisor == 4 ? 2 : shading.resolution_divisor - 1;
+  if (ImGui::Combo("march resolution 1/N", &divisor, divisors, 3))
+    o.resolution_divisor = divisor == 2 ? 4 : divisor + 1, requests.scene_edited = true;
+  float step = shading.step_voxels;
+  if (ImGui::SliderFloat("march step (voxels)", &step, 0.125f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+    o.step_voxels = step, requests.scene_edited = true;
 }
 
 void Panel::draw_display(ViewerSettings& settings, PanelRequests& requests) {

@@ -40,6 +40,7 @@ void SceneOverrides::apply(scene::Scene& scene) const {
   for (size_t i = 0; i < volumes.size() && i < scene.volumes.size(); ++i) apply_volume(volumes[i], scene.volumes[i]);
   if (hair_opacity_scale != 1.0f || hair_width_scale != 1.0f)
     for (scene::HairGroom& groom : scene.hair) scale_hair(groom, hair_opacity_scale, hair_width_scale);
+  volume_shading.apply(scene.volume_shading);
 }
 
 }  // namespace avsm::viewer

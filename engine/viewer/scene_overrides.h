@@ -32,6 +32,7 @@ struct SceneOverrides {
   // Every hair groom: strand opacities (clamped to [0, 1]) and widths are multiplied.
   float hair_opacity_scale = 1.0f;
   float hair_width_scale = 1.0f;
+  scene::VolumeShadingOverrides volume_shading;  // the avsm-viewer flags, then the panel
 
   LightOverride& light(size_t index);
   VolumeOverride& volume(size_t index);

@@ -153,7 +153,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
       calibration_(gpu::calibrate_timestamps(ctx_, builtin_shaders_)),
       imgui_input_(window_),
       imgui_renderer_(ctx_, builtin_shaders_, swapchain_.format()),
-      settings_{.shadow_options = {.keep_reference = options.inspect_pixel.has_value()}},
+      settings_{.overrides = {.volume_shading = options.volume_shading},
+                .shadow_options = {.keep_reference = options.inspect_pixel.has_value()}},
       live_(std::make_unique<live::LiveRenderer>(
           ctx_, live_options(options, swapchain_.extent(), settings_.shadow_options))),
       executor_(ctx_, calibration_.mode),
@@ -165,6 +166,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
   window_cmd_ = ctx_.allocate_command_buffer("window frame");
   // Every renderer the live renderer builds (a shader reload builds a new one) gets
   // the viewer's exposure and light pictures.
+  // The volume-shading flags reach the renderer as a scene edit, like the panel's.
+  live_->set_scene_edit([overrides = settings_.overrides](scene::Scene& scene) { overrides.apply(scene); });
   live_->set_renderer_setup([this](renderer::SceneRenderer& renderer) {
     renderer.set_exposure(settings_.exposure);
     renderer.enable_light_images();

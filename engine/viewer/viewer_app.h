@@ -16,6 +16,8 @@
 #include <optional>
 #include <string>
 
+#include "scene/volume.h"
+
 namespace avsm::viewer {
 
 #ifndef AVSM_DEFAULT_SCENE
@@ -28,6 +30,7 @@ struct ViewerOptions {
   bool validation = false;
   std::string device;                    // see gpu::ContextDesc::device
   std::filesystem::path out_dir = "out/viewer";  // where the screenshot key writes (shot-001, ...)
+  scene::VolumeShadingOverrides volume_shading;  // over the scene's volume_shading
   // Scripted mode.
   uint32_t frames = 0;                   // > 0: render this many scene frames, then exit
   std::filesystem::path screenshot_dir;  // after the last scripted frame

@@ -6,6 +6,9 @@
 //   AVSM_VOLUME_BINDING_NANOVDB    every volume's NanoVDB grid, one after another
 //   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid, one after another
 //   AVSM_VOLUME_BINDING_PARAMETERS one GpuVolume per volume
+// optionally, for the density brick atlas (passes/volume_density_atlas.h):
+//   AVSM_VOLUME_BINDING_ATLAS      the atlas (sampler3D) at this binding, every
+//                                  brick's atlas slot (uint buffer) at +1
 // and, to get the brick walk (walk_volume_bricks), AVSM_VOLUME_WALK_STATE: the
 // includer's per-ray state type, declared before the include.
 #ifndef AVSM_VOLUME_GLSL
@@ -32,7 +35,12 @@ struct GpuVolume {
   ivec3 majorant_origin;    // index coordinate of the corner of brick (0, 0, 0)
   int brick_size;           // voxels per brick edge
   ivec3 majorant_dims;      // bricks along x, y, z (x fastest in volume_majorants)
-  uint majorant_offset;     // where this volume's bricks start in volume_majorants
+  uint majorant_offset;     // where this volume's bricks start in volume_majorants (and brick_slots)
+  ivec3 atlas_slots;        // this volume's region of the density atlas, in slots per axis (x fastest)
+  int atlas_first_slice;    // atlas z of the region's first voxel slice
+  float atlas_density_scale;  // density = atlas value * this
+  float voxel_size;         // smallest voxel edge, world units
+  float pad0, pad1;
 };
 
 layout(std430, binding = AVSM_VOLUME_BINDING_PARAMETERS) readonly buffer VolumeParameters { GpuVolume volumes[]; };
@@ -88,6 +96,46 @@ float brick_majorant(GpuVolume volume, ivec3 brick) {
   return volume_majorants[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
 }
 
+// The brick of the majorant grid that holds an index-space position.
+ivec3 volume_brick_of(GpuVolume volume, vec3 index_position) {
+  return ivec3(floor((index_position - vec3(volume.majorant_origin)) / float(volume.brick_size)));
+}
+
+// ---- Density brick atlas ----
+#ifdef AVSM_VOLUME_BINDING_ATLAS
+// Each non-empty majorant brick as (brick_size + 1)^3 voxels (the +1 is the trilinear
+// reach into the next brick) in one 3D image, sampled with the hardware trilinear
+// filter: one texture fetch per sample instead of eight NanoVDB tree walks.
+layout(binding = AVSM_VOLUME_BINDING_ATLAS) uniform sampler3D density_atlas;
+layout(std430, binding = AVSM_VOLUME_BINDING_ATLAS + 1) readonly buffer VolumeBrickSlots { uint brick_slots[]; };
+const uint kEmptyBrickSlot = 0xffffffffu;
+
+// Where one brick's voxels sit in the atlas: atlas texel = index position + offset.
+// False for a brick with no slot (it holds no density).
+bool atlas_brick_offset(GpuVolume volume, ivec3 brick, out vec3 offset) {
+  offset = vec3(0.0);
+  if (any(lessThan(brick, ivec3(0))) || any(greaterThanEqual(brick, volume.majorant_dims))) return false;
+  ivec3 d = volume.majorant_dims;
+  uint slot = brick_slots[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
+  if (slot == kEmptyBrickSlot) return false;
+  uint per_layer = uint(volume.atlas_slots.x * volume.atlas_slots.y);
+  ivec3 slot_index = ivec3(slot % uint(volume.atlas_slots.x), (slot / uint(volume.atlas_slots.x)) % uint(volume.atlas_slots.y),
+                           slot / per_layer);
+  ivec3 slot_texel = slot_index * (volume.brick_size + 1) + ivec3(0, 0, volume.atlas_first_slice);
+  ivec3 brick_voxel = volume.majorant_origin + brick * volume.brick_size;
+  // Voxel centres are at integer index coordinates and texel centres at +0.5.
+  offset = vec3(slot_texel - brick_voxel) + 0.5;
+  return true;
+}
+
+// Trilinear density at an index position inside the brick whose offset is given.
+float atlas_density(GpuVolume volume, vec3 index_position, vec3 brick_offset) {
+  vec3 texel = index_position + brick_offset;
+  return max(volume.atlas_density_scale * textureLod(density_atlas, texel / vec3(textureSize(density_atlas, 0)), 0.0).r,
+             0.0);
+}
+#endif
+
 // ---- Rays ----
 
 // 1 / v with zero components replaced by a huge value of the same sign, so slab
@@ -110,14 +158,43 @@ bool clip_ray_to_box(vec3 origin, vec3 direction, vec3 box_min, vec3 box_max, fl
   return t_enter < t_exit;
 }
 
-// Where the world ray [0, t_max] enters and leaves volume v's support (index-space box).
-bool volume_interval(uint v, vec3 world_origin, vec3 world_direction, float t_max, out float t_enter,
-                     out float t_exit) {
+// Where the world ray [t_min, t_max] enters and leaves volume v's support (index-space box).
+bool volume_interval_between(uint v, vec3 world_origin, vec3 world_direction, float t_min, float t_max,
+                             out float t_enter, out float t_exit) {
   GpuVolume volume = volumes[v];
   vec3 index_origin = (volume.index_from_world * vec4(world_origin, 1.0)).xyz;
   vec3 index_direction = mat3(volume.index_from_world) * world_direction;
-  return clip_ray_to_box(index_origin, index_direction, volume.support_min, volume.support_max, 0.0, t_max,
+  return clip_ray_to_box(index_origin, index_direction, volume.support_min, volume.support_max, t_min, t_max,
                          t_enter, t_exit);
+}
+
+bool volume_interval(uint v, vec3 world_origin, vec3 world_direction, float t_max, out float t_enter,
+                     out float t_exit) {
+  return volume_interval_between(v, world_origin, world_direction, 0.0, t_max, t_enter, t_exit);
+}
+
+// The volume hit next after (previous_enter, previous_index) in (entry distance, index)
+// order: a selection step instead of a sort, so there is no per-thread array and no
+// limit on the volume count (volumes are few).
+// Only the stretch [t_min, t_max] of the ray counts.
+bool next_volume(uint volume_count, vec3 world_origin, vec3 world_direction, float t_min, float t_max,
+                 float previous_enter, int previous_index, out uint next, out float next_enter, out float next_exit) {
+  bool found = false;
+  next_enter = 3.4e38;
+  next = 0u;
+  next_exit = 0.0;
+  for (uint v = 0u; v < volume_count; ++v) {
+    float t_enter, t_exit;
+    if (!volume_interval_between(v, world_origin, world_direction, t_min, t_max, t_enter, t_exit)) continue;
+    bool after_previous = t_enter > previous_enter || (t_enter == previous_enter && int(v) > previous_index);
+    if (after_previous && t_enter < next_enter) {
+      found = true;
+      next = v;
+      next_enter = t_enter;
+      next_exit = t_exit;
+    }
+  }
+  return found;
 }
 
 // ---- Brick walk ----
@@ -184,8 +261,10 @@ void walk_volume_bricks(uint v, vec3 world_origin, vec3 world_direction, float t
 // ---- Scattering ----
 
 // Isotropic phase function: smoke and fog scatter roughly equally in every
-// direction at this scale, and it needs no light direction. A Henyey-Greenstein
-// lobe can replace it here without touching the marchers.
+// direction at this scale. A Henyey-Greenstein lobe can replace it here without
+// touching the marchers: the lighting cache (volume_lighting_cache.comp) evaluates
+// it per cell with the cell's own direction to the camera, which is the direction
+// of every camera ray through the cell centre.
 float phase_function(vec3 to_camera, vec3 to_light) { return 1.0 / (4.0 * 3.14159265358979); }
 
 #endif

@@ -1,5 +1,5 @@
 #version 460
-// Every hair fragment a light sees (the ribbons of shaders/passes/hair.vert, built
+// Every hair fragment a light sees (the ribbons of capture_hair.vert, built
 // facing the light) becomes a short segment with the strand's opacity: the
 // transmittance of one strand crossing.
 #extension GL_GOOGLE_include_directive : require
@@ -7,10 +7,10 @@
 #define AVSM_CAPTURE_BINDING 3
 #include "common/capture_lists.glsl"
 
-// The first 96 bytes mirror hair.vert's block; the rest is the capture's.
+// As in capture_hair.vert.
 layout(push_constant) uniform Push {
   mat4 view_projection;
-  vec4 camera_position;
+  vec4 facing_point;
   vec2 viewport;
   uint light_count;
   float pad;
@@ -19,7 +19,6 @@ layout(push_constant) uniform Push {
 } pc;
 
 layout(location = 0) in vec3 in_world;
-layout(location = 1) in vec3 in_tangent;
 layout(location = 2) flat in vec4 in_color_opacity;
 
 void main() {

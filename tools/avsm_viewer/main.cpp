@@ -18,6 +18,8 @@ const char* kUsage =
     "  --validation       Vulkan validation + synchronization validation; any message\n"
     "                     makes the exit status 1\n"
     "  --out DIR          where the screenshot key (F12 or P) writes shot-NNN/ (default out/viewer)\n"
+    "  --volume-shading fast|reference|hidden   as in avsm-capture (default: the scene's)\n"
+    "  --volume-resolution-divisor 1|2|4   fast march resolution: 1/N per axis\n"
     "scripted runs (tests, CI):\n"
     "  --frames N         render N scene frames, then exit\n"
     "  --screenshot DIR   after the last frame, write what avsm-capture writes for one\n"
@@ -87,6 +89,15 @@ int main(int argc, char** argv) {
       options.out_dir = value();
     } else if (arg == "--frames") {
       options.frames = parse_positive(arg, value());
+    } else if (arg == "--volume-shading") {
+      const std::string name = value();
+      options.volume_shading.mode = avsm::scene::volume_shading_mode_from_string(name);
+      if (!options.volume_shading.mode)
+        usage_error("--volume-shading expects fast, reference or hidden, got '" + name + "'");
+    } else if (arg == "--volume-resolution-divisor") {
+      const uint32_t n = parse_positive(arg, value());
+      if (n != 1 && n != 2 && n != 4) usage_error("--volume-resolution-divisor expects 1, 2 or 4");
+      options.volume_shading.resolution_divisor = int(n);
     } else if (arg == "--control") {
       options.control = true;
     } else if (arg == "--screenshot") {

@@ -5,6 +5,8 @@
 //                                   inter-shadowing, long segment lists)
 //   bench_smoke_hair.scene.json     smoke and a hair curtain overlapping above the
 //                                   stage floor (mixed casters over an opaque receiver)
+//   hair_in_front_of_smoke.scene.json  the hair curtain hanging between the camera and
+//                                   a lit plume, for the depth order of hair and smoke
 #include "content.h"
 
 #include <fstream>
@@ -67,7 +69,29 @@ const char* const kSmokeHair = R"({
 
 }  // namespace
 
+const char* const kHairInFrontOfSmoke = R"({
+  "version": 1,
+  "description": "Test: the hair curtain hangs between the camera and a lit smoke plume, so strands are seen in front of smoke and smoke in front of the stage.",
+  "models": [ { "name": "stage", "file": "stage.gltf" } ],
+  "volumes": [
+    { "name": "plume", "file": "plume.vdb", "grid": "density", "transform": { "translation": [0.9, 0.0, -1.2] },
+      "extinction_scale": 2.0, "albedo": [0.9, 0.9, 0.9] }
+  ],
+  "hair": [ { "name": "curtain", "file": "curtain.hair", "transform": { "translation": [0.4, 1.9, 0.6] } } ],
+  "lights": [
+    { "name": "sun", "type": "directional", "direction": [0.35, -1.0, -0.45],
+      "color": [1.0, 0.96, 0.9], "intensity": 3.0,
+      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "bilinear", "sort": true } }
+  ],
+  "cameras": [
+    { "name": "main", "position": [0.9, 1.6, 4.8], "target": [0.9, 1.2, -1.0], "up": [0.0, 1.0, 0.0],
+      "vertical_fov_deg": 45.0, "near": 0.05, "far": 60.0 }
+  ]
+}
+)";
+
 void write_bench_scenes(const std::filesystem::path& dir) {
+  write_text(dir / "hair_in_front_of_smoke.scene.json", kHairInFrontOfSmoke);
   write_text(dir / "bench_smoke_columns.scene.json", kSmokeColumns);
   write_text(dir / "bench_smoke_hair.scene.json", kSmokeHair);
 }

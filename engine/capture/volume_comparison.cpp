@@ -1,0 +1,96 @@
+#include "capture/volume_comparison.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "capture/files.h"
+
+namespace avsm::capture {
+namespace {
+
+double luminance(const float* rgba) { return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2]; }
+
+// A pixel the smoke changes by more than this fraction of its luminance is a smoke pixel.
+constexpr double kSmokeChange = 0.01;
+
+}  // namespace
+
+VolumeShadingComparison compare_volume_shading(const gpu::ImageRGBA32F& fast, const gpu::ImageRGBA32F& reference,
+                                               const gpu::ImageRGBA32F& hidden, gpu::ImageRGBA32F* error_image) {
+  if (fast.width != reference.width || fast.height != reference.height || hidden.width != reference.width ||
+      hidden.height != reference.height)
+    throw std::invalid_argument("compare_volume_shading: the images differ in size");
+  VolumeShadingComparison result;
+  std::vector<double> errors;
+  std::vector<bool> smoke(size_t(reference.width) * reference.height, false);
+  double luminance_sum = 0.0;
+  for (uint32_t y = 0; y < reference.height; ++y)
+    for (uint32_t x = 0; x < reference.width; ++x) {
+      if (!std::isfinite(luminance(fast.at(x, y)))) {
+        ++result.non_finite_pixels;
+        continue;
+      }
+      const double with = luminance(reference.at(x, y)), without = luminance(hidden.at(x, y));
+      if (!(std::abs(with - without) > kSmokeChange * std::max(with, without))) continue;
+      smoke[size_t(y) * reference.width + x] = true;
+      errors.push_back(std::abs(luminance(fast.at(x, y)) - with));
+      luminance_sum += with;
+    }
+  result.smoke_pixels = errors.size();
+  if (!errors.empty()) {
+    result.mean_luminance = luminance_sum / double(errors.size());
+    double sum = 0.0;
+    for (double e : errors) sum += e;
+    result.mean_abs_error = sum / double(errors.size());
+    std::vector<double> sorted = errors;
+    const size_t p99 = std::min(sorted.size() - 1, size_t(std::ceil(0.99 * double(sorted.size()))) - 1);
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(p99), sorted.end());
+    result.p99_abs_error = sorted[p99];
+    result.max_abs_error = *std::max_element(errors.begin(), errors.end());
+  }
+  if (error_image) {
+    *error_image = gpu::ImageRGBA32F{reference.width, reference.height,
+                                     std::vector<float>(size_t(reference.width) * reference.height * 4, 1.0f)};
+    size_t next_error = 0;
+    for (uint32_t y = 0; y < reference.height; ++y)
+      for (uint32_t x = 0; x < reference.width; ++x) {
+        float* out = error_image->at(x, y);
+        if (!std::isfinite(luminance(fast.at(x, y)))) {
+          out[0] = 1.0f, out[1] = 0.0f, out[2] = 0.0f;  // red: not a number
+          continue;
+        }
+        if (!smoke[size_t(y) * reference.width + x]) {
+          out[0] = 0.0f, out[1] = 0.0f, out[2] = 0.15f;
+          continue;
+        }
+        const double relative = result.mean_luminance > 0.0 ? errors[next_error++] / result.mean_luminance : 0.0;
+        out[0] = out[1] = out[2] = float(std::min(relative * 10.0, 1.0));
+      }
+  }
+  return result;
+}
+
+void write_volume_comparison(const std::filesystem::path& file, const VolumeShadingComparison& c,
+                             const std::string& fast_settings, const PassMedians& fast, const PassMedians& reference) {
+  write_json(file, {{"fast_settings", fast_settings},
+                    {"smoke_pixels", c.smoke_pixels},
+                    {"smoke_pixel_rule", "the smoke changes the reference's luminance by more than 1%"},
+                    {"mean_luminance", c.mean_luminance},
+                    {"mean_abs_error", c.mean_abs_error},
+                    {"p99_abs_error", c.p99_abs_error},
+                    {"max_abs_error", c.max_abs_error},
+                    {"non_finite_pixels", c.non_finite_pixels},
+                    {"mean_relative", c.mean_relative()},
+                    {"p99_relative", c.p99_relative()},
+                    {"bound", {{"mean_relative", VolumeShadingComparison::kMeanBound},
+                               {"p99_relative", VolumeShadingComparison::kP99Bound}}},
+                    {"within_bound", c.within_bound()},
+                    {"fast_gpu_ms", fast},
+                    {"reference_gpu_ms", reference}});
+}
+
+}  // namespace avsm::capture

@@ -1,0 +1,45 @@
+#pragma once
+// Per strand vertex: Kajiya-Kay lighting with every light's shadow lookup, and the fog
+// between the camera and the vertex (smoke in-scattering and transmittance), which
+// HairPass interpolates along each ribbon (shaders/common/hair_lighting.glsl). The fast
+// path marches the fog through the lighting cache (hair_lighting.comp); the reference
+// path, and a scene without volumes, uses the reference march (hair_lighting_reference.comp).
+#include <rendergraph/graph.h>
+
+#include <glm/glm.hpp>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/shadow_maps_fwd.h"
+#include "passes/view.h"
+#include "passes/volume_lighting_cache_pass.h"
+#include "passes/volume_pass.h"
+
+namespace avsm::passes {
+
+class HairPass;
+
+// std430, 32 bytes; mirrors struct HairVertexLight in shaders/common/hair_lighting.glsl.
+struct HairVertexLight {
+  glm::vec4 lit;  // rgb: light reaching the fibre, sky included
+  glm::vec4 fog;  // rgb: in-scattering between camera and vertex; a: transmittance
+};
+
+class HairLightingPass {
+ public:
+  HairLightingPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // One HairVertexLight per strand vertex of `hair`. `cache`: the frame's lighting cache
+  // for the fast fog, or nullptr for the reference march. Returns an invalid handle when
+  // the scene has no hair. Without `fog` the strands see no smoke in front of them.
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const View& view, const VolumePass& volumes,
+                                const VolumeLightingCache* cache, VkSampler cache_sampler, const VolumeShading& shading,
+                                const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows, bool fog);
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline cached_, reference_;
+};
+
+}  // namespace avsm::passes

@@ -1,0 +1,75 @@
+#include "passes/volume_cached_march_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "gpu/context.h"
+
+namespace avsm::passes {
+namespace {
+
+constexpr uint32_t kFlagNoMajorantSkipping = 1u;
+
+// Mirrors the push constants of shaders/passes/volume_cached_march.comp.
+struct Push {
+  glm::mat4 inverse_view_projection;
+  glm::vec3 camera_position;
+  uint32_t volume_count;
+  glm::uvec2 output_size;
+  glm::uvec2 march_size;
+  uint32_t divisor;
+  float step_voxels;
+  uint32_t flags;
+  float pad;
+};
+static_assert(sizeof(Push) == 112);
+
+}  // namespace
+
+VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx),
+      pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_cached_march.comp"), "volume march")),
+      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "march depth"}) {}
+
+VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
+                                                     const VolumePass& volumes, const VolumeLightingCache& cache,
+                                                     VkSampler cache_sampler, const VolumeShading& shading) {
+  const uint32_t divisor = uint32_t(shading.resolution_divisor);
+  if (divisor != 1 && divisor != 2 && divisor != 4)
+    throw std::invalid_argument("VolumeCachedMarchPass: the resolution divisor must be 1, 2 or 4, got " +
+                                std::to_string(divisor));
+  const uint32_t width = (view.width + divisor - 1) / divisor, height = (view.height + divisor - 1) / divisor;
+  struct Targets {
+    rg::TextureHandle depth, scattering, distance;
+  };
+  const Targets& targets = graph.add_pass<Targets>("volume march", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Targets& d) {
+        d.depth = b.read(depth, rg::Usage::Sampled);
+        cache.declare_reads(b);
+        d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat}),
+                               rg::Usage::StorageWrite);
+        d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat}),
+                             rg::Usage::StorageWrite);
+      },
+      [this, view, width, height, divisor, cache, cache_sampler, bindings = volumes.bindings(),
+       step = shading.step_voxels, skipping = volumes.majorant_skipping()](const Targets& d, rg::PassContext& c) {
+        pipeline_.bind(c.cmd());
+        gpu::Bindings b(ctx_, pipeline_);
+        b.image(0, c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
+            .image(1, c.view(d.scattering), c.layout(d.scattering))
+            .image(2, c.view(d.distance), c.layout(d.distance));
+        bindings.bind(b, 3, /*with_atlas=*/true);
+        cache.bind(b, 8, c, cache_sampler);
+        b.push(c.cmd());
+        pipeline_.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, bindings.count,
+                                               {view.width, view.height}, {width, height}, divisor, step,
+                                               skipping ? 0u : kFlagNoMajorantSkipping, 0.0f});
+        pipeline_.dispatch_threads(c.cmd(), width, height);
+      });
+  return {targets.scattering, targets.distance, divisor};
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,76 @@
+#pragma once
+// The volume lighting cache: per frame and fog volume, a box of cells over the
+// volume's support holding the radiance scattered towards the camera per unit sigma_s
+// (sum over lights of radiance * phase * light_transmittance()), so the camera march
+// and the hair fog read one trilinear fetch per step instead of every light's shadow
+// map (shaders/passes/volume_lighting_cache.comp, common/volume_lighting_cache.glsl).
+// As in Unreal Engine 5's heterogeneous volumes, a cell spans `downsample` voxels
+// (scene file "lighting_cache": {"downsample": N}, default 2), or more when the volume
+// is small on screen: a cell is never finer than a march pixel's footprint at the
+// volume's nearest point, and never coarser than a majorant brick. The boxes of all
+// volumes are stacked along z in one transient 3D image.
+#include <rendergraph/graph.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/shader_compiler.h"
+#include "passes/shadow_maps_fwd.h"
+#include "passes/view.h"
+#include "passes/volume_pass.h"
+
+namespace avsm::passes {
+
+// std430, 112 bytes; mirrors struct GpuCacheLayout in shaders/common/volume_lighting_cache.glsl.
+struct GpuCacheLayout {
+  glm::mat4 world_from_cell;
+  glm::vec3 cell_origin;       // index position of cell coordinate 0
+  int32_t first_slice;         // z of the volume's first slice in the cache image
+  glm::vec3 cells_per_voxel;   // cell coordinates per index unit
+  int32_t pad0 = 0;
+  glm::ivec3 dims;             // cells per axis
+  int32_t pad1 = 0;
+};
+static_assert(sizeof(GpuCacheLayout) == 112);
+
+// One frame's cache: the image and the layouts both readers bind
+// (AVSM_CACHE_BINDING: layouts, +1: image).
+struct VolumeLightingCache {
+  rg::TextureHandle image;
+  rg::BufferHandle layouts;
+  void declare_reads(rg::PassBuilder& builder) const;
+  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context, VkSampler sampler) const;
+};
+
+class VolumeLightingCachePass {
+ public:
+  static constexpr VkFormat kFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+  VolumeLightingCachePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+
+  // The cells of every volume for this view (march pixels `divisor` output pixels wide),
+  // stacked along z within `max_texels` per side. Throws std::invalid_argument naming
+  // the volume when even brick-sized cells do not fit.
+  static std::vector<GpuCacheLayout> plan(const std::vector<VolumeBox>& boxes, const View& view, uint32_t divisor,
+                                          uint32_t max_texels);
+
+  // Adds the layout upload and the cache pass; `volumes` must have volumes.
+  VolumeLightingCache add_to_graph(rg::Graph& graph, const VolumePass& volumes, const View& view, uint32_t divisor,
+                                   const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows);
+
+  // Cells the last frame's cache held (every volume), for the frame report.
+  uint64_t cell_count() const { return cell_count_; }
+  VkSampler sampler() const { return sampler_.handle(); }
+
+ private:
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler sampler_;
+  uint64_t cell_count_ = 0;
+};
+
+}  // namespace avsm::passes

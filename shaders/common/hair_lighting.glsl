@@ -1,0 +1,64 @@
+// The body of the hair lighting passes (passes/hair_lighting_pass.h): one thread per
+// strand vertex computes its Kajiya-Kay diffuse lighting with every light's shadow
+// lookup, and the fog between the camera and the vertex (the smoke's in-scattering
+// and transmittance), which the hair pass interpolates along each ribbon. The 2010
+// AVSM sample shaded hair per vertex the same way: a strand's shadow changes little
+// along one segment, and a lookup per fragment of a widened ribbon cost far more.
+//
+// The includer has included a march (common/volume_cached_march.glsl or
+// common/volume_reference_march.glsl, which give march_ray), the shadow lookups and
+// declared `lights`, then includes this file.
+#ifndef AVSM_HAIR_LIGHTING_GLSL
+#define AVSM_HAIR_LIGHTING_GLSL
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = 1) readonly buffer Tangents { vec4 tangents[]; };
+struct HairVertexLight {
+  vec4 lit;  // rgb: light reaching the fibre (sky included), times the strand colour later
+  vec4 fog;  // rgb: smoke in-scattering between the camera and the vertex; a: its transmittance
+};
+layout(std430, binding = 2) writeonly buffer VertexLights { HairVertexLight vertex_lights[]; };
+
+// Mirrors HairLightingPass's Push (passes/hair_lighting_pass.cpp).
+layout(push_constant) uniform Push {
+  vec4 camera_position;
+  uint point_count;
+  uint volume_count;
+  uint light_count;
+  float step_voxels;
+} pc;
+
+const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);  // as in hair.frag
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.point_count) return;
+  vec3 p = points[i].xyz;
+  vec3 t = tangents[i].xyz;
+  vec3 lit = kSkyAmbient;
+  for (uint l = 0u; l < pc.light_count; ++l) {
+    vec3 to_light;
+    vec3 radiance = light_radiance(lights[l], p, to_light);
+    float sin_tl = sqrt(max(1.0 - dot(t, to_light) * dot(t, to_light), 0.0));
+    lit += radiance * sin_tl * light_transmittance(l, p);
+  }
+
+  vec3 origin = pc.camera_position.xyz;
+  float t_max = length(p - origin);
+  MarchState fog = MarchState(1.0, vec3(0.0));
+  if (t_max > 0.0 && pc.volume_count > 0u) {
+    march_volume_count = pc.volume_count;
+#ifdef AVSM_VOLUME_REFERENCE_MARCH_GLSL
+    march_light_count = pc.light_count;
+#else
+    march_step_voxels = pc.step_voxels;
+#endif
+    bool touched;
+    fog = march_ray(origin, (p - origin) / t_max, t_max, touched);
+  }
+  vertex_lights[i] = HairVertexLight(vec4(lit, 1.0), vec4(fog.in_scattered, fog.transmittance));
+}
+
+#endif

@@ -1,0 +1,25 @@
+#version 460
+// Hair ribbons facing the light (common/hair_ribbon.glsl), for capture_hair.frag.
+#extension GL_GOOGLE_include_directive : require
+#include "common/hair_ribbon.glsl"
+
+// Mirrors CaptureHairPass's Push (passes/capture_hair_pass.cpp); shared with capture_hair.frag.
+layout(push_constant) uniform Push {
+  mat4 view_projection;
+  vec4 facing_point;  // xyz: where ribbons turn to (the light)
+  vec2 viewport;
+  uint light_count;
+  float pad;
+  vec4 depth_plane;
+  vec4 texel_size;
+} pc;
+
+layout(location = 0) out vec3 out_world;
+layout(location = 2) flat out vec4 out_color_opacity;
+
+void main() {
+  RibbonVertex v = hair_ribbon_vertex(uint(gl_VertexIndex), pc.view_projection, pc.facing_point.xyz, pc.viewport);
+  out_world = v.world;
+  out_color_opacity = v.color_opacity;
+  gl_Position = pc.view_projection * vec4(v.world, 1.0);
+}

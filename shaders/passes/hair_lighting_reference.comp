@@ -1,0 +1,13 @@
+#version 460
+// Per-vertex hair fog, reference path: the fog from the reference march
+// (common/volume_reference_march.glsl: NanoVDB, quarter-voxel steps, map lookups
+// along the ray). See common/hair_lighting.glsl.
+#extension GL_GOOGLE_include_directive : require
+
+#define AVSM_VOLUME_BINDING_NANOVDB 8
+#define AVSM_VOLUME_BINDING_MAJORANTS 9
+#define AVSM_VOLUME_BINDING_PARAMETERS 10
+#define AVSM_MARCH_LIGHTS_BINDING 3
+#define AVSM_SHADOW_BINDING 4
+#include "common/volume_reference_march.glsl"
+#include "common/hair_lighting.glsl"
