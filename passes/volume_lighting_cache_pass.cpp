@@ -28,12 +28,13 @@ float distance_to_box(const glm::vec3& p, const scene::Bounds& box) {
   return glm::length(outside);
 }
 
-// Voxels per cell: the scene's downsample, coarser where a march pixel covers more
-// than that at the volume's nearest point, never coarser than a brick.
-float voxels_per_cell(const VolumeBox& box, const View& view, uint32_t divisor) {
+// Voxels per cell: the scene's downsample, coarser where a march pixel or the finest
+// light texel covers more than that at the volume, never coarser than a brick.
+float voxels_per_cell(const VolumeBox& box, const View& view, uint32_t divisor, float light_texel) {
   const float radians_per_pixel = 2.0f / (std::abs(view.projection[1][1]) * float(view.height));
   const float footprint = distance_to_box(view.camera_position, box.world_bounds) * radians_per_pixel * float(divisor);
-  return std::clamp(std::max(box.cache_downsample, footprint / box.voxel_size), 1.0f, float(box.brick_size));
+  const float finest = std::max(footprint, light_texel);
+  return std::clamp(std::max(box.cache_downsample, finest / box.voxel_size), 1.0f, float(box.brick_size));
 }
 
 GpuCacheLayout layout_for(const VolumeBox& box, float per_cell, int first_slice) {
@@ -50,10 +51,27 @@ GpuCacheLayout layout_for(const VolumeBox& box, float per_cell, int first_slice)
 
 }  // namespace
 
+std::vector<float> VolumeLightingCachePass::finest_light_texels(const std::vector<VolumeBox>& boxes,
+                                                                const std::vector<LightView>& lights) {
+  std::vector<float> texels;
+  for (const VolumeBox& box : boxes) {
+    const glm::vec3 centre = 0.5f * (box.world_bounds.min + box.world_bounds.max);
+    float finest = 0.0f;
+    for (const LightView& light : lights) {
+      const float texel = light.texel_size(light.depth(centre));
+      if (texel > 0.0f) finest = finest > 0.0f ? std::min(finest, texel) : texel;
+    }
+    texels.push_back(finest);
+  }
+  return texels;
+}
+
 std::vector<GpuCacheLayout> VolumeLightingCachePass::plan(const std::vector<VolumeBox>& boxes, const View& view,
-                                                          uint32_t divisor, uint32_t max_texels) {
+                                                          uint32_t divisor, uint32_t max_texels,
+                                                          const std::vector<float>& light_texels) {
   std::vector<float> per_cell;
-  for (const VolumeBox& box : boxes) per_cell.push_back(voxels_per_cell(box, view, divisor));
+  for (size_t i = 0; i < boxes.size(); ++i)
+    per_cell.push_back(voxels_per_cell(boxes[i], view, divisor, i < light_texels.size() ? light_texels[i] : 0.0f));
   // Coarsen every volume together until the stack fits the device's 3D image size.
   for (int attempt = 0;; ++attempt) {
     std::vector<GpuCacheLayout> layouts;
@@ -98,10 +116,11 @@ void VolumeLightingCache::bind(gpu::Bindings& bindings, uint32_t first_binding, 
 }
 
 VolumeLightingCache VolumeLightingCachePass::add_to_graph(rg::Graph& graph, const VolumePass& volumes, const View& view,
-                                                          uint32_t divisor, const gpu::Buffer& lights,
-                                                          uint32_t light_count, const ShadowInputs& shadows) {
-  std::vector<GpuCacheLayout> layouts =
-      plan(volumes.boxes(), view, divisor, ctx_.info().max_image_dimension_3d);
+                                                          uint32_t divisor, const std::vector<LightView>& light_views,
+                                                          const gpu::Buffer& lights, uint32_t light_count,
+                                                          const ShadowInputs& shadows) {
+  std::vector<GpuCacheLayout> layouts = plan(volumes.boxes(), view, divisor, ctx_.info().max_image_dimension_3d,
+                                             finest_light_texels(volumes.boxes(), light_views));
   glm::uvec3 size(1, 1, 0);
   cell_count_ = 0;
   for (const GpuCacheLayout& l : layouts) {

@@ -5,9 +5,12 @@
 // and the hair fog read one trilinear fetch per step instead of every light's shadow
 // map (shaders/passes/volume_lighting_cache.comp, common/volume_lighting_cache.glsl).
 // As in Unreal Engine 5's heterogeneous volumes, a cell spans `downsample` voxels
-// (scene file "lighting_cache": {"downsample": N}, default 2), or more when the volume
-// is small on screen: a cell is never finer than a march pixel's footprint at the
-// volume's nearest point, and never coarser than a majorant brick. The boxes of all
+// (scene file "lighting_cache": {"downsample": N}, default 2), or more where finer cells
+// could not show more: a cell is never finer than a march pixel's footprint at the
+// volume's nearest point (a volume small on screen), nor than the finest shadow-map
+// texel of any light at the volume's centre (the maps hold no finer shadow detail
+// across; the reference march looks them up once per texel along the ray too), and
+// never coarser than a majorant brick. The boxes of all
 // volumes are stacked along z in one transient 3D image.
 #include <rendergraph/graph.h>
 
@@ -19,6 +22,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
+#include "passes/light_view.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
 #include "passes/volume_pass.h"
@@ -55,12 +59,18 @@ class VolumeLightingCachePass {
   // The cells of every volume for this view (march pixels `divisor` output pixels wide),
   // stacked along z within `max_texels` per side. Throws std::invalid_argument naming
   // the volume when even brick-sized cells do not fit.
+  // `light_texels`: per volume, the finest level-0 shadow-map texel (world units) of any
+  // light at it (0: no shadowed light).
   static std::vector<GpuCacheLayout> plan(const std::vector<VolumeBox>& boxes, const View& view, uint32_t divisor,
-                                          uint32_t max_texels);
+                                          uint32_t max_texels, const std::vector<float>& light_texels = {});
+  // The finest texel of `lights` at each box's centre.
+  static std::vector<float> finest_light_texels(const std::vector<VolumeBox>& boxes,
+                                                const std::vector<LightView>& lights);
 
   // Adds the layout upload and the cache pass; `volumes` must have volumes.
   VolumeLightingCache add_to_graph(rg::Graph& graph, const VolumePass& volumes, const View& view, uint32_t divisor,
-                                   const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows);
+                                   const std::vector<LightView>& light_views, const gpu::Buffer& lights,
+                                   uint32_t light_count, const ShadowInputs& shadows);
 
   // Cells the last frame's cache held (every volume), for the frame report.
   uint64_t cell_count() const { return cell_count_; }

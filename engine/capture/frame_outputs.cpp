@@ -99,7 +99,13 @@ nlohmann::json memory_json(const FrameOutputSources& frame) {
           {"lights", lights},
           {"scene_bounds",
            {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
-          {"frames_with_capture_overflow", frame.frames_with_capture_overflow}};
+          {"frames_with_capture_overflow", frame.frames_with_capture_overflow},
+          {"volumes",
+           {{"shading", scene::to_string(frame.renderer.volume_shading().mode)},
+            {"resolution_divisor", frame.renderer.volume_shading().resolution_divisor},
+            {"step_voxels", frame.renderer.volume_shading().step_voxels},
+            {"density_atlas_bytes", frame.renderer.density_atlas_bytes()},
+            {"lighting_cache_cells", frame.renderer.lighting_cache_cells()}}}};
 }
 
 // light<i>_transmittance.png: each light's map as grey levels (passes/shadow_debug_pass.h).

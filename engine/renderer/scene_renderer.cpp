@@ -110,12 +110,12 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
   // Hidden volumes keep the reference shading of everything else (it is the
   // reference's smoke-free twin in comparisons).
-  const bool reference = volume_shading_.mode != scene::VolumeShading::Mode::fast;
+  const bool per_fragment = hair_per_fragment_.value_or(volume_shading_.mode != scene::VolumeShading::Mode::fast);
   const rg::BufferHandle hair_lights =
       hair_lighting_.add_to_graph(graph, hair_, view, volumes_, cache ? &*cache : nullptr, cache_.sampler(),
                                   volume_shading_, lights_, light_count_, shadows,
                                   /*fog=*/volume_shading_.mode != scene::VolumeShading::Mode::hidden);
-  color = hair_.add_to_graph(graph, color, opaque.depth, view, hair_lights, /*light_per_fragment=*/reference, lights_,
+  color = hair_.add_to_graph(graph, color, opaque.depth, view, hair_lights, per_fragment, lights_,
                              light_count_, shadows);
 
   tonemap_.add_to_graph(graph, color, ldr, exposure_);
@@ -135,7 +135,7 @@ rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle
   if (volume_shading_.mode == scene::VolumeShading::Mode::reference)
     return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, shadows);
   const uint32_t divisor = uint32_t(volume_shading_.resolution_divisor);
-  cache = cache_.add_to_graph(graph, volumes_, view, divisor, lights_, light_count_, shadows);
+  cache = cache_.add_to_graph(graph, volumes_, view, divisor, shadows_.light_views(), lights_, light_count_, shadows);
   const passes::VolumeMarchImage march =
       cached_march_.add_to_graph(graph, depth, view, volumes_, *cache, cache_.sampler(), volume_shading_);
   return upsample_.add_to_graph(graph, color, depth, view, march, volumes_, *cache, cache_.sampler(), volume_shading_);

@@ -52,6 +52,11 @@ class SceneRenderer {
   // std::invalid_argument for a divisor other than 1, 2, 4 or a step outside 0.125..4 voxels.
   void set_volume_shading(const scene::VolumeShading& shading);
   const scene::VolumeShading& volume_shading() const { return volume_shading_; }
+  // Hair shading per fragment (the reference's) or per vertex (the fast path's); unset:
+  // as the volume shading mode says. Lets a test look at the fast path's smoke-hair
+  // compositing alone.
+  void set_hair_lighting_per_fragment(std::optional<bool> per_fragment) { hair_per_fragment_ = per_fragment; }
+  uint64_t density_atlas_bytes() const { return volumes_.atlas().bytes(); }
   // Cells in the last frame's lighting cache (0 in the reference path).
   uint64_t lighting_cache_cells() const { return volume_shading_.mode == scene::VolumeShading::Mode::fast ? cache_.cell_count() : 0; }
   float exposure() const { return exposure_; }
@@ -122,6 +127,7 @@ class SceneRenderer {
   passes::VolumeUpsamplePass upsample_;
   passes::HairLightingPass hair_lighting_;
   scene::VolumeShading volume_shading_;
+  std::optional<bool> hair_per_fragment_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;

@@ -176,6 +176,43 @@ TEST(SceneDescriptionErrors, OutOfRangeValues) {
               HasSubstr("lights[1].shadow.parameters.depth_bias: expected a number, got a string"));
 }
 
+TEST(SceneDescription, VolumeShadingAndLightingCache) {
+  const SceneDescription defaults = parse(full_scene());
+  EXPECT_EQ(defaults.volume_shading.mode, VolumeShading::Mode::fast);
+  EXPECT_EQ(defaults.volume_shading.resolution_divisor, 2);
+  EXPECT_FLOAT_EQ(defaults.volume_shading.step_voxels, 1.0f);
+  EXPECT_FLOAT_EQ(defaults.volumes[0].lighting_cache_downsample, 2.0f);
+
+  const SceneDescription scene = parse(full_scene(
+      R"("majorant_brick_size": 16 } ],)",
+      R"("majorant_brick_size": 16, "lighting_cache": { "downsample": 4 } } ],)"
+      R"( "volume_shading": { "mode": "reference", "resolution_divisor": 4, "step_voxels": 0.5 },)"));
+  EXPECT_FLOAT_EQ(scene.volumes[0].lighting_cache_downsample, 4.0f);
+  EXPECT_EQ(scene.volume_shading.mode, VolumeShading::Mode::reference);
+  EXPECT_EQ(scene.volume_shading.resolution_divisor, 4);
+  EXPECT_FLOAT_EQ(scene.volume_shading.step_voxels, 0.5f);
+}
+
+TEST(SceneDescriptionErrors, VolumeShadingAndLightingCacheOutOfRange) {
+  auto with_cache = [](const std::string& cache) {
+    return full_scene(R"("majorant_brick_size": 16 })", R"("majorant_brick_size": 16, "lighting_cache": )" + cache + " }");
+  };
+  EXPECT_THAT(error_of(with_cache(R"({ "downsample": 0.5 })")),
+              HasSubstr("volumes[0].lighting_cache.downsample: must be 1 to 8 voxels per cache cell"));
+  EXPECT_THAT(error_of(with_cache(R"({ "downsampel": 2 })")),
+              HasSubstr("volumes[0].lighting_cache.downsampel: unknown key (did you mean 'downsample'?)"));
+  auto with_shading = [](const std::string& shading) {
+    return full_scene(R"("majorant_brick_size": 16 } ],)",
+                      R"("majorant_brick_size": 16 } ], "volume_shading": )" + shading + " },");
+  };
+  EXPECT_THAT(error_of(with_shading(R"({ "mode": "slow")")),
+              HasSubstr("volume_shading.mode: 'slow' is not one of fast, reference, hidden"));
+  EXPECT_THAT(error_of(with_shading(R"({ "resolution_divisor": 3)")),
+              HasSubstr("volume_shading.resolution_divisor: must be 1, 2 or 4, got 3"));
+  EXPECT_THAT(error_of(with_shading(R"({ "step_voxels": 10)")),
+              HasSubstr("volume_shading.step_voxels: must be 0.125 to 4 voxels"));
+}
+
 TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", "")), HasSubstr("scene.json: version: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 2,)")), HasSubstr("version: unsupported version 2"));
