@@ -18,7 +18,10 @@ struct Push {
 }  // namespace
 
 CaptureSmokePass::CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/capture_smoke.comp"), "capture smoke")) {}
+    : ctx_(ctx),
+      from_atlas_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/capture_smoke.comp"), "capture smoke")),
+      from_nanovdb_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/capture_smoke_nanovdb.comp"),
+                                           "capture smoke nanovdb")) {}
 
 CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                                             const LightView& light, const VolumeCasters& volumes,
@@ -27,14 +30,19 @@ CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string&
   return graph.add_pass<CaptureLists>(prefix + " capture smoke", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
       [this, light, volumes, samples_per_segment](const CaptureLists& d, rg::PassContext& c) {
-        pipeline_.bind(c.cmd());
-        gpu::Bindings bindings(ctx_, pipeline_);
+        const bool atlas = volumes.has_atlas();
+        const gpu::Pipeline& pipeline = atlas ? from_atlas_ : from_nanovdb_;
+        pipeline.bind(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline);
         bindings.buffer(0, volumes.grids).buffer(1, volumes.majorants).buffer(2, volumes.parameters);
-        bind_capture_lists(bindings, 3, c, d);
+        if (atlas)
+          bindings.image(3, volumes.atlas, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, volumes.atlas_sampler)
+              .buffer(4, volumes.brick_slots);
+        bind_capture_lists(bindings, 5, c, d);
         bindings.push(c.cmd());
-        pipeline_.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
+        pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
                                                volumes.volume_count, samples_per_segment, 0.0f});
-        pipeline_.dispatch_threads(c.cmd(), light.resolution, light.resolution);
+        pipeline.dispatch_threads(c.cmd(), light.resolution, light.resolution);
       });
 }
 

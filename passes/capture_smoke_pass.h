@@ -1,8 +1,10 @@
 #pragma once
 // Light-space capture of smoke: one compute thread per light texel marches every
-// fog volume along the texel's ray (NanoVDB, majorant bricks skip empty space) and
-// appends segments with their exact transmittance exp(-optical depth), one per
-// `samples_per_segment` march samples. Shader: shaders/passes/capture_smoke.comp.
+// fog volume along the texel's ray (majorant bricks skip empty space) and appends
+// segments with their exact transmittance exp(-optical depth), one per
+// `samples_per_segment` march samples. The density comes from the casters' brick atlas
+// (one hardware-trilinear fetch a sample) or, for casters without one, from NanoVDB.
+// Shaders: shaders/passes/capture_smoke.comp, capture_smoke_nanovdb.comp.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
@@ -27,7 +29,7 @@ class CaptureSmokePass {
 
  private:
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline from_atlas_, from_nanovdb_;
 };
 
 }  // namespace avsm::passes

@@ -67,7 +67,14 @@ struct VolumeCasters {
   VkBuffer majorants = VK_NULL_HANDLE;   // usage STORAGE_BUFFER
   VkBuffer parameters = VK_NULL_HANDLE;  // GpuVolume[]; usage STORAGE_BUFFER
   uint32_t volume_count = 0;
+  // Optional: the density brick atlas (passes/volume_density_atlas.h; image in
+  // SHADER_READ_ONLY_OPTIMAL, its sampler, and the brick slots, usage STORAGE_BUFFER),
+  // which makes the capture several times cheaper. Without it the capture reads NanoVDB.
+  VkImageView atlas = VK_NULL_HANDLE;
+  VkSampler atlas_sampler = VK_NULL_HANDLE;
+  VkBuffer brick_slots = VK_NULL_HANDLE;
   bool empty() const { return volume_count == 0; }
+  bool has_atlas() const { return atlas != VK_NULL_HANDLE && brick_slots != VK_NULL_HANDLE; }
 };
 
 // Everything that casts into every light's map this frame.

@@ -115,7 +115,10 @@ class VolumePass {
   const gpu::Buffer& grids() const { return grids_; }
   const gpu::Buffer& majorants() const { return majorants_; }
   const gpu::Buffer& parameters() const { return parameters_; }
-  VolumeCasters casters() const { return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_}; }
+  VolumeCasters casters() const {
+    return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_,
+            atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
+  }
   // Every buffer and image of the volumes, for the fast path's passes; valid (with
   // placeholders) when there are no volumes, so shaders always have something to bind.
   VolumeBindings bindings() const;

@@ -74,7 +74,7 @@ const char* const kHairInFrontOfSmoke = R"({
   "description": "Test: the hair curtain hangs between the camera and a lit smoke plume, so strands are seen in front of smoke and smoke in front of the stage.",
   "models": [ { "name": "stage", "file": "stage.gltf" } ],
   "volumes": [
-    { "name": "plume", "file": "plume.vdb", "grid": "density", "transform": { "translation": [0.9, 0.0, -1.2] },
+    { "name": "plume", "file": "plume.vdb", "grid": "density", "transform": { "translation": [0.6, 0.0, -1.2] },
       "extinction_scale": 2.0, "albedo": [0.9, 0.9, 0.9] }
   ],
   "hair": [ { "name": "curtain", "file": "curtain.hair", "transform": { "translation": [0.4, 1.9, 0.6] } } ],
