@@ -22,7 +22,7 @@ struct Push {
   uint32_t divisor;
   float step_voxels;
   uint32_t flags;
-  float pad;
+  uint32_t light_count;
 };
 static_assert(sizeof(Push) == 112);
 
@@ -30,14 +30,28 @@ static_assert(sizeof(Push) == 112);
 
 VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
-      pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_cached_march.comp"), "volume march")),
+      cached_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_cached_march.comp"), "volume march")),
+      with_lookups_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_cached_march_lookups.comp"),
+                                           "volume march with lookups")),
       depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                            false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "march depth"}) {}
 
+void FastVolumeInputs::declare_reads(rg::PassBuilder& builder) const {
+  cache.declare_reads(builder);
+  shadows.declare_reads(builder);
+}
+
+void FastVolumeInputs::bind(gpu::Bindings& bindings, uint32_t first, const rg::PassContext& context) const {
+  volumes->bindings().bind(bindings, first, /*with_atlas=*/true);
+  cache.bind(bindings, first + 5, context, cache_sampler);
+  if (!map_lookups()) return;
+  bindings.buffer(first + 7, lights->handle());
+  shadows.bind(bindings, first + 8, context);
+}
+
 VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
-                                                     const VolumePass& volumes, const VolumeLightingCache& cache,
-                                                     VkSampler cache_sampler, const VolumeShading& shading) {
-  const uint32_t divisor = uint32_t(shading.resolution_divisor);
+                                                     const FastVolumeInputs& inputs) {
+  const uint32_t divisor = uint32_t(inputs.shading.resolution_divisor);
   if (divisor != 1 && divisor != 2 && divisor != 4)
     throw std::invalid_argument("VolumeCachedMarchPass: the resolution divisor must be 1, 2 or 4, got " +
                                 std::to_string(divisor));
@@ -48,26 +62,27 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
   const Targets& targets = graph.add_pass<Targets>("volume march", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
-        cache.declare_reads(b);
+        inputs.declare_reads(b);
         d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat}),
                                rg::Usage::StorageWrite);
         d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat}),
                              rg::Usage::StorageWrite);
       },
-      [this, view, width, height, divisor, cache, cache_sampler, bindings = volumes.bindings(),
-       step = shading.step_voxels, skipping = volumes.majorant_skipping()](const Targets& d, rg::PassContext& c) {
-        pipeline_.bind(c.cmd());
-        gpu::Bindings b(ctx_, pipeline_);
+      [this, view, width, height, divisor, inputs](const Targets& d, rg::PassContext& c) {
+        const gpu::Pipeline& pipeline = inputs.map_lookups() ? with_lookups_ : cached_;
+        pipeline.bind(c.cmd());
+        gpu::Bindings b(ctx_, pipeline);
         b.image(0, c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
             .image(1, c.view(d.scattering), c.layout(d.scattering))
             .image(2, c.view(d.distance), c.layout(d.distance));
-        bindings.bind(b, 3, /*with_atlas=*/true);
-        cache.bind(b, 8, c, cache_sampler);
+        inputs.bind(b, 3, c);
         b.push(c.cmd());
-        pipeline_.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, bindings.count,
-                                               {view.width, view.height}, {width, height}, divisor, step,
-                                               skipping ? 0u : kFlagNoMajorantSkipping, 0.0f});
-        pipeline_.dispatch_threads(c.cmd(), width, height);
+        const bool skipping = inputs.volumes->majorant_skipping();
+        pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position,
+                                              inputs.volumes->volume_count(), {view.width, view.height},
+                                               {width, height}, divisor, inputs.shading.step_voxels,
+                                               skipping ? 0u : kFlagNoMajorantSkipping, inputs.light_count});
+        pipeline.dispatch_threads(c.cmd(), width, height);
       });
   return {targets.scattering, targets.distance, divisor};
 }

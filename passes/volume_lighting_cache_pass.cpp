@@ -40,6 +40,8 @@ float voxels_per_cell(const VolumeBox& box, const View& view, uint32_t divisor, 
 GpuCacheLayout layout_for(const VolumeBox& box, float per_cell, int first_slice) {
   const glm::vec3 extent = box.support_max - box.support_min;
   GpuCacheLayout layout{};
+  layout.first_slice = first_slice;
+  if (!box.cached) return layout;  // no cells: dims 0 tells the march to look the maps up
   layout.dims = glm::max(glm::ivec3(glm::ceil(extent / per_cell)), glm::ivec3(1));
   layout.cells_per_voxel = glm::vec3(layout.dims) / extent;
   layout.cell_origin = box.support_min;
@@ -127,6 +129,7 @@ VolumeLightingCache VolumeLightingCachePass::add_to_graph(rg::Graph& graph, cons
     size = glm::uvec3(glm::max(size.x, uint32_t(l.dims.x)), glm::max(size.y, uint32_t(l.dims.y)), size.z + uint32_t(l.dims.z));
     cell_count_ += uint64_t(l.dims.x) * uint64_t(l.dims.y) * uint64_t(l.dims.z);
   }
+  size.z = std::max(size.z, 1u);  // every volume's cache off: one unused slice
   const uint64_t layout_bytes = layouts.size() * sizeof(GpuCacheLayout);
   if (layout_bytes > 65536)
     throw std::invalid_argument("VolumeLightingCachePass: " + std::to_string(layouts.size()) +

@@ -146,7 +146,7 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   for (const scene::Volume& volume : volumes)
     boxes_.push_back({volume.world_from_index, glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1),
                       smallest_voxel_edge(volume), volume.majorant.brick_size, volume.world_bounds,
-                      volume.lighting_cache_downsample});
+                      volume.lighting_cache_downsample, volume.lighting_cache});
   grids_ = storage_buffer(ctx_, grids.data(), grids.size(), "volume nanovdb grids");
   majorants_ = storage_buffer(ctx_, majorants.data(), majorants.size() * sizeof(float), "volume majorants");
   parameters_ = storage_buffer(ctx_, parameters.data(), parameters.size() * sizeof(GpuVolume), "volume parameters");

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -77,6 +78,7 @@ struct VolumeBox {
   int brick_size = 8;
   scene::Bounds world_bounds;
   float cache_downsample = 2.0f;                    // voxels per cache cell, at least
+  bool cached = true;                               // false: lighting_cache "off", no cells
 };
 
 class VolumePass {
@@ -123,6 +125,10 @@ class VolumePass {
   // placeholders) when there are no volumes, so shaders always have something to bind.
   VolumeBindings bindings() const;
   const std::vector<VolumeBox>& boxes() const { return boxes_; }
+  // Some volume has its lighting cache off: the fast march must look the maps up.
+  bool needs_map_lookups() const {
+    return std::any_of(boxes_.begin(), boxes_.end(), [](const VolumeBox& box) { return !box.cached; });
+  }
   const VolumeDensityAtlas& atlas() const { return atlas_; }
 
  private:

@@ -17,22 +17,24 @@ struct Push {
   uint32_t volume_count;
   float step_voxels;
   uint32_t flags;
+  uint32_t light_count;
 };
-static_assert(sizeof(Push) == 108);
+static_assert(sizeof(Push) == 112);
 constexpr uint32_t kFlagNoMajorantSkipping = 1u;
 
 }  // namespace
 
 VolumeUpsamplePass::VolumeUpsamplePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
-      pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_upsample.comp"), "volume composite")),
+      cached_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_upsample.comp"), "volume composite")),
+      with_lookups_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/volume_upsample_lookups.comp"),
+                                           "volume composite with lookups")),
       nearest_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
                      VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "volume composite"}) {}
 
 rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
                                                    const View& view, const VolumeMarchImage& march,
-                                                   const VolumePass& volumes, const VolumeLightingCache& cache,
-                                                   VkSampler cache_sampler, const VolumeShading& shading) {
+                                                   const FastVolumeInputs& inputs) {
   struct Targets {
     rg::TextureHandle color, depth, scattering, distance;
   };
@@ -41,25 +43,26 @@ rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::Texture
         d.depth = b.read(depth, rg::Usage::Sampled);
         d.scattering = b.read(march.scattering, rg::Usage::Sampled);
         d.distance = b.read(march.distance, rg::Usage::Sampled);
-        cache.declare_reads(b);
+        inputs.declare_reads(b);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
       },
-      [this, view, divisor = march.divisor, bindings = volumes.bindings(), cache, cache_sampler,
-       step = shading.step_voxels, skipping = volumes.majorant_skipping()](const Targets& d, rg::PassContext& c) {
+      [this, view, divisor = march.divisor, inputs](const Targets& d, rg::PassContext& c) {
         const rg::TextureDesc& march_size = c.desc(d.scattering);
-        pipeline_.bind(c.cmd());
-        gpu::Bindings b(ctx_, pipeline_);
+        const gpu::Pipeline& pipeline = inputs.map_lookups() ? with_lookups_ : cached_;
+        pipeline.bind(c.cmd());
+        gpu::Bindings b(ctx_, pipeline);
         b.image(0, c.view(d.color), c.layout(d.color))
             .image(1, c.view(d.depth), c.layout(d.depth), nearest_.handle())
             .image(2, c.view(d.scattering), c.layout(d.scattering), nearest_.handle())
             .image(3, c.view(d.distance), c.layout(d.distance), nearest_.handle());
-        bindings.bind(b, 4, /*with_atlas=*/true);
-        cache.bind(b, 9, c, cache_sampler);
+        inputs.bind(b, 4, c);
         b.push(c.cmd());
-        pipeline_.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, divisor,
+        const bool skipping = inputs.volumes->majorant_skipping();
+        pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, divisor,
                                                {view.width, view.height}, {march_size.width, march_size.height},
-                                               bindings.count, step, skipping ? 0u : kFlagNoMajorantSkipping});
-        pipeline_.dispatch_threads(c.cmd(), view.width, view.height);
+                                               inputs.volumes->volume_count(), inputs.shading.step_voxels,
+                                               skipping ? 0u : kFlagNoMajorantSkipping, inputs.light_count});
+        pipeline.dispatch_threads(c.cmd(), view.width, view.height);
       });
   return targets.color;
 }

@@ -19,13 +19,11 @@ class VolumeUpsamplePass {
 
   // `color`: R16G16B16A16_SFLOAT, read and written; `depth`: D32_SFLOAT. Returns the new colour.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-                                 const VolumeMarchImage& march, const VolumePass& volumes,
-                                 const VolumeLightingCache& cache, VkSampler cache_sampler,
-                                 const VolumeShading& shading);
+                                 const VolumeMarchImage& march, const FastVolumeInputs& inputs);
 
  private:
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline cached_, with_lookups_;
   gpu::Sampler nearest_;
 };
 

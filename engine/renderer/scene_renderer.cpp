@@ -136,9 +136,10 @@ rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle
     return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, shadows);
   const uint32_t divisor = uint32_t(volume_shading_.resolution_divisor);
   cache = cache_.add_to_graph(graph, volumes_, view, divisor, shadows_.light_views(), lights_, light_count_, shadows);
-  const passes::VolumeMarchImage march =
-      cached_march_.add_to_graph(graph, depth, view, volumes_, *cache, cache_.sampler(), volume_shading_);
-  return upsample_.add_to_graph(graph, color, depth, view, march, volumes_, *cache, cache_.sampler(), volume_shading_);
+  const passes::FastVolumeInputs inputs{&volumes_, *cache,   cache_.sampler(), volume_shading_,
+                                        &lights_,  light_count_, shadows};
+  const passes::VolumeMarchImage march = cached_march_.add_to_graph(graph, depth, view, inputs);
+  return upsample_.add_to_graph(graph, color, depth, view, march, inputs);
 }
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {

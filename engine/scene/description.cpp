@@ -288,7 +288,11 @@ VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene
   entry.majorant_brick_size = object.integer_or("majorant_brick_size", 8);
   object.check(entry.majorant_brick_size >= 2 && entry.majorant_brick_size <= 64, "majorant_brick_size",
                "must be 2 to 64 voxels");
-  if (const json* cache = object.optional("lighting_cache")) {
+  const json* cache = object.optional("lighting_cache");
+  if (cache && cache->is_string()) {
+    object.check(*cache == "off", "lighting_cache", "must be \"off\" or an object with \"downsample\"");
+    entry.lighting_cache = false;
+  } else if (cache) {
     ObjectReader cache_object(object.reader(), *cache, object.path_of("lighting_cache"));
     entry.lighting_cache_downsample = cache_object.number_or("downsample", entry.lighting_cache_downsample);
     cache_object.check(entry.lighting_cache_downsample >= 1.0f && entry.lighting_cache_downsample <= 8.0f, "downsample",

@@ -37,6 +37,7 @@ struct VolumeEntry {  // "volumes": OpenVDB fog volumes
   glm::vec3 albedo{1.0f};
   int majorant_brick_size = 8;
   float lighting_cache_downsample = 2.0f;  // "lighting_cache": {"downsample": N}
+  bool lighting_cache = true;              // "lighting_cache": "off" clears it
 };
 
 struct HairEntry {  // "hair": .tfx, .hair, or the line primitives of a .gltf/.glb

@@ -103,6 +103,7 @@ Scene load_scene(const SceneDescription& description) {
     Volume volume = with_context(description, where, [&] { return load_vdb_volume(entry.file, options); });
     volume.name = entry.name;
     volume.lighting_cache_downsample = entry.lighting_cache_downsample;
+    volume.lighting_cache = entry.lighting_cache;
     scene.volumes.push_back(std::move(volume));
   }
   for (std::size_t i = 0; i < description.hair.size(); ++i) {

@@ -105,6 +105,9 @@ struct Volume {
   // Lighting cache cells per axis are the support's voxels / at least this (scene file
   // "lighting_cache": {"downsample": N}); more when the volume is small on screen.
   float lighting_cache_downsample = 2.0f;
+  // "lighting_cache": "off": the fast march looks every light's map up along the ray
+  // inside this volume instead (exact lighting, the reference's cost).
+  bool lighting_cache = true;
 
   float max_extinction() const { return extinction_scale * stats.max; }
 };

@@ -6,8 +6,8 @@
 // along one segment, and a lookup per fragment of a widened ribbon cost far more.
 //
 // The includer has included a march (common/volume_cached_march.glsl or
-// common/volume_reference_march.glsl, which give march_ray), the shadow lookups and
-// declared `lights`, then includes this file.
+// common/volume_reference_march.glsl, which give march_ray, the shadow lookups and
+// `lights`), then includes this file.
 #ifndef AVSM_HAIR_LIGHTING_GLSL
 #define AVSM_HAIR_LIGHTING_GLSL
 
@@ -50,9 +50,8 @@ void main() {
   MarchState fog = MarchState(1.0, vec3(0.0));
   if (t_max > 0.0 && pc.volume_count > 0u) {
     march_volume_count = pc.volume_count;
-#ifdef AVSM_VOLUME_REFERENCE_MARCH_GLSL
     march_light_count = pc.light_count;
-#else
+#ifdef AVSM_VOLUME_CACHED_MARCH_GLSL
     march_step_voxels = pc.step_voxels;
 #endif
     bool touched;

@@ -8,9 +8,8 @@
 #define AVSM_VOLUME_BINDING_PARAMETERS 10
 #define AVSM_VOLUME_BINDING_ATLAS 11
 #define AVSM_CACHE_BINDING 13
-#include "common/volume_cached_march.glsl"
-#include "common/lights.glsl"
+#define AVSM_MARCH_LIGHTS_BINDING 3
 #define AVSM_SHADOW_BINDING 4
-#include "common/shadow_lookup.glsl"
-layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
+#define AVSM_MARCH_MAP_LOOKUPS  // the lights are needed anyway, and a vertex is one thread
+#include "common/volume_cached_march.glsl"
 #include "common/hair_lighting.glsl"

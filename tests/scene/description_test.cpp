@@ -199,6 +199,9 @@ TEST(SceneDescriptionErrors, VolumeShadingAndLightingCacheOutOfRange) {
   };
   EXPECT_THAT(error_of(with_cache(R"({ "downsample": 0.5 })")),
               HasSubstr("volumes[0].lighting_cache.downsample: must be 1 to 8 voxels per cache cell"));
+  EXPECT_THAT(error_of(with_cache(R"("none")")),
+              HasSubstr("volumes[0].lighting_cache: must be \"off\" or an object with \"downsample\""));
+  EXPECT_FALSE(parse(with_cache(R"("off")")).volumes[0].lighting_cache);
   EXPECT_THAT(error_of(with_cache(R"({ "downsampel": 2 })")),
               HasSubstr("volumes[0].lighting_cache.downsampel: unknown key (did you mean 'downsample'?)"));
   auto with_shading = [](const std::string& shading) {

@@ -7,6 +7,8 @@
 //                                   stage floor (mixed casters over an opaque receiver)
 //   hair_in_front_of_smoke.scene.json  the hair curtain hanging between the camera and
 //                                   a lit plume, for the depth order of hair and smoke
+//   lighting_cache_settings.scene.json  a plume without lighting cache beside one with
+//                                   coarse cells, for the per-volume cache settings
 #include "content.h"
 
 #include <fstream>
@@ -90,7 +92,30 @@ const char* const kHairInFrontOfSmoke = R"({
 }
 )";
 
+const char* const kLightingCacheSettings = R"({
+  "version": 1,
+  "description": "Test: two plumes side by side, the left without a lighting cache (the fast march looks the shadow maps up along the ray), the right with coarse cache cells (4 voxels).",
+  "models": [ { "name": "stage", "file": "stage.gltf" } ],
+  "volumes": [
+    { "name": "uncached", "file": "plume.vdb", "grid": "density", "transform": { "translation": [-1.0, 0.0, -0.6] },
+      "extinction_scale": 1.5, "albedo": [0.9, 0.9, 0.9], "lighting_cache": "off" },
+    { "name": "coarse", "file": "plume.vdb", "grid": "density", "transform": { "translation": [1.0, 0.0, -0.6] },
+      "extinction_scale": 1.5, "albedo": [0.9, 0.9, 0.9], "lighting_cache": { "downsample": 4 } }
+  ],
+  "lights": [
+    { "name": "sun", "type": "directional", "direction": [0.35, -1.0, 0.25],
+      "color": [1.0, 0.96, 0.9], "intensity": 3.0,
+      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "bilinear", "sort": true } }
+  ],
+  "cameras": [
+    { "name": "main", "position": [0.0, 1.7, 5.8], "target": [0.0, 1.2, -0.6], "up": [0.0, 1.0, 0.0],
+      "vertical_fov_deg": 45.0, "near": 0.05, "far": 60.0 }
+  ]
+}
+)";
+
 void write_bench_scenes(const std::filesystem::path& dir) {
+  write_text(dir / "lighting_cache_settings.scene.json", kLightingCacheSettings);
   write_text(dir / "hair_in_front_of_smoke.scene.json", kHairInFrontOfSmoke);
   write_text(dir / "bench_smoke_columns.scene.json", kSmokeColumns);
   write_text(dir / "bench_smoke_hair.scene.json", kSmokeHair);
