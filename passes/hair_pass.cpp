@@ -26,9 +26,8 @@ struct HairPush {
   glm::vec4 camera_position;
   glm::vec2 viewport;
   uint32_t light_count;
-  uint32_t flags;
+  float pad;
 };
-constexpr uint32_t kFlagLightPerFragment = 1u;
 
 // Central differences inside a strand, one-sided at its ends.
 void add_tangents(const scene::HairGroom& groom, std::vector<glm::vec4>& tangents) {
@@ -54,7 +53,10 @@ HairPass::HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(
   desc.depth_test = true;
   desc.depth_write = false;
   desc.blend = gpu::BlendMode::PremultipliedAlpha;
-  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+  lit_per_vertex_ = gpu::Pipeline::graphics(ctx, desc);
+  desc.name = "hair reference";
+  desc.fragment = shaders.load("shaders/passes/hair_reference.frag");
+  lit_per_fragment_ = gpu::Pipeline::graphics(ctx, desc);
 }
 
 void HairPass::set_scene(const scene::Scene& scene) {
@@ -93,25 +95,28 @@ rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle col
         d.color = b.read_write(color, rg::Usage::ColorAttachment);
         d.depth = b.read(depth, rg::Usage::DepthAttachmentRead);
         d.vertex_lights = b.read(vertex_lights, rg::Usage::StorageRead);
-        shadows.declare_reads(b);
+        if (light_per_fragment) shadows.declare_reads(b);
       },
       [this, view, &lights, light_count, shadows, light_per_fragment](const Targets& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         gpu::ColorTarget color_target{c.view(d.color), c.layout(d.color), {}, /*load=*/true};
         gpu::DepthTarget depth_target{c.view(d.depth), c.layout(d.depth), 1.0f, /*store=*/false, /*read_only=*/true};
         gpu::begin_rendering(cmd, {view.width, view.height}, {&color_target, 1}, &depth_target, /*flip_y=*/true);
-        pipeline_.bind(cmd);
-        gpu::Bindings bindings(ctx_, pipeline_);
+        const gpu::Pipeline& pipeline = light_per_fragment ? lit_per_fragment_ : lit_per_vertex_;
+        pipeline.bind(cmd);
+        gpu::Bindings bindings(ctx_, pipeline);
         bindings.buffer(0, points_.handle())
             .buffer(1, segments_.handle())
             .buffer(2, strands_.handle())
-            .buffer(3, lights.handle())
             .buffer(8, c.buffer(d.vertex_lights));
-        shadows.bind(bindings, 4, c);
+        if (light_per_fragment) {
+          bindings.buffer(3, lights.handle());
+          shadows.bind(bindings, 4, c);
+        }
         bindings.push(cmd);
-        pipeline_.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
+        pipeline.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                                glm::vec2(view.width, view.height), light_count,
-                                               light_per_fragment ? kFlagLightPerFragment : 0u});
+                                               0.0f});
         vkCmdDraw(cmd, segment_count_ * 6, 1, 0, 0);
         vkCmdEndRendering(cmd);
       });

@@ -44,7 +44,7 @@ class HairPass {
 
  private:
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline lit_per_vertex_, lit_per_fragment_;  // hair.frag, hair_reference.frag
   gpu::Buffer points_, tangents_, segments_, strands_;
   uint32_t segment_count_ = 0;
   uint32_t point_count_ = 0;

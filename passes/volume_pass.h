@@ -1,7 +1,12 @@
 #pragma once
-// Fog volumes seen from the camera: a compute pass that ray-marches every volume
-// for every pixel, up to the opaque depth, and composites onto the lit colour in place:
+// Fog volumes on the GPU, and the reference camera march through them.
+//
+// VolumePass owns every volume's data (NanoVDB grids, majorants, parameter blocks, the
+// density brick atlas) for all passes that read volumes. Its own pass is the reference
+// camera march (--volume-shading reference): it ray-marches every volume for every
+// pixel, up to the opaque depth, and composites onto the lit colour in place:
 //   color = color * T_camera + in-scattered light.
+// The fast path's passes (lighting cache, cached march, composite) read the same data.
 // In-scattering at each sample is sigma_s * phase * sum over lights of
 // light_radiance() * light_transmittance() * T_camera so far, with an isotropic phase
 // function; light_transmittance() (shaders/common/shadow_lookup.glsl) reads each

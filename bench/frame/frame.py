@@ -54,8 +54,10 @@ def main():
     print(f"{'pass':32} {'fast ms':>10} {'reference ms':>13} {'ref/fast':>9}")
     for name in sorted(set(fast) | set(reference), key=lambda n: -max(fast.get(n, 0.0), reference.get(n, 0.0))):
         f, r = fast.get(name), reference.get(name)
-        ratio = f"{r / f:9.1f}" if f and r else " " * 9
-        print(f"{name:32} {f if f is not None else float('nan'):10.1f} {r if r is not None else float('nan'):13.1f} {ratio}")
+        ratio = f"{r / f:9.1f}" if f and r else f"{'-':>9}"
+        fast_text = f"{f:10.1f}" if f is not None else f"{'-':>10}"
+        reference_text = f"{r:13.1f}" if r is not None else f"{'-':>13}"
+        print(f"{name:32} {fast_text} {reference_text} {ratio}")
     opaque = fast.get("opaque", 0.0)
     fast_volumes, reference_volumes = total(fast, FAST_VOLUME), total(reference, REFERENCE_VOLUME)
     fast_hair, reference_hair = total(fast, HAIR), total(reference, HAIR)

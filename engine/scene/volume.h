@@ -67,7 +67,9 @@ struct VolumeShading {
   };
   Mode mode = Mode::fast;
   int resolution_divisor = 2;  // fast: the march runs at 1/divisor of the output per axis (1, 2 or 4)
-  float step_voxels = 1.0f;    // fast: march step in voxels (of the smallest voxel edge)
+  // fast: march step in voxels (of the smallest voxel edge). 2: the image error against
+  // step size (bench/frame) stays flat up to 2 and grows beyond, for little time saved.
+  float step_voxels = 2.0f;
 };
 const char* to_string(VolumeShading::Mode mode);
 std::optional<VolumeShading::Mode> volume_shading_mode_from_string(const std::string& name);

@@ -18,12 +18,7 @@
 
 #extension GL_GOOGLE_include_directive : require
 
-struct MarchState {
-  float transmittance;  // camera to the current point
-  vec3 in_scattered;    // radiance scattered towards the camera so far
-};
-#define AVSM_VOLUME_WALK_STATE MarchState
-#include "common/volume.glsl"
+#include "common/volume_march.glsl"
 #define AVSM_CACHE_SAMPLED
 #include "common/volume_lighting_cache.glsl"
 #ifdef AVSM_MARCH_MAP_LOOKUPS
@@ -33,13 +28,8 @@ struct MarchState {
 layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer MarchLights { GpuLight lights[]; };
 #endif
 
-uint march_volume_count = 0u;
 uint march_light_count = 0u;
-float march_step_voxels = 1.0;
-bool march_skip_empty = true;
-uint march_volume = 0u;  // the volume being walked (for its cache layout)
-
-const float kMinTransmittance = 1e-3;
+float march_step_voxels = 2.0;
 
 // Radiance scattered towards the camera per unit sigma_s at world point p, every
 // light's map looked up (a volume without lighting cache).
@@ -80,32 +70,6 @@ bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 wo
     if (state.transmittance < kMinTransmittance) return false;
   }
   return true;
-}
-
-// Continues `state` along the world ray over [t_min, t_max] through every volume,
-// front to back. `touched`: whether that stretch met any volume.
-MarchState march_ray_between(vec3 origin, vec3 direction, float t_min, float t_max, MarchState state,
-                             out bool touched) {
-  touched = false;
-  float previous_enter = -1.0;
-  int previous_index = -1;
-  uint v;
-  float t_enter, t_exit;
-  while (state.transmittance >= kMinTransmittance &&
-         next_volume(march_volume_count, origin, direction, t_min, t_max, previous_enter, previous_index, v, t_enter,
-                     t_exit)) {
-    march_volume = v;
-    walk_volume_bricks(v, origin, direction, t_enter, t_exit, march_skip_empty, state);
-    touched = true;
-    previous_enter = t_enter;
-    previous_index = int(v);
-  }
-  return state;
-}
-
-// Marches the world ray [0, t_max] through every volume front to back.
-MarchState march_ray(vec3 origin, vec3 direction, float t_max, out bool touched) {
-  return march_ray_between(origin, direction, 0.0, t_max, MarchState(1.0, vec3(0.0)), touched);
 }
 
 #endif

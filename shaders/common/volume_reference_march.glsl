@@ -11,24 +11,13 @@
 
 #extension GL_GOOGLE_include_directive : require
 
-struct MarchState {
-  float transmittance;  // camera to the current point
-  vec3 in_scattered;    // radiance scattered towards the camera so far
-};
-#define AVSM_VOLUME_WALK_STATE MarchState
-#include "common/volume.glsl"
+#include "common/volume_march.glsl"
 #include "common/lights.glsl"
 #include "common/shadow_lookup.glsl"
 
 layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer MarchLights { GpuLight lights[]; };
 
-uint march_volume_count = 0u;
 uint march_light_count = 0u;
-bool march_skip_empty = true;
-
-// Below this the rest of the ray cannot change the pixel visibly (it would add
-// at most 1e-3 of the remaining light), so the march stops.
-const float kMinTransmittance = 1e-3;
 
 // Light arriving at world point p from every light, towards the camera, per unit sigma_s.
 vec3 incoming_light(vec3 p, vec3 to_camera) {
@@ -94,25 +83,6 @@ bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 wo
                            vec3 index_origin, vec3 index_direction, float t_start, float t_end, inout MarchState state) {
   march_segment(volume, reader, world_origin, world_direction, index_origin, index_direction, t_start, t_end, state);
   return state.transmittance >= kMinTransmittance;
-}
-
-// Marches the world ray [0, t_max] through every volume front to back. `touched`:
-// whether the ray met any volume (pixels it did not meet keep their colour bit for bit).
-MarchState march_ray(vec3 origin, vec3 direction, float t_max, out bool touched) {
-  MarchState state = MarchState(1.0, vec3(0.0));
-  touched = false;
-  float previous_enter = -1.0;
-  int previous_index = -1;
-  uint v;
-  float t_enter, t_exit;
-  while (state.transmittance >= kMinTransmittance &&
-         next_volume(march_volume_count, origin, direction, 0.0, t_max, previous_enter, previous_index, v, t_enter, t_exit)) {
-    walk_volume_bricks(v, origin, direction, t_enter, t_exit, march_skip_empty, state);
-    touched = true;
-    previous_enter = t_enter;
-    previous_index = int(v);
-  }
-  return state;
 }
 
 #endif

@@ -1,45 +1,15 @@
 #version 460
-// Kajiya-Kay diffuse for fibres: light scatters by the sine of the angle to the
-// tangent. The lighting comes per vertex (hair_lighting.comp), or per fragment with
-// its own shadow lookups in the reference path (flag 1). The fragment is then seen
-// through the smoke in front of it: premultiplied a * (S + T * colour), blended over
-// the colour the smoke was already composited into, which is exact for one layer.
-#extension GL_GOOGLE_include_directive : require
-#include "common/lights.glsl"
-#define AVSM_SHADOW_BINDING 4
-#include "common/shadow_lookup.glsl"
-
-layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 camera_position;
-  vec2 viewport;
-  uint light_count;
-  uint flags;
-} pc;
-
-layout(location = 0) in vec3 in_world;
-layout(location = 1) in vec3 in_tangent;
+// Hair fragments, fast path: the lighting comes per vertex (hair_lighting.comp), and
+// the fragment is seen through the smoke in front of it: premultiplied a * (S + T *
+// colour), blended over the colour the smoke was already composited into, which is
+// exact for one layer. No shadow lookup is compiled in here (on lavapipe their mere
+// presence slows a shader); hair_reference.frag lights per fragment.
 layout(location = 2) flat in vec4 in_color_opacity;
 layout(location = 3) in vec3 in_lit;
 layout(location = 4) in vec4 in_fog;
 layout(location = 0) out vec4 out_color;
 
-const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);
-const uint kFlagLightPerFragment = 1u;
-
 void main() {
-  vec3 lit = in_lit;
-  if ((pc.flags & kFlagLightPerFragment) != 0u) {
-    vec3 t = normalize(in_tangent);
-    lit = kSkyAmbient;
-    for (uint i = 0u; i < pc.light_count; ++i) {
-      vec3 to_light;
-      vec3 radiance = light_radiance(lights[i], in_world, to_light);
-      float sin_tl = sqrt(max(1.0 - dot(t, to_light) * dot(t, to_light), 0.0));
-      lit += radiance * sin_tl * light_transmittance(i, in_world);
-    }
-  }
   float a = in_color_opacity.a;
-  out_color = vec4(a * (in_fog.rgb + in_fog.a * in_color_opacity.rgb * lit), a);  // premultiplied
+  out_color = vec4(a * (in_fog.rgb + in_fog.a * in_color_opacity.rgb * in_lit), a);  // premultiplied
 }

@@ -11,7 +11,7 @@ layout(push_constant) uniform Push {
   vec4 camera_position;
   vec2 viewport;
   uint light_count;
-  uint flags;
+  float pad;
 } pc;
 
 layout(location = 0) out vec3 out_world;

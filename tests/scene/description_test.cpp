@@ -180,7 +180,7 @@ TEST(SceneDescription, VolumeShadingAndLightingCache) {
   const SceneDescription defaults = parse(full_scene());
   EXPECT_EQ(defaults.volume_shading.mode, VolumeShading::Mode::fast);
   EXPECT_EQ(defaults.volume_shading.resolution_divisor, 2);
-  EXPECT_FLOAT_EQ(defaults.volume_shading.step_voxels, 1.0f);
+  EXPECT_FLOAT_EQ(defaults.volume_shading.step_voxels, 2.0f);
   EXPECT_FLOAT_EQ(defaults.volumes[0].lighting_cache_downsample, 2.0f);
 
   const SceneDescription scene = parse(full_scene(

@@ -29,7 +29,7 @@ const char* kUsage =
     "                   steps, shadow lookups along every ray (default fast); hidden: the\n"
     "                   camera does not see the volumes (they still cast shadows)\n"
     "  --volume-resolution-divisor 1|2|4   fast march resolution: 1/N per axis (default 2)\n"
-    "  --volume-step VOXELS   fast march step, 0.125 to 4 voxels (default 1)\n"
+    "  --volume-step VOXELS   fast march step, 0.125 to 4 voxels (default 2)\n"
     "  --compare-volume-shading   also render every frame the reference way (interleaved)\n"
     "                   and once with the volumes hidden: volume_quality.json (smoke-pixel\n"
     "                   error of this shading against the reference, both paths' pass ms),\n"
