@@ -2,6 +2,8 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include "passes/volume_pass.h"
+
 namespace avsm::passes {
 namespace {
 
@@ -34,10 +36,7 @@ CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string&
         const gpu::Pipeline& pipeline = atlas ? from_atlas_ : from_nanovdb_;
         pipeline.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline);
-        bindings.buffer(0, volumes.grids).buffer(1, volumes.majorants).buffer(2, volumes.parameters);
-        if (atlas)
-          bindings.image(3, volumes.atlas, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, volumes.atlas_sampler)
-              .buffer(4, volumes.brick_slots);
+        bind_volumes(bindings, volumes, 0, atlas);
         bind_capture_lists(bindings, 5, c, d);
         bindings.push(c.cmd());
         pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,

@@ -11,10 +11,8 @@
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
-#include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
-#include "passes/volume_lighting_cache_pass.h"
-#include "passes/volume_pass.h"
+#include "passes/volume_frame_inputs.h"
 
 namespace avsm::passes {
 
@@ -30,12 +28,11 @@ class HairLightingPass {
  public:
   HairLightingPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
-  // One HairVertexLight per strand vertex of `hair`. `cache`: the frame's lighting cache
-  // for the fast fog, or nullptr for the reference march. Returns an invalid handle when
-  // the scene has no hair. Without `fog` the strands see no smoke in front of them.
-  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const View& view, const VolumePass& volumes,
-                                const VolumeLightingCache* cache, VkSampler cache_sampler, const VolumeShading& shading,
-                                const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows, bool fog);
+  // One HairVertexLight per strand vertex of `hair`. The fog comes through the frame's
+  // lighting cache when `inputs` has one, else from the reference march; the strands
+  // see no smoke when it is hidden. Returns an invalid handle when the scene has no hair.
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const View& view,
+                                const VolumeFrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

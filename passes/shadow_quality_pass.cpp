@@ -27,11 +27,7 @@ ShadowQualityPass::ShadowQualityPass(gpu::Context& ctx, const gpu::ShaderLibrary
     : ctx_(ctx),
       pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_quality.comp"), "shadow quality")),
       depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "quality depth"}) {
-  // Large enough for one GpuVolume, though the shader reads none (volume_count 0).
-  no_volumes_ = gpu::Buffer::create(ctx, {256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal,
-                                          "quality: no volumes"});
-}
+                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "quality depth"}) {}
 
 void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light_count) {
   if (light_count > kMaxShadowedLights)
@@ -63,29 +59,23 @@ void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& exe
     rg::TextureHandle depth;
     rg::BufferHandle results;
   };
-  const uint32_t volume_count = volumes.volume_count();
-  const VkBuffer grids = volume_count ? volumes.grids().handle() : no_volumes_.handle();
-  const VkBuffer majorants = volume_count ? volumes.majorants().handle() : no_volumes_.handle();
-  const VkBuffer parameters = volume_count ? volumes.parameters().handle() : no_volumes_.handle();
+  const VolumeCasters volume_data = volumes.casters();
   graph.add_pass<Data>("shadow quality", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& data) {
         data.depth = b.read(depth, rg::Usage::Sampled);
         data.results = b.write(results, rg::Usage::StorageWrite);
         shadows.declare_reads(b);
       },
-      [this, view, &lights, light_count, shadows, volume_count, grids, majorants, parameters](const Data& data,
-                                                                                          rg::PassContext& c) {
+      [this, view, &lights, light_count, shadows, volume_data](const Data& data, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
         bindings.image(0, c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
             .buffer(1, c.buffer(data.results))
-            .buffer(2, grids)
-            .buffer(3, majorants)
-            .buffer(4, parameters)
             .buffer(5, lights.handle());
+        bind_volumes(bindings, volume_data, 2, /*with_atlas=*/false);
         shadows.bind(bindings, 6, c);
         bindings.push(c.cmd());
-        const Push push{view.inverse_view_projection, view.camera_position, volume_count, {width_, height_},
+        const Push push{view.inverse_view_projection, view.camera_position, volume_data.volume_count, {width_, height_},
                         light_count, kSmokeSamplesPerVolume};
         pipeline_.push_constants(c.cmd(), push);
         pipeline_.dispatch_threads(c.cmd(), width_, height_);

@@ -61,7 +61,6 @@ class ShadowQualityPass {
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
   gpu::Buffer results_;
-  gpu::Buffer no_volumes_;  // bound in place of the volume buffers when the scene has none
   uint32_t width_ = 0, height_ = 0, light_count_ = 0;
 };
 

@@ -36,21 +36,8 @@ VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::Shade
       depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                            false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "march depth"}) {}
 
-void FastVolumeInputs::declare_reads(rg::PassBuilder& builder) const {
-  cache.declare_reads(builder);
-  shadows.declare_reads(builder);
-}
-
-void FastVolumeInputs::bind(gpu::Bindings& bindings, uint32_t first, const rg::PassContext& context) const {
-  volumes->bindings().bind(bindings, first, /*with_atlas=*/true);
-  cache.bind(bindings, first + 5, context, cache_sampler);
-  if (!map_lookups()) return;
-  bindings.buffer(first + 7, lights->handle());
-  shadows.bind(bindings, first + 8, context);
-}
-
 VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
-                                                     const FastVolumeInputs& inputs) {
+                                                     const VolumeFrameInputs& inputs) {
   const uint32_t divisor = uint32_t(inputs.shading.resolution_divisor);
   if (divisor != 1 && divisor != 2 && divisor != 4)
     throw std::invalid_argument("VolumeCachedMarchPass: the resolution divisor must be 1, 2 or 4, got " +

@@ -9,33 +9,11 @@
 
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
-#include "passes/shadow_inputs.h"
 #include "passes/view.h"
-#include "passes/volume_lighting_cache_pass.h"
+#include "passes/volume_frame_inputs.h"
 #include "passes/volume_pass.h"
 
 namespace avsm::passes {
-
-// What the fast path's camera passes read besides their own images, gathered once a
-// frame: the volumes, this frame's lighting cache, and the lights and shadow maps (for
-// volumes whose cache is off). Passes keep a copy until they record: the handles are
-// values, and the volume pass and light buffer outlive the frame.
-struct FastVolumeInputs {
-  const VolumePass* volumes = nullptr;
-  VolumeLightingCache cache;
-  VkSampler cache_sampler = VK_NULL_HANDLE;
-  VolumeShading shading;
-  const gpu::Buffer* lights = nullptr;
-  uint32_t light_count = 0;
-  ShadowInputs shadows;
-
-  // Whether the passes need their variant with shadow-map lookups (a volume's cache is off).
-  bool map_lookups() const { return volumes->needs_map_lookups(); }
-  void declare_reads(rg::PassBuilder& builder) const;
-  // Volumes at `first` .. +4, the cache at +5, +6, and with map lookups the lights at +7
-  // and the shadow maps from +8 (the shaders' AVSM_*_BINDING values).
-  void bind(gpu::Bindings& bindings, uint32_t first, const rg::PassContext& context) const;
-};
 
 struct VolumeMarchImage {
   rg::TextureHandle scattering;  // R16G16B16A16_SFLOAT, march size
@@ -52,7 +30,7 @@ class VolumeCachedMarchPass {
 
   // `depth`: the opaque depth (D32_SFLOAT, output size, Sampled).
   VolumeMarchImage add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
-                                const FastVolumeInputs& inputs);
+                                const VolumeFrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

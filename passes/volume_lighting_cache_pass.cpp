@@ -45,7 +45,6 @@ GpuCacheLayout layout_for(const VolumeBox& box, float per_cell, int first_slice)
   layout.dims = glm::max(glm::ivec3(glm::ceil(extent / per_cell)), glm::ivec3(1));
   layout.cells_per_voxel = glm::vec3(layout.dims) / extent;
   layout.cell_origin = box.support_min;
-  layout.first_slice = first_slice;
   layout.world_from_cell = box.world_from_index * glm::translate(glm::mat4(1.0f), box.support_min) *
                            glm::scale(glm::mat4(1.0f), extent / glm::vec3(layout.dims));
   return layout;
@@ -106,23 +105,11 @@ VolumeLightingCachePass::VolumeLightingCachePass(gpu::Context& ctx, const gpu::S
       sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
                      VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "volume lighting cache"}) {}
 
-void VolumeLightingCache::declare_reads(rg::PassBuilder& builder) const {
-  builder.read(image, rg::Usage::Sampled);
-  builder.read(layouts, rg::Usage::StorageRead);
-}
-
-void VolumeLightingCache::bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context,
-                               VkSampler sampler) const {
-  bindings.buffer(first_binding, context.buffer(layouts))
-      .image(first_binding + 1, context.view(image), context.layout(image), sampler);
-}
-
-VolumeLightingCache VolumeLightingCachePass::add_to_graph(rg::Graph& graph, const VolumePass& volumes, const View& view,
-                                                          uint32_t divisor, const std::vector<LightView>& light_views,
-                                                          const gpu::Buffer& lights, uint32_t light_count,
-                                                          const ShadowInputs& shadows) {
-  std::vector<GpuCacheLayout> layouts = plan(volumes.boxes(), view, divisor, ctx_.info().max_image_dimension_3d,
-                                             finest_light_texels(volumes.boxes(), light_views));
+void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, const View& view, const std::vector<LightView>& light_views,
+                                           VolumeFrameInputs& inputs) {
+  const std::vector<VolumeBox>& boxes = inputs.volumes->boxes();
+  std::vector<GpuCacheLayout> layouts = plan(boxes, view, uint32_t(inputs.shading.resolution_divisor),
+                                             ctx_.info().max_image_dimension_3d, finest_light_texels(boxes, light_views));
   glm::uvec3 size(1, 1, 0);
   cell_count_ = 0;
   for (const GpuCacheLayout& l : layouts) {
@@ -157,21 +144,21 @@ VolumeLightingCache VolumeLightingCachePass::add_to_graph(rg::Graph& graph, cons
         d.layouts = b.read(upload.layouts, rg::Usage::StorageRead);
         d.image = b.write(b.create_texture("volume lighting cache", {size.x, size.y, size.z, 1, 1, kFormat}),
                           rg::Usage::StorageWrite);
-        shadows.declare_reads(b);
+        inputs.shadows.declare_reads(b);
       },
-      [this, bindings = volumes.bindings(), &lights, light_count, shadows, size,
-       camera = view.camera_position](const Cache& d, rg::PassContext& c) {
+      [this, inputs, size, camera = view.camera_position](const Cache& d, rg::PassContext& c) {
+        const VolumeCasters volumes = inputs.volumes->casters();
         pipeline_.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline_);
         b.image(0, c.view(d.image), c.layout(d.image));
-        bindings.bind(b, 1, /*with_atlas=*/false);
-        b.buffer(4, c.buffer(d.layouts)).buffer(5, lights.handle());
-        shadows.bind(b, 6, c);
+        bind_volumes(b, volumes, 1, /*with_atlas=*/false);
+        b.buffer(4, c.buffer(d.layouts)).buffer(5, inputs.lights->handle());
+        inputs.shadows.bind(b, 6, c);
         b.push(c.cmd());
-        pipeline_.push_constants(c.cmd(), Push{camera, bindings.count, size, light_count});
+        pipeline_.push_constants(c.cmd(), Push{camera, volumes.volume_count, size, inputs.light_count});
         pipeline_.dispatch_threads(c.cmd(), size.x, size.y, size.z);
       });
-  return {cache.image, cache.layouts};
+  inputs.cache = VolumeLightingCache{cache.image, cache.layouts, sampler_.handle()};
 }
 
 }  // namespace avsm::passes

@@ -25,6 +25,7 @@
 #include "passes/light_view.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
+#include "passes/volume_frame_inputs.h"
 #include "passes/volume_pass.h"
 
 namespace avsm::passes {
@@ -40,15 +41,6 @@ struct GpuCacheLayout {
   int32_t pad1 = 0;
 };
 static_assert(sizeof(GpuCacheLayout) == 112);
-
-// One frame's cache: the image and the layouts both readers bind
-// (AVSM_CACHE_BINDING: layouts, +1: image).
-struct VolumeLightingCache {
-  rg::TextureHandle image;
-  rg::BufferHandle layouts;
-  void declare_reads(rg::PassBuilder& builder) const;
-  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context, VkSampler sampler) const;
-};
 
 class VolumeLightingCachePass {
  public:
@@ -67,14 +59,13 @@ class VolumeLightingCachePass {
   static std::vector<float> finest_light_texels(const std::vector<VolumeBox>& boxes,
                                                 const std::vector<LightView>& lights);
 
-  // Adds the layout upload and the cache pass; `volumes` must have volumes.
-  VolumeLightingCache add_to_graph(rg::Graph& graph, const VolumePass& volumes, const View& view, uint32_t divisor,
-                                   const std::vector<LightView>& light_views, const gpu::Buffer& lights,
-                                   uint32_t light_count, const ShadowInputs& shadows);
+  // Adds the layout upload and the cache pass and sets `inputs.cache`; the inputs'
+  // volume pass must have volumes. `light_views`: the lights' maps (for the cell size).
+  void add_to_graph(rg::Graph& graph, const View& view, const std::vector<LightView>& light_views,
+                    VolumeFrameInputs& inputs);
 
   // Cells the last frame's cache held (every volume), for the frame report.
   uint64_t cell_count() const { return cell_count_; }
-  VkSampler sampler() const { return sampler_.handle(); }
 
  private:
   gpu::Context& ctx_;

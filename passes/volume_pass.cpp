@@ -153,17 +153,18 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   volume_count_ = uint32_t(volumes.size());
 }
 
-void VolumeBindings::bind(gpu::Bindings& bindings, uint32_t first, bool with_atlas) const {
-  bindings.buffer(first, grids).buffer(first + 1, majorants).buffer(first + 2, parameters);
+void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, uint32_t first, bool with_atlas) {
+  bindings.buffer(first, volumes.grids).buffer(first + 1, volumes.majorants).buffer(first + 2, volumes.parameters);
   if (with_atlas)
-    bindings.image(first + 3, atlas, VolumeDensityAtlas::kLayout, atlas_sampler).buffer(first + 4, slots);
+    bindings.image(first + 3, volumes.atlas, VolumeDensityAtlas::kLayout, volumes.atlas_sampler)
+        .buffer(first + 4, volumes.brick_slots);
 }
 
-VolumeBindings VolumePass::bindings() const {
+VolumeCasters VolumePass::casters() const {
   const VkBuffer none = placeholder_.handle();
-  if (volume_count_ == 0) return {none, none, none, atlas_.slots().handle(), atlas_.view(), atlas_.sampler(), 0};
-  return {grids_.handle(), majorants_.handle(), parameters_.handle(), atlas_.slots().handle(),
-          atlas_.view(), atlas_.sampler(), volume_count_};
+  if (volume_count_ == 0) return {none, none, none, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
+  return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_,
+          atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
 }
 
 rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

@@ -64,16 +64,10 @@ static_assert(offsetof(GpuVolume, step_length) == 76 && offsetof(GpuVolume, grid
 
 using scene::VolumeShading;
 
-// Where the volumes' data lies for a pass that binds it: the NanoVDB grids, the
-// majorants and the parameter blocks at `first` .. +2, the density atlas at +3 and
-// its brick slots at +4 (AVSM_VOLUME_BINDING_* = first .. in the shader).
-struct VolumeBindings {
-  VkBuffer grids = VK_NULL_HANDLE, majorants = VK_NULL_HANDLE, parameters = VK_NULL_HANDLE, slots = VK_NULL_HANDLE;
-  VkImageView atlas = VK_NULL_HANDLE;
-  VkSampler atlas_sampler = VK_NULL_HANDLE;
-  uint32_t count = 0;
-  void bind(gpu::Bindings& bindings, uint32_t first, bool with_atlas) const;
-};
+// Binds the volumes for a pass that reads them: the NanoVDB grids, the majorants and
+// the parameter blocks at `first` .. +2, and with the atlas the density atlas at +3
+// and its brick slots at +4 (AVSM_VOLUME_BINDING_* = first .. in the shader).
+void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, uint32_t first, bool with_atlas);
 
 // What the lighting cache needs of one volume on the CPU (passes/volume_lighting_cache_pass.h).
 struct VolumeBox {
@@ -118,17 +112,10 @@ class VolumePass {
   bool majorant_skipping() const { return majorant_skipping_; }
 
   uint32_t volume_count() const { return volume_count_; }
-  // The volumes, shared with the light capture (passes/capture_smoke_pass.h).
-  const gpu::Buffer& grids() const { return grids_; }
-  const gpu::Buffer& majorants() const { return majorants_; }
-  const gpu::Buffer& parameters() const { return parameters_; }
-  VolumeCasters casters() const {
-    return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_,
-            atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
-  }
-  // Every buffer and image of the volumes, for the fast path's passes; valid (with
-  // placeholders) when there are no volumes, so shaders always have something to bind.
-  VolumeBindings bindings() const;
+  // The volumes, shared with the light capture (passes/capture_smoke_pass.h) and every
+  // pass that reads them (bind_volumes). Valid handles (placeholders, volume_count 0)
+  // when there are no volumes, so shaders always have something to bind.
+  VolumeCasters casters() const;
   const std::vector<VolumeBox>& boxes() const { return boxes_; }
   // Some volume has its lighting cache off: the fast march must look the maps up.
   bool needs_map_lookups() const {

@@ -34,7 +34,7 @@ VolumeUpsamplePass::VolumeUpsamplePass(gpu::Context& ctx, const gpu::ShaderLibra
 
 rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
                                                    const View& view, const VolumeMarchImage& march,
-                                                   const FastVolumeInputs& inputs) {
+                                                   const VolumeFrameInputs& inputs) {
   struct Targets {
     rg::TextureHandle color, depth, scattering, distance;
   };

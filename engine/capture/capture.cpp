@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <algorithm>
 #include <memory>
 #include <optional>
 #include <nlohmann/json.hpp>
@@ -104,17 +103,6 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
   return grew;
 }
 
-PassMedians pass_medians(const FrameTimingLog& log) {
-  PassMedians medians;
-  for (const FrameTimingLog::PassSamples& pass : log.passes()) {
-    if (pass.gpu_ms.empty()) continue;
-    std::vector<double> sorted = pass.gpu_ms;
-    std::sort(sorted.begin(), sorted.end());
-    medians[pass.name] = sorted[sorted.size() / 2];
-  }
-  return medians;
-}
-
 std::string describe(const scene::VolumeShading& shading) {
   return std::string(scene::to_string(shading.mode)) + ", resolution divisor " +
          std::to_string(shading.resolution_divisor) + ", step " + std::to_string(shading.step_voxels) + " voxels";
@@ -142,7 +130,7 @@ class VolumeShadingRun {
     io::write_png_raw(out_dir / "volume_error.png", error);
     io::write_exr(out_dir / "frame_reference.exr", reference_);
     const fs::path file = out_dir / "volume_quality.json";
-    write_volume_comparison(file, comparison, describe(main_), pass_medians(main_log), pass_medians(log_));
+    write_volume_comparison(file, comparison, describe(main_), main_log.median_gpu_ms(), log_.median_gpu_ms());
     return file;
   }
 

@@ -178,6 +178,13 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   return wall;
 }
 
+std::map<std::string, double> FrameTimingLog::median_gpu_ms() const {
+  std::map<std::string, double> medians;
+  for (const PassSamples& pass : passes_)
+    if (!pass.gpu_ms.empty()) medians[pass.name] = stats_of(pass.gpu_ms).median;
+  return medians;
+}
+
 void FrameTimingLog::clear() { *this = FrameTimingLog(std::chrono::steady_clock::now()); }
 
 FrameOutputFiles write_frame_outputs(const fs::path& out_dir, const FrameOutputSources& frame) {

@@ -66,6 +66,8 @@ class FrameTimingLog {
     std::vector<double> gpu_ms, cpu_record_ms;
   };
   const std::vector<PassSamples>& passes() const { return passes_; }  // in the order first seen
+  // Each pass's median GPU ms over the measured frames (as in timings.json), by name.
+  std::map<std::string, double> median_gpu_ms() const;
   // Per measured frame: the passes' GPU ms summed, the wall time, and submit to completion.
   const std::vector<double>& frame_gpu_ms() const { return frame_gpu_ms_; }
   const std::vector<double>& frame_wall_ms() const { return frame_wall_ms_; }

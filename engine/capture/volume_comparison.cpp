@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -24,21 +25,26 @@ VolumeShadingComparison compare_volume_shading(const gpu::ImageRGBA32F& fast, co
   if (fast.width != reference.width || fast.height != reference.height || hidden.width != reference.width ||
       hidden.height != reference.height)
     throw std::invalid_argument("compare_volume_shading: the images differ in size");
+  constexpr double kNotSmoke = -1.0;
+  const double kNotFinite = std::numeric_limits<double>::quiet_NaN();
   VolumeShadingComparison result;
-  std::vector<double> errors;
-  std::vector<bool> smoke(size_t(reference.width) * reference.height, false);
+  std::vector<double> pixel_errors;  // |dL| per pixel, or one of the two markers
+  std::vector<double> errors;        // the smoke pixels' |dL|
   double luminance_sum = 0.0;
   for (uint32_t y = 0; y < reference.height; ++y)
     for (uint32_t x = 0; x < reference.width; ++x) {
-      if (!std::isfinite(luminance(fast.at(x, y)))) {
-        ++result.non_finite_pixels;
-        continue;
-      }
+      const double fast_luminance = luminance(fast.at(x, y));
       const double with = luminance(reference.at(x, y)), without = luminance(hidden.at(x, y));
-      if (!(std::abs(with - without) > kSmokeChange * std::max(with, without))) continue;
-      smoke[size_t(y) * reference.width + x] = true;
-      errors.push_back(std::abs(luminance(fast.at(x, y)) - with));
-      luminance_sum += with;
+      if (!std::isfinite(fast_luminance)) {
+        ++result.non_finite_pixels;
+        pixel_errors.push_back(kNotFinite);
+      } else if (std::abs(with - without) > kSmokeChange * std::max(with, without)) {
+        errors.push_back(std::abs(fast_luminance - with));
+        pixel_errors.push_back(errors.back());
+        luminance_sum += with;
+      } else {
+        pixel_errors.push_back(kNotSmoke);
+      }
     }
   result.smoke_pixels = errors.size();
   if (!errors.empty()) {
@@ -46,30 +52,22 @@ VolumeShadingComparison compare_volume_shading(const gpu::ImageRGBA32F& fast, co
     double sum = 0.0;
     for (double e : errors) sum += e;
     result.mean_abs_error = sum / double(errors.size());
-    std::vector<double> sorted = errors;
-    const size_t p99 = std::min(sorted.size() - 1, size_t(std::ceil(0.99 * double(sorted.size()))) - 1);
-    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(p99), sorted.end());
-    result.p99_abs_error = sorted[p99];
     result.max_abs_error = *std::max_element(errors.begin(), errors.end());
+    const size_t p99 = std::min(errors.size() - 1, size_t(std::ceil(0.99 * double(errors.size()))) - 1);
+    std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(p99), errors.end());
+    result.p99_abs_error = errors[p99];
   }
   if (error_image) {
-    *error_image = gpu::ImageRGBA32F{reference.width, reference.height,
-                                     std::vector<float>(size_t(reference.width) * reference.height * 4, 1.0f)};
-    size_t next_error = 0;
-    for (uint32_t y = 0; y < reference.height; ++y)
-      for (uint32_t x = 0; x < reference.width; ++x) {
-        float* out = error_image->at(x, y);
-        if (!std::isfinite(luminance(fast.at(x, y)))) {
-          out[0] = 1.0f, out[1] = 0.0f, out[2] = 0.0f;  // red: not a number
-          continue;
-        }
-        if (!smoke[size_t(y) * reference.width + x]) {
-          out[0] = 0.0f, out[1] = 0.0f, out[2] = 0.15f;
-          continue;
-        }
-        const double relative = result.mean_luminance > 0.0 ? errors[next_error++] / result.mean_luminance : 0.0;
-        out[0] = out[1] = out[2] = float(std::min(relative * 10.0, 1.0));
-      }
+    *error_image = gpu::ImageRGBA32F{reference.width, reference.height, {}};
+    for (double e : pixel_errors) {
+      const float grey = result.mean_luminance > 0.0 ? float(std::min(e / result.mean_luminance * 10.0, 1.0)) : 0.0f;
+      if (std::isnan(e))
+        error_image->pixels.insert(error_image->pixels.end(), {1.0f, 0.0f, 0.0f, 1.0f});  // red: not a number
+      else if (e == kNotSmoke)
+        error_image->pixels.insert(error_image->pixels.end(), {0.0f, 0.0f, 0.15f, 1.0f});
+      else
+        error_image->pixels.insert(error_image->pixels.end(), {grey, grey, grey, 1.0f});
+    }
   }
   return result;
 }

@@ -105,16 +105,13 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
   const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
   passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_, shadows);
-  std::optional<passes::VolumeLightingCache> cache;
-  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, view, shadows, cache);
+  passes::VolumeFrameInputs volume_inputs{&volumes_, volume_shading_, &lights_, light_count_, shadows};
+  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, view, volume_inputs);
   // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
   // Hidden volumes keep the reference shading of everything else (it is the
   // reference's smoke-free twin in comparisons).
   const bool per_fragment = hair_per_fragment_.value_or(volume_shading_.mode != scene::VolumeShading::Mode::fast);
-  const rg::BufferHandle hair_lights =
-      hair_lighting_.add_to_graph(graph, hair_, view, volumes_, cache ? &*cache : nullptr, cache_.sampler(),
-                                  volume_shading_, lights_, light_count_, shadows,
-                                  /*fog=*/volume_shading_.mode != scene::VolumeShading::Mode::hidden);
+  const rg::BufferHandle hair_lights = hair_lighting_.add_to_graph(graph, hair_, view, volume_inputs);
   color = hair_.add_to_graph(graph, color, opaque.depth, view, hair_lights, per_fragment, lights_,
                              light_count_, shadows);
 
@@ -129,15 +126,11 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 }
 
 rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                             const passes::View& view, const passes::ShadowInputs& shadows,
-                                             std::optional<passes::VolumeLightingCache>& cache) {
-  if (volumes_.volume_count() == 0 || volume_shading_.mode == scene::VolumeShading::Mode::hidden) return color;
+                                             const passes::View& view, passes::VolumeFrameInputs& inputs) {
+  if (volumes_.volume_count() == 0 || !inputs.smoke_visible()) return color;
   if (volume_shading_.mode == scene::VolumeShading::Mode::reference)
-    return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, shadows);
-  const uint32_t divisor = uint32_t(volume_shading_.resolution_divisor);
-  cache = cache_.add_to_graph(graph, volumes_, view, divisor, shadows_.light_views(), lights_, light_count_, shadows);
-  const passes::FastVolumeInputs inputs{&volumes_, *cache,   cache_.sampler(), volume_shading_,
-                                        &lights_,  light_count_, shadows};
+    return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, inputs.shadows);
+  cache_.add_to_graph(graph, view, shadows_.light_views(), inputs);
   const passes::VolumeMarchImage march = cached_march_.add_to_graph(graph, depth, view, inputs);
   return upsample_.add_to_graph(graph, color, depth, view, march, inputs);
 }

@@ -30,20 +30,13 @@ layout(push_constant) uniform Push {
   float step_voxels;
 } pc;
 
-const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);  // as in hair.frag
+#include "common/fibre_light.glsl"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.point_count) return;
   vec3 p = points[i].xyz;
-  vec3 t = tangents[i].xyz;
-  vec3 lit = kSkyAmbient;
-  for (uint l = 0u; l < pc.light_count; ++l) {
-    vec3 to_light;
-    vec3 radiance = light_radiance(lights[l], p, to_light);
-    float sin_tl = sqrt(max(1.0 - dot(t, to_light) * dot(t, to_light), 0.0));
-    lit += radiance * sin_tl * light_transmittance(l, p);
-  }
+  vec3 lit = fibre_light(p, tangents[i].xyz, pc.light_count);
 
   vec3 origin = pc.camera_position.xyz;
   float t_max = length(p - origin);

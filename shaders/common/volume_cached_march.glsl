@@ -26,23 +26,20 @@
 #include "common/shadow_lookup.glsl"
 
 layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer MarchLights { GpuLight lights[]; };
+#include "common/scattered_light.glsl"
 #endif
 
 uint march_light_count = 0u;
 float march_step_voxels = 2.0;
 
-// Radiance scattered towards the camera per unit sigma_s at world point p, every
-// light's map looked up (a volume without lighting cache).
+// In a volume without lighting cache: every light's map looked up (only compiled in
+// with AVSM_MARCH_MAP_LOOKUPS; the renderer never runs such a volume without it).
 vec3 looked_up_in_scattering(vec3 p, vec3 to_camera) {
-  vec3 sum = vec3(0.0);
 #ifdef AVSM_MARCH_MAP_LOOKUPS
-  for (uint i = 0u; i < march_light_count; ++i) {
-    vec3 to_light;
-    vec3 radiance = light_radiance(lights[i], p, to_light);
-    sum += radiance * phase_function(to_camera, to_light) * light_transmittance(i, p);
-  }
+  return scattered_light(p, to_camera, march_light_count);
+#else
+  return vec3(0.0);
 #endif
-  return sum;
 }
 
 // One brick's stretch: the atlas offset is looked up once, then each step is two

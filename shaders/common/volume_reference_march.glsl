@@ -16,19 +16,10 @@
 #include "common/shadow_lookup.glsl"
 
 layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer MarchLights { GpuLight lights[]; };
+#include "common/scattered_light.glsl"
 
 uint march_light_count = 0u;
 
-// Light arriving at world point p from every light, towards the camera, per unit sigma_s.
-vec3 incoming_light(vec3 p, vec3 to_camera) {
-  vec3 sum = vec3(0.0);
-  for (uint i = 0u; i < march_light_count; ++i) {
-    vec3 to_light;
-    vec3 radiance = light_radiance(lights[i], p, to_light);
-    sum += radiance * phase_function(to_camera, to_light) * light_transmittance(i, p);
-  }
-  return sum;
-}
 
 // How many march steps share one in-scattering evaluation: one per shadow-map texel
 // along the ray. Finer sampling cannot see more of the maps, and a filtered map
@@ -72,7 +63,8 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
     }
     if (scatters && any(greaterThan(weight, vec3(0.0)))) {
       float t_light = t_start + 0.5 * float(block_start + block_end) * dt;
-      state.in_scattered += weight * incoming_light(world_origin + t_light * world_direction, -world_direction);
+      state.in_scattered +=
+          weight * scattered_light(world_origin + t_light * world_direction, -world_direction, march_light_count);
     }
     if (state.transmittance < kMinTransmittance) return;
   }

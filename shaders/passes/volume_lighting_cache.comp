@@ -25,6 +25,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, rgba16f) uniform writeonly image3D cache_image;
 layout(std430, binding = 5) readonly buffer Lights { GpuLight lights[]; };
+#include "common/scattered_light.glsl"
 
 // Mirrors VolumeLightingCachePass's Push (passes/volume_lighting_cache_pass.cpp).
 layout(push_constant) uniform Push {
@@ -60,12 +61,7 @@ void main() {
     vec3 radiance_sum = vec3(0.0);
     if (near_density(volumes[v], index_position, 1.0 / cache.cells_per_voxel)) {
       vec3 p = (cache.world_from_cell * vec4(centre, 1.0)).xyz;
-      vec3 to_camera = normalize(pc.camera_position - p);
-      for (uint i = 0u; i < pc.light_count; ++i) {
-        vec3 to_light;
-        vec3 radiance = light_radiance(lights[i], p, to_light);
-        radiance_sum += radiance * phase_function(to_camera, to_light) * light_transmittance(i, p);
-      }
+      radiance_sum = scattered_light(p, normalize(pc.camera_position - p), pc.light_count);
     }
     imageStore(cache_image, cell, vec4(radiance_sum, 1.0));
     return;
