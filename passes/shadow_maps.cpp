@@ -310,10 +310,8 @@ void ShadowMaps::finish_frame() {
     stats.next_capture_capacity = light.capacity;
     stats.grew = stats.next_capture_capacity > stats.capture_capacity;
     if (light.settings.technique == scene::ShadowTechnique::dsm) {
-      stats.pool_requested = counters[1];
-      stats.pool_capacity = light.pool_nodes;
-      stats.pool_overflowed = counters[1] > light.pool_nodes;
-      if (stats.pool_overflowed) {  // the last frame completed: the map can be replaced now
+      stats.dsm_pool = DsmPoolStats{counters[1], light.pool_nodes, counters[1] > light.pool_nodes};
+      if (stats.dsm_pool->overflowed) {  // the last frame completed: the map can be replaced now
         light.pool_nodes = round_up(counters[1] + counters[1] / 4, 1024);
         create_map(uint32_t(i));
         stats.grew = true;

@@ -37,6 +37,7 @@
 #include "passes/map_build_pass.h"
 #include "passes/shadow_casters.h"
 #include "passes/shadow_inputs.h"
+#include "passes/shadow_stats.h"
 #include "passes/view.h"
 #include "scene/scene.h"
 
@@ -53,24 +54,6 @@ class UnshadowedInputs {
  private:
   gpu::Buffer parameters_;  // kMaxLights zeroed GpuShadows (technique 0)
   gpu::Image heads_;        // 1x1 R32_UINT, one empty list, GENERAL layout
-};
-
-// Per-light figures of the last frame (after finish_frame()).
-struct LightShadowStats {
-  std::string light;
-  scene::ShadowTechnique technique = scene::ShadowTechnique::avsm;
-  uint32_t nodes = 0, resolution = 0, mip_levels = 0;
-  uint64_t map_bytes = 0;               // persistent map (0 for uncompressed)
-  uint64_t capture_capacity = 0;        // segments the node buffer held this frame
-  uint64_t capture_requested = 0;       // segments the captures asked for
-  uint64_t capture_bytes = 0;           // heads + node buffer this frame
-  bool overflowed = false;              // requested > capacity: segments were dropped
-  uint64_t next_capture_capacity = 0;   // after growth
-  // Deep shadow maps: nodes the texels' compressed curves needed and the pool held;
-  // texels that did not fit read as unshadowed this frame (the pool grows for the next).
-  uint64_t pool_requested = 0, pool_capacity = 0;
-  bool pool_overflowed = false;
-  bool grew = false;                    // a buffer grows for the next frame: rendering again does better
 };
 
 struct ShadowOptions {

@@ -12,6 +12,7 @@
 #include <rendergraph/vulkan/executor.h>
 
 #include "capture/files.h"
+#include "capture/frame_report.h"
 #include "capture/frame_outputs.h"
 #include "capture/quality.h"
 #include "capture/report.h"
@@ -60,22 +61,12 @@ std::vector<glm::vec3> read_probe_points(const fs::path& file) {
   return points;
 }
 
-void write_probes(const fs::path& path, const scene::Scene& scene, const std::vector<glm::vec3>& points,
-                  const std::vector<std::vector<float>>& results) {
-  nlohmann::json positions = nlohmann::json::array();
-  for (const glm::vec3& p : points) positions.push_back({p.x, p.y, p.z});
-  nlohmann::json lights = nlohmann::json::array();
-  for (size_t i = 0; i < scene.lights.size() && i < results.size(); ++i) {
-    const scene::ShadowSettings& s = scene.lights[i].shadow;
-    lights.push_back({{"light", scene.lights[i].name},
-                      {"technique", scene::to_string(s.technique)},
-                      {"nodes", s.nodes},
-                      {"filter", scene::to_string(s.filter)},
-                      {"sort", s.sort},
-                      {"resolution", s.resolution},
-                      {"transmittance", results[i]}});
-  }
-  write_json(path, {{"points", positions}, {"lights", lights}});
+ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>& points,
+                         const std::vector<std::vector<float>>& results) {
+  ProbeReport report{points, {}};
+  for (size_t i = 0; i < scene.lights.size() && i < results.size(); ++i)
+    report.lights.push_back({scene.lights[i].name, scene.lights[i].shadow, results[i]});
+  return report;
 }
 
 // Warns about every light whose capture overflowed. Returns true when one of them
@@ -83,7 +74,7 @@ void write_probes(const fs::path& path, const scene::Scene& scene, const std::ve
 bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   bool overflowed = false, grew = false;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
-    if (!light.overflowed && !light.pool_overflowed) continue;
+    if (!light.lost_shadowing()) continue;
     overflowed = true;
     grew = grew || light.grew;
     if (light.overflowed)
@@ -92,12 +83,12 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
                    "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
                    index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
                    (unsigned long long)light.capture_capacity, (unsigned long long)light.next_capture_capacity);
-    if (light.pool_overflowed)
+    if (light.dsm_pool && light.dsm_pool->overflowed)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s': the deep shadow map needed %llu pool nodes but had "
                    "%llu; texels that did not fit were unshadowed; the pool grows for the next frame\n",
-                   index + 1, light.light.c_str(), (unsigned long long)light.pool_requested,
-                   (unsigned long long)light.pool_capacity);
+                   index + 1, light.light.c_str(), (unsigned long long)light.dsm_pool->requested_nodes,
+                   (unsigned long long)light.dsm_pool->capacity_nodes);
   }
   if (overflowed) ++overflowed_frames;
   return grew;
@@ -234,17 +225,23 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", index + 1, options.frames, wall, warm_up ? " (warm-up)" : "");
   }
 
-  const FrameOutputFiles files = write_frame_outputs(
-      options.out_dir, {ctx, frame, executor, scene, timing_log, overflowed_frames});
+  FrameOutputFiles files = write_frame_outputs(options.out_dir,
+                                               {ctx, frame, executor, scene, timing_log, overflowed_frames});
+  FrameReport& report = files.report;
   CaptureOutputs out{files.png, files.exr, files.timings};
-  if (!probe_points.empty()) write_probes(options.out_dir / "probes.json", scene, probe_points, frame.probe_results());
-  if (options.compare_to_uncompressed)
-    out.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,
-                                {frame.hair_quality_results(), frame.hair_receiver_count()});
+  if (!probe_points.empty()) {
+    report.probes = probe_report(scene, probe_points, frame.probe_results());
+    write_json(options.out_dir / "probes.json", to_json(*report.probes));
+  }
+  if (options.compare_to_uncompressed) {
+    report.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,
+                                   {frame.hair_quality_results(), frame.hair_receiver_count()});
+    out.quality = options.out_dir / "quality.json";
+  }
   if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, cmd, view, timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
-  if (options.report) write_report(options.out_dir, options.out_dir / "report.html");
+  if (options.report) write_report(options.out_dir, report, options.out_dir / "report.html");
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
   if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "capture/files.h"
+#include "capture/frame_report.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
 #include "gpu/vk_check.h"
@@ -22,90 +23,14 @@ double ms_between(std::chrono::steady_clock::time_point from, std::chrono::stead
   return std::chrono::duration<double, std::milli>(to - from).count();
 }
 
-struct Stats {
-  double min = 0, median = 0, max = 0;
-};
-
-Stats stats_of(std::vector<double> values) {
-  if (values.empty()) return {};
-  std::sort(values.begin(), values.end());
-  return {values.front(), values[values.size() / 2], values.back()};
-}
-
-nlohmann::json to_json(const Stats& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
-
-nlohmann::json frame_samples_json(const FrameTimingLog& log) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (size_t i = 0; i < log.frame_gpu_ms().size(); ++i)
-    frames.push_back({{"gpu_ms", log.frame_gpu_ms()[i]},
-                      {"wall_ms", log.frame_wall_ms()[i]},
-                      {"submit_wall_ms", log.frame_submit_ms()[i]}});
-  return frames;
-}
-
-nlohmann::json timings_json(const FrameOutputSources& frame) {
-  const FrameTimingLog& log = frame.timings;
-  nlohmann::json passes = nlohmann::json::array();
-  for (const FrameTimingLog::PassSamples& pass : log.passes())
-    passes.push_back({{"name", pass.name},
-                      {"queue", rg::to_string(pass.queue)},
-                      {"gpu_ms", to_json(stats_of(pass.gpu_ms))},
-                      {"cpu_record_ms", to_json(stats_of(pass.cpu_record_ms))}});
-  return {
-      {"device", frame.ctx.info().name},
-      {"driver", frame.ctx.info().driver_name + " " + frame.ctx.info().driver_info},
-      {"timestamp_mode", gpu::to_string(frame.executor.timestamp_mode())},
-      {"width", frame.renderer.width()},
-      {"height", frame.renderer.height()},
-      {"frames_measured", log.frame_gpu_ms().size()},
-      {"passes", passes},
-      {"frame_gpu_ms", to_json(stats_of(log.frame_gpu_ms()))},
-      {"frame_wall_ms", to_json(stats_of(log.frame_wall_ms()))},
-      // Submit to completion on the CPU clock: what the GPU times of a frame add up to.
-      {"frame_submit_wall_ms", to_json(stats_of(log.frame_submit_ms()))},
-      {"frames", frame_samples_json(log)},
-  };
-}
-
-nlohmann::json shadow_json(const passes::LightShadowStats& s) {
-  nlohmann::json json = {{"light", s.light},
-                         {"technique", scene::to_string(s.technique)},
-                         {"nodes", s.nodes},
-                         {"resolution", s.resolution},
-                         {"mip_levels", s.mip_levels},
-                         {"map_bytes", s.map_bytes},
-                         {"capture_bytes", s.capture_bytes},
-                         {"capture_capacity_segments", s.capture_capacity},
-                         {"capture_requested_segments", s.capture_requested},
-                         {"capture_overflowed", s.overflowed},
-                         {"next_capture_capacity_segments", s.next_capture_capacity}};
-  if (s.technique == scene::ShadowTechnique::dsm) {  // the deep shadow map's node pool
-    json["dsm_pool_capacity_nodes"] = s.pool_capacity;
-    json["dsm_pool_requested_nodes"] = s.pool_requested;
-    json["dsm_pool_overflowed"] = s.pool_overflowed;
-  }
-  return json;
-}
-
-nlohmann::json memory_json(const FrameOutputSources& frame) {
-  const rg::PlanStats& stats = frame.executor.plan().stats;
-  nlohmann::json lights = nlohmann::json::array();
-  for (const passes::LightShadowStats& light : frame.renderer.shadows().frame_stats())
-    lights.push_back(shadow_json(light));
-  const scene::Bounds& bounds = frame.scene.bounds;
-  return {{"transient_bytes_aliased", stats.transient_bytes_aliased},
-          {"transient_bytes_unaliased", stats.transient_bytes_unaliased},
-          {"heaps", frame.executor.plan().heaps.size()},
-          {"lights", lights},
-          {"scene_bounds",
-           {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
-          {"frames_with_capture_overflow", frame.frames_with_capture_overflow},
-          {"volumes",
-           {{"shading", scene::to_string(frame.renderer.volume_shading().mode)},
-            {"resolution_divisor", frame.renderer.volume_shading().resolution_divisor},
-            {"step_voxels", frame.renderer.volume_shading().step_voxels},
-            {"density_atlas_bytes", frame.renderer.density_atlas_bytes()},
-            {"lighting_cache_cells", frame.renderer.lighting_cache_cells()}}}};
+TimingReport timing_report(const FrameOutputSources& frame) {
+  TimingReport report = timing_report(frame.timings);
+  report.device = frame.ctx.info().name;
+  report.driver = frame.ctx.info().driver_name + " " + frame.ctx.info().driver_info;
+  report.timestamp_mode = gpu::to_string(frame.executor.timestamp_mode());
+  report.width = frame.renderer.width();
+  report.height = frame.renderer.height();
+  return report;
 }
 
 // light<i>_transmittance.png: each light's map as grey levels (passes/shadow_debug_pass.h).
@@ -181,26 +106,49 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
 std::map<std::string, double> FrameTimingLog::median_gpu_ms() const {
   std::map<std::string, double> medians;
   for (const PassSamples& pass : passes_)
-    if (!pass.gpu_ms.empty()) medians[pass.name] = stats_of(pass.gpu_ms).median;
+    if (!pass.gpu_ms.empty()) medians[pass.name] = spread_of(pass.gpu_ms).median;
   return medians;
 }
 
 void FrameTimingLog::clear() { *this = FrameTimingLog(std::chrono::steady_clock::now()); }
+
+MemoryReport memory_report(const rg::CompiledPlan& plan, const renderer::SceneRenderer& renderer,
+                           const scene::Scene& scene, uint64_t frames_with_capture_overflow) {
+  MemoryReport report;
+  report.transient_bytes_aliased = plan.stats.transient_bytes_aliased;
+  report.transient_bytes_unaliased = plan.stats.transient_bytes_unaliased;
+  report.heap_count = plan.heaps.size();
+  report.lights = renderer.shadows().frame_stats();
+  report.scene_bounds = scene.bounds;
+  report.frames_with_capture_overflow = frames_with_capture_overflow;
+  report.volumes = {renderer.volume_shading(), renderer.density_atlas_bytes(), renderer.lighting_cache_cells()};
+  return report;
+}
+
+FrameReport frame_report(const FrameOutputSources& frame) {
+  const rg::CompiledPlan& plan = frame.executor.plan();
+  return {timing_report(frame),
+          memory_report(plan, frame.renderer, frame.scene, frame.frames_with_capture_overflow),
+          plan_summary(plan),
+          plan.to_dot(),
+          std::nullopt,
+          std::nullopt};
+}
 
 FrameOutputFiles write_frame_outputs(const fs::path& out_dir, const FrameOutputSources& frame) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw std::runtime_error(out_dir.string() + ": cannot create output folder: " + ec.message());
 
-  FrameOutputFiles out{out_dir / "frame.png", out_dir / "frame.exr", out_dir / "timings.json"};
+  FrameOutputFiles out{out_dir / "frame.png", out_dir / "frame.exr", out_dir / "timings.json", frame_report(frame)};
   io::write_png_raw(out.png, gpu::read_image(frame.ctx, frame.renderer.ldr(), renderer::SceneRenderer::kOutputLayout));
   io::write_exr(out.exr, gpu::read_image(frame.ctx, frame.renderer.hdr(), renderer::SceneRenderer::kOutputLayout));
-  write_json(out.timings, timings_json(frame));
+  write_json(out.timings, to_json(out.report.timings));
   frame.timings.trace().write(out_dir / "trace.json");
   write_light_images(frame, out_dir);
   write_text(out_dir / "graph.json", frame.executor.plan().to_json());
-  write_text(out_dir / "graph.dot", frame.executor.plan().to_dot());
-  write_json(out_dir / "memory.json", memory_json(frame));
+  write_text(out_dir / "graph.dot", out.report.plan_dot);
+  write_json(out_dir / "memory.json", to_json(out.report.memory));
   return out;
 }
 

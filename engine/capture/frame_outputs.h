@@ -6,6 +6,7 @@
 //   trace of every frame), graph.json and graph.dot (the compiled frame graph),
 //   memory.json (transient bytes, per light map and capture figures) and
 //   light<i>_transmittance.png when the renderer draws light images.
+// timings.json and memory.json are written from a FrameReport (capture/frame_report.h).
 #include <rendergraph/vulkan/executor.h>
 
 #include <chrono>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "capture/frame_report.h"
 #include "capture/trace.h"
 
 namespace avsm::gpu {
@@ -96,7 +98,12 @@ struct FrameOutputSources {
 
 struct FrameOutputFiles {
   std::filesystem::path png, exr, timings;
+  FrameReport report;  // what timings.json and memory.json were written from; no quality or probes yet
 };
+
+// The memory figures of `renderer`'s last frame, compiled as `plan`, as memory.json holds them.
+MemoryReport memory_report(const rg::CompiledPlan& plan, const renderer::SceneRenderer& renderer,
+                           const scene::Scene& scene, uint64_t frames_with_capture_overflow);
 
 // Creates out_dir and writes the files listed at the top of this header.
 // Throws std::runtime_error naming a file that cannot be written.

@@ -14,6 +14,7 @@
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "capture/files.h"
+#include "capture/frame_report.h"
 #include "capture/report.h"
 #include "io/image_io.h"
 #include "passes/shadow_maps.h"
@@ -26,14 +27,6 @@ namespace {
 std::string light_label(const scene::Scene& scene, size_t index) {
   const std::string& name = scene.lights[index].name;
   return name.empty() ? "light " + std::to_string(index) : name;
-}
-
-nlohmann::json stats_json(const ErrorStats& s) {
-  nlohmann::json j = {{"receivers", s.receivers}};
-  // No receivers: no error to speak of (null rather than a made-up 0).
-  j["mean_abs_error"] = s.receivers ? nlohmann::json(s.mean()) : nlohmann::json(nullptr);
-  j["max_abs_error"] = s.receivers ? nlohmann::json(s.max) : nlohmann::json(nullptr);
-  return j;
 }
 
 // Black (no error) -> red -> yellow -> white (error >= 1/kErrorImageScale).
@@ -313,65 +306,37 @@ std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShado
   return lights;
 }
 
-fs::path write_quality(const fs::path& out_dir, const scene::Scene& scene,
-                       const std::vector<passes::PixelShadowError>& errors, uint32_t width, uint32_t height,
-                       const HairErrors& hair) {
-  const std::vector<LightQuality> lights = summarize_quality(errors, width, height, scene, hair);
+const char* const kErrorImageColours =
+    "black: 0, red, yellow, white: error >= 1/scale; dim blue: no receiver for the light in the pixel";
+
+std::string surface_receivers_rule() {
+  return "the opaque surface in the depth buffer (normal from the depth buffer, normal offset as the opaque pass), "
+         "where the light reaches it: facing the light, inside a spot's cone";
+}
+
+std::string smoke_receivers_rule() {
+  return std::to_string(passes::ShadowQualityPass::kSmokeSamplesPerVolume) +
+         " evenly spaced points per volume of the pixel ray's stretch inside the volume's support, in front of the "
+         "surface, where the density is > 0 and the light reaches";
+}
+
+std::string hair_receivers_rule() {
+  return "strand vertices (every k-th, at most " + std::to_string(passes::ShadowQualityHairPass::kMaxReceivers) +
+         ") inside the view and not behind the opaque depth, looked up as the hair pass shades them; hair hidden "
+         "behind other hair still counts (hair writes no depth); not in the error images";
+}
+
+std::string error_image_name(size_t light) { return "light" + std::to_string(light) + "_error.png"; }
+
+QualityReport write_quality(const fs::path& out_dir, const scene::Scene& scene,
+                            const std::vector<passes::PixelShadowError>& errors, uint32_t width, uint32_t height,
+                            const HairErrors& hair) {
+  QualityReport report{width, height, summarize_quality(errors, width, height, scene, hair)};
   const size_t pixels = size_t(width) * height;
-  nlohmann::json list = nlohmann::json::array();
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const LightQuality& q = lights[i];
-    const std::string image = "light" + std::to_string(i) + "_error.png";
-    if ((i + 1) * pixels <= errors.size())
-      write_error_image(out_dir / image, errors.data() + i * pixels, width, height);
-    const ErrorStats all = q.all();
-    nlohmann::json light = {
-        {"light", q.light},
-        {"index", i},
-        {"technique", scene::to_string(q.settings.technique)},
-        {"technique_label", technique_label(q.settings)},
-        {"filter", scene::to_string(q.settings.filter)},
-        {"sort", q.settings.sort},
-        {"resolution", q.settings.resolution},
-        {"error_image", image},
-        {"receivers",
-         {{"surface", q.surface.receivers}, {"smoke", q.smoke.receivers}, {"hair", q.hair.receivers},
-          {"total", all.receivers}}},
-        {"surface", stats_json(q.surface)},
-        {"smoke", stats_json(q.smoke)},
-        {"hair", stats_json(q.hair)},
-    };
-    // AVSM keeps N nodes per texel (the other techniques' sizes are in technique_label and parameters).
-    light["nodes"] = q.settings.technique == scene::ShadowTechnique::avsm ? nlohmann::json(q.settings.nodes)
-                                                                           : nlohmann::json(nullptr);
-    light["parameters"] = q.settings.parameters;
-    light["mean_abs_error"] = all.receivers ? nlohmann::json(all.mean()) : nlohmann::json(nullptr);
-    light["max_abs_error"] = all.receivers ? nlohmann::json(all.max) : nlohmann::json(nullptr);
-    list.push_back(std::move(light));
-  }
-  const nlohmann::json json = {
-      {"reference", "uncompressed"},
-      {"error", "absolute transmittance difference |T - T_ref| between the light's technique and its exact "
-                "capture lists, both looked up with the light's filter"},
-      {"width", width},
-      {"height", height},
-      {"error_image_scale", kErrorImageScale},
-      {"error_image_colours",
-       "black: 0, red, yellow, white: error >= 1/scale; dim blue: no receiver for the light in the pixel"},
-      {"receiver_kinds",
-       {{"surface", "the opaque surface in the depth buffer (normal from the depth buffer, normal offset as the "
-                    "opaque pass), where the light reaches it: facing the light, inside a spot's cone"},
-        {"smoke", std::to_string(passes::ShadowQualityPass::kSmokeSamplesPerVolume) +
-                      " evenly spaced points per volume of the pixel ray's stretch inside the volume's support, in "
-                      "front of the surface, where the density is > 0 and the light reaches"},
-        {"hair", "strand vertices (every k-th, at most " + std::to_string(passes::ShadowQualityHairPass::kMaxReceivers) +
-                     ") inside the view and not behind the opaque depth, looked up as the hair pass shades them; "
-                     "hair hidden behind other hair still counts (hair writes no depth); not in the error images"}}},
-      {"lights", list},
-  };
-  const fs::path path = out_dir / "quality.json";
-  write_json(path, json);
-  return path;
+  for (size_t i = 0; i < report.lights.size() && (i + 1) * pixels <= errors.size(); ++i)
+    write_error_image(out_dir / error_image_name(i), errors.data() + i * pixels, width, height);
+  write_json(out_dir / "quality.json", to_json(report));
+  return report;
 }
 
 // ---- texel curves ----

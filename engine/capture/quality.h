@@ -30,6 +30,12 @@ namespace avsm::capture {
 // Errors are shown this many times larger in light<i>_error.png (as in the paper's figures), clamped to 1.
 inline constexpr float kErrorImageScale = 4.0f;
 
+// What quality.json and report.html say the error images' colours and each receiver kind are.
+extern const char* const kErrorImageColours;
+std::string surface_receivers_rule();
+std::string smoke_receivers_rule();
+std::string hair_receivers_rule();
+
 struct ErrorStats {
   uint64_t receivers = 0;
   double sum = 0.0;  // of |T - T_ref|
@@ -57,8 +63,15 @@ struct HairErrors {
 std::vector<LightQuality> summarize_quality(const std::vector<passes::PixelShadowError>& errors, uint32_t width,
                                             uint32_t height, const scene::Scene& scene, const HairErrors& hair = {});
 
-// Writes quality.json and light<i>_error.png into out_dir; returns quality.json's path.
-std::filesystem::path write_quality(const std::filesystem::path& out_dir, const scene::Scene& scene,
+// quality.json: every light's errors over a width x height frame (to_json in capture/frame_report.h).
+struct QualityReport {
+  uint32_t width = 0, height = 0;
+  std::vector<LightQuality> lights;  // light i's error image: error_image_name(i)
+};
+std::string error_image_name(size_t light);  // light<i>_error.png
+
+// Writes quality.json and light<i>_error.png into out_dir; returns what quality.json holds.
+QualityReport write_quality(const std::filesystem::path& out_dir, const scene::Scene& scene,
                                     const std::vector<passes::PixelShadowError>& errors, uint32_t width,
                                     uint32_t height, const HairErrors& hair = {});
 

@@ -8,7 +8,6 @@
 #include <initializer_list>
 #include <iterator>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -18,7 +17,6 @@
 
 namespace avsm::capture {
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
 
@@ -31,13 +29,6 @@ std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot read");
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-json read_json(const fs::path& path) {
-  json parsed = json::parse(read_bytes(path), nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
-  if (!parsed.is_object()) throw std::runtime_error(path.string() + ": expected a JSON object");
-  return parsed;
 }
 
 std::string base64(std::string_view bytes) {
@@ -112,37 +103,7 @@ std::vector<std::pair<long, fs::path>> light_images(const fs::path& out_dir) {
 
 std::string escape(std::string_view text) { return escape_markup(text); }
 
-// The value at a path of object keys, or nullptr where any step is missing.
-const json* find(const json& root, std::initializer_list<const char*> keys) {
-  const json* at = &root;
-  for (const char* key : keys) {
-    if (!at->is_object()) return nullptr;
-    auto it = at->find(key);
-    if (it == at->end()) return nullptr;
-    at = &*it;
-  }
-  return at;
-}
-
-double number_at(const json& root, std::initializer_list<const char*> keys) {
-  const json* value = find(root, keys);
-  return value && value->is_number() ? value->get<double>() : NAN;
-}
-
-std::optional<uint64_t> count_at(const json& root, std::initializer_list<const char*> keys) {
-  const json* value = find(root, keys);
-  if (!value || !value->is_number_unsigned()) return std::nullopt;
-  return value->get<uint64_t>();
-}
-
-// Strings as they are, other values as JSON, missing ones as a dash.
-std::string text_of(const json* value) {
-  if (!value || value->is_null()) return "\u2013";
-  if (value->is_string()) return value->get<std::string>();
-  return value->dump();
-}
-
-std::string text_at(const json& root, std::initializer_list<const char*> keys) { return text_of(find(root, keys)); }
+const char* const kDash = "\u2013";  // in place of a value there is none of
 
 std::string format(const char* pattern, double value) {
   if (!std::isfinite(value)) return "\u2013";
@@ -151,25 +112,33 @@ std::string format(const char* pattern, double value) {
   return buffer;
 }
 
-std::string ms(double value) { return std::isfinite(value) ? format("%.3f", value) + " ms" : "\u2013"; }
+std::string ms(double value) { return std::isfinite(value) ? format("%.3f", value) + " ms" : kDash; }
 
-std::string bytes_text(std::optional<uint64_t> bytes) {
-  if (!bytes) return "\u2013";
-  const double b = double(*bytes);
+std::string bytes_text(uint64_t bytes) {
+  const double b = double(bytes);
   std::string human;
   if (b >= 1024.0 * 1024 * 1024) human = format("%.2f GiB", b / (1024.0 * 1024 * 1024));
   else if (b >= 1024.0 * 1024) human = format("%.2f MiB", b / (1024.0 * 1024));
   else if (b >= 1024.0) human = format("%.1f KiB", b / 1024.0);
-  else return std::to_string(*bytes) + " B";
-  return human + " (" + std::to_string(*bytes) + " B)";
+  else return std::to_string(bytes) + " B";
+  return human + " (" + std::to_string(bytes) + " B)";
 }
 
-const char* queue_colour(const std::string& queue) {
-  if (queue == "graphics") return "#4e79a7";
-  if (queue == "compute") return "#f28e2b";
-  if (queue == "transfer") return "#59a14f";
+const char* queue_colour(rg::QueueType queue) {
+  switch (queue) {
+    case rg::QueueType::Graphics: return "#4e79a7";
+    case rg::QueueType::Compute: return "#f28e2b";
+    case rg::QueueType::Transfer: return "#59a14f";
+  }
   return "#9c9c9c";
 }
+
+std::string spread_text(const Spread& s) {
+  return ms(s.median) + " median (" + ms(s.min) + " \u2013 " + ms(s.max) + ")";
+}
+
+// As JSON spells them: what the report said when it read graph.json.
+std::string bool_text(bool value) { return value ? "true" : "false"; }
 
 // A round step (1, 2 or 5 times a power of ten) giving about `ticks` ticks up to `max`.
 double nice_step(double max, int ticks) {
@@ -181,17 +150,11 @@ double nice_step(double max, int ticks) {
   return 10 * power;
 }
 
-const json& array_at(const json& root, const char* key) {
-  static const json kEmpty = json::array();
-  const json* value = find(root, {key});
-  return value && value->is_array() ? *value : kEmpty;
-}
-
 // ---- sections ----
 
-void write_head(std::ostringstream& html, const json& timings) {
+void write_head(std::ostringstream& html, const TimingReport& timings) {
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-       << "<title>avsm-capture report: " << escape(text_at(timings, {"device"})) << "</title>\n"
+       << "<title>avsm-capture report: " << escape(timings.device) << "</title>\n"
        << "<style>\n"
           "body{font:14px/1.4 system-ui,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#222}\n"
           "h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ddd}\n"
@@ -208,7 +171,7 @@ void write_head(std::ostringstream& html, const json& timings) {
           "</style>\n</head>\n<body>\n";
 }
 
-void write_frame(std::ostringstream& html, const fs::path& out_dir, const json& timings) {
+void write_frame(std::ostringstream& html, const fs::path& out_dir, const TimingReport& timings) {
   const PngImage frame = embed_png(out_dir / "frame.png");
   html << "<h1>avsm-capture report</h1>\n<p class=\"note\">" << escape(out_dir.string()) << "</p>\n"
        << "<section>\n<h2>Frame</h2>\n<img id=\"frame-image\" alt=\"frame.png\"";
@@ -218,31 +181,27 @@ void write_frame(std::ostringstream& html, const fs::path& out_dir, const json& 
   auto row = [&](const std::string& name, const std::string& value) {
     html << "<tr><th>" << escape(name) << "</th><td>" << escape(value) << "</td></tr>\n";
   };
-  auto stats = [&](const char* key) {
-    return ms(number_at(timings, {key, "median"})) + " median (" + ms(number_at(timings, {key, "min"})) + " \u2013 " +
-           ms(number_at(timings, {key, "max"})) + ")";
-  };
   html << "<table id=\"frame-summary\">\n";
-  row("device", text_at(timings, {"device"}));
-  row("driver", text_at(timings, {"driver"}));
-  row("timestamps", text_at(timings, {"timestamp_mode"}));
-  row("size", text_at(timings, {"width"}) + " \u00d7 " + text_at(timings, {"height"}));
-  row("frames measured", text_at(timings, {"frames_measured"}));
-  row("frame GPU time", stats("frame_gpu_ms"));
-  row("frame wall time", stats("frame_wall_ms"));
-  if (find(timings, {"frame_submit_wall_ms"})) row("frame submit to completion", stats("frame_submit_wall_ms"));
+  row("device", timings.device);
+  row("driver", timings.driver);
+  row("timestamps", timings.timestamp_mode);
+  row("size", std::to_string(timings.width) + " \u00d7 " + std::to_string(timings.height));
+  row("frames measured", std::to_string(timings.frames.size()));
+  row("frame GPU time", spread_text(timings.frame_gpu_ms));
+  row("frame wall time", spread_text(timings.frame_wall_ms));
+  row("frame submit to completion", spread_text(timings.frame_submit_wall_ms));
   html << "</table>\n</section>\n";
 }
 
-void write_light_images(std::ostringstream& html, const fs::path& out_dir, const json& memory) {
-  const json& lights = array_at(memory, "lights");
+void write_light_images(std::ostringstream& html, const fs::path& out_dir,
+                        const std::vector<passes::LightShadowStats>& lights) {
   html << "<section>\n<h2>Light transmittance</h2>\n<div id=\"light-images\">\n";
   const auto images = light_images(out_dir);
   for (const auto& [index, path] : images) {
     const PngImage image = embed_png(path);
     std::string caption = path.filename().string();
     if (index >= 0 && size_t(index) < lights.size())
-      caption = "light " + std::to_string(index) + ": " + text_at(lights[size_t(index)], {"light"});
+      caption = "light " + std::to_string(index) + ": " + lights[size_t(index)].light;
     if (image.width && image.height)
       caption += " (" + std::to_string(image.width) + "\u00d7" + std::to_string(image.height) + ")";
     html << "<figure><img class=\"light-map\" alt=\"" << escape(path.filename().string()) << "\" src=\""
@@ -253,21 +212,17 @@ void write_light_images(std::ostringstream& html, const fs::path& out_dir, const
   html << "</section>\n";
 }
 
-void write_timing_chart(std::ostringstream& html, const json& timings) {
+void write_timing_chart(std::ostringstream& html, const TimingReport& timings) {
   struct Bar {
-    std::string name, queue;
+    std::string name;
+    rg::QueueType queue;
     double median, min, max, cpu;
   };
   std::vector<Bar> bars;
   double scale_max = 0, total = 0;
   size_t longest_name = 4;
-  for (const json& pass : array_at(timings, "passes")) {
-    Bar bar{text_at(pass, {"name"}),
-            text_at(pass, {"queue"}),
-            number_at(pass, {"gpu_ms", "median"}),
-            number_at(pass, {"gpu_ms", "min"}),
-            number_at(pass, {"gpu_ms", "max"}),
-            number_at(pass, {"cpu_record_ms", "median"})};
+  for (const PassTiming& pass : timings.passes) {
+    Bar bar{pass.name, pass.queue, pass.gpu_ms.median, pass.gpu_ms.min, pass.gpu_ms.max, pass.cpu_record_ms.median};
     for (double v : {bar.median, bar.min, bar.max})
       if (std::isfinite(v)) scale_max = std::max(scale_max, v);
     if (std::isfinite(bar.median)) total += bar.median;
@@ -302,7 +257,7 @@ void write_timing_chart(std::ostringstream& html, const json& timings) {
   for (size_t i = 0; i < bars.size(); ++i) {
     const Bar& bar = bars[i];
     const double y = top + row_h * double(i), mid = y + row_h / 2;
-    const std::string tooltip = bar.name + " (" + bar.queue + "): " + ms(bar.median) + " median, " + ms(bar.min) +
+    const std::string tooltip = bar.name + " (" + rg::to_string(bar.queue) + "): " + ms(bar.median) + " median, " + ms(bar.min) +
                                 " min, " + ms(bar.max) + " max; CPU record " + ms(bar.cpu);
     html << "<text x=\"" << num(label_w - 6) << "\" y=\"" << num(mid + 4) << "\" text-anchor=\"end\">"
          << escape(bar.name) << "</text>"
@@ -321,29 +276,29 @@ void write_timing_chart(std::ostringstream& html, const json& timings) {
          << "</text>\n";
   }
   // Legend: one swatch per queue that appears.
-  std::vector<std::string> queues;
+  std::vector<rg::QueueType> queues;
   for (const Bar& bar : bars)
     if (std::find(queues.begin(), queues.end(), bar.queue) == queues.end()) queues.push_back(bar.queue);
   double legend_x = label_w;
   const double legend_y = top + row_h * double(bars.size()) + 18;
-  for (const std::string& queue : queues) {
+  for (const rg::QueueType queue : queues) {
+    const std::string name = rg::to_string(queue);
     html << "<circle cx=\"" << num(legend_x + 5) << "\" cy=\"" << num(legend_y - 4) << "\" r=\"5\" fill=\""
          << queue_colour(queue) << "\"/><text x=\"" << num(legend_x + 14) << "\" y=\"" << num(legend_y) << "\">"
-         << escape(queue) << "</text>\n";
-    legend_x += 24 + 7.0 * double(queue.size()) + 12;
+         << escape(name) << "</text>\n";
+    legend_x += 24 + 7.0 * double(name.size()) + 12;
   }
   html << "</svg>\n";
-  if (bars.empty()) html << "<p class=\"note\">timings.json lists no passes.</p>\n";
+  if (bars.empty()) html << "<p class=\"note\">No pass was timed.</p>\n";
   html << "</section>\n";
 }
 
-void write_memory(std::ostringstream& html, const json& memory) {
-  const std::optional<uint64_t> aliased = count_at(memory, {"transient_bytes_aliased"});
-  const std::optional<uint64_t> unaliased = count_at(memory, {"transient_bytes_unaliased"});
-  std::string saving = "\u2013";
-  if (aliased && unaliased && *unaliased > 0)
-    saving = format("%.1f%%", (double(*unaliased) - double(*aliased)) / double(*unaliased) * 100) + ": " +
-             bytes_text(*unaliased >= *aliased ? *unaliased - *aliased : 0);
+void write_memory(std::ostringstream& html, const MemoryReport& memory) {
+  const uint64_t aliased = memory.transient_bytes_aliased, unaliased = memory.transient_bytes_unaliased;
+  std::string saving = kDash;
+  if (unaliased > 0)
+    saving = format("%.1f%%", (double(unaliased) - double(aliased)) / double(unaliased) * 100) + ": " +
+             bytes_text(unaliased >= aliased ? unaliased - aliased : 0);
 
   static const char* kLightColumns[] = {"light",    "technique", "nodes",           "resolution",
                                         "mips",     "map",       "capture buffer",  "segments requested",
@@ -357,57 +312,46 @@ void write_memory(std::ostringstream& html, const json& memory) {
   row("transient memory without aliasing", bytes_text(unaliased));
   row("transient memory with aliasing", bytes_text(aliased));
   row("saved by aliasing", saving);
-  row("heaps", text_at(memory, {"heaps"}));
-  row("frames with capture overflow", text_at(memory, {"frames_with_capture_overflow"}));
+  row("heaps", std::to_string(memory.heap_count));
+  row("frames with capture overflow", std::to_string(memory.frames_with_capture_overflow));
 
-  const json& lights = array_at(memory, "lights");
   html << "<tr class=\"group\">";
   for (const char* column : kLightColumns) html << "<th>" << column << "</th>";
   html << "</tr>\n";
   uint64_t light_total = 0;
-  for (const json& light : lights) {
-    const auto map = count_at(light, {"map_bytes"}), capture = count_at(light, {"capture_bytes"});
-    light_total += map.value_or(0) + capture.value_or(0);
-    html << "<tr class=\"light\"><td>" << escape(text_at(light, {"light"})) << "</td><td>"
-         << escape(text_at(light, {"technique"})) << "</td>";
-    for (const char* key : {"nodes", "resolution", "mip_levels"})
-      html << "<td class=\"num\">" << escape(text_at(light, {key})) << "</td>";
-    html << "<td class=\"num\">" << escape(bytes_text(map)) << "</td><td class=\"num\">"
-         << escape(bytes_text(capture)) << "</td>";
-    for (const char* key :
-         {"capture_requested_segments", "capture_capacity_segments", "next_capture_capacity_segments"})
-      html << "<td class=\"num\">" << escape(text_at(light, {key})) << "</td>";
-    const json* overflowed = find(light, {"capture_overflowed"});
-    html << "<td>" << (overflowed && overflowed->is_boolean() ? (overflowed->get<bool>() ? "yes" : "no") : "\u2013")
-         << "</td></tr>\n";
+  for (const passes::LightShadowStats& light : memory.lights) {
+    light_total += light.map_bytes + light.capture_bytes;
+    html << "<tr class=\"light\"><td>" << escape(light.light) << "</td><td>"
+         << escape(scene::to_string(light.technique)) << "</td>";
+    for (uint64_t value : {light.nodes, light.resolution, light.mip_levels})
+      html << "<td class=\"num\">" << value << "</td>";
+    html << "<td class=\"num\">" << escape(bytes_text(light.map_bytes)) << "</td><td class=\"num\">"
+         << escape(bytes_text(light.capture_bytes)) << "</td>";
+    for (uint64_t value : {light.capture_requested, light.capture_capacity, light.next_capture_capacity})
+      html << "<td class=\"num\">" << value << "</td>";
+    html << "<td>" << (light.overflowed ? "yes" : "no") << "</td></tr>\n";
   }
-  if (lights.empty()) html << "<tr><td colspan=\"" << columns << "\" class=\"note\">no lights</td></tr>\n";
+  if (memory.lights.empty()) html << "<tr><td colspan=\"" << columns << "\" class=\"note\">no lights</td></tr>\n";
   else
     html << "<tr><th>all lights</th><td colspan=\"4\"></td><td class=\"num\" colspan=\"2\">"
          << escape(bytes_text(light_total)) << " (maps + capture buffers)</td><td colspan=\"4\"></td></tr>\n";
   html << "</tbody>\n</table>\n</section>\n";
 }
 
-void write_probes(std::ostringstream& html, const json& probes) {
-  const json& points = array_at(probes, "points");
-  const json& lights = array_at(probes, "lights");
+void write_probes(std::ostringstream& html, const ProbeReport& probes) {
   html << "<section>\n<h2>Probes</h2>\n<table id=\"probes-table\">\n<tr><th>point</th>";
-  for (const json& light : lights)
-    html << "<th class=\"num\">" << escape(text_at(light, {"light"})) << " (" << escape(text_at(light, {"technique"}))
+  for (const ProbeLight& light : probes.lights)
+    html << "<th class=\"num\">" << escape(light.light) << " (" << escape(scene::to_string(light.settings.technique))
          << ")</th>";
   html << "</tr>\n";
-  for (size_t p = 0; p < points.size(); ++p) {
-    std::string point;
-    if (points[p].is_array())
-      for (const json& coordinate : points[p])
-        point += (point.empty() ? "" : ", ") + (coordinate.is_number() ? format("%.4g", coordinate.get<double>())
-                                                                        : text_of(&coordinate));
-    html << "<tr><td>(" << escape(point) << ")</td>";
-    for (const json& light : lights) {
-      const json* values = find(light, {"transmittance"});
-      const bool ok = values && values->is_array() && p < values->size() && (*values)[p].is_number();
-      html << "<td class=\"num\">" << (ok ? format("%.4f", (*values)[p].get<double>()) : "\u2013") << "</td>";
-    }
+  for (size_t p = 0; p < probes.points.size(); ++p) {
+    const glm::vec3& point = probes.points[p];
+    const std::string coordinates =
+        format("%.4g", point.x) + ", " + format("%.4g", point.y) + ", " + format("%.4g", point.z);
+    html << "<tr><td>(" << escape(coordinates) << ")</td>";
+    for (const ProbeLight& light : probes.lights)
+      html << "<td class=\"num\">"
+           << (p < light.transmittance.size() ? format("%.4f", light.transmittance[p]) : kDash) << "</td>";
     html << "</tr>\n";
   }
   html << "</table>\n</section>\n";
@@ -426,48 +370,50 @@ std::vector<fs::path> curve_plots(const fs::path& out_dir) {
   return found;
 }
 
-// quality.json (--compare-to uncompressed): per light its errors against the exact
-// reference and its error image; then the texel curves (--plot-texel) as images.
-void write_quality(std::ostringstream& html, const fs::path& out_dir, const json* quality,
+std::string error_text(const ErrorStats& errors, double value) {
+  return errors.receivers ? format("%.4f", value) : kDash;
+}
+std::string mean_text(const ErrorStats& errors) { return error_text(errors, errors.mean()); }
+std::string max_text(const ErrorStats& errors) { return error_text(errors, errors.max); }
+
+// Per light (--compare-to uncompressed) its errors against the exact reference and
+// its error image.
+void write_quality_table(std::ostringstream& html, const fs::path& out_dir, const QualityReport& quality) {
+  html << "<p class=\"note\">|T &minus; T<sub>exact</sub>| against each light's capture lists at the receivers "
+          "the camera sees; images: error \u00d7"
+       << format("%g", kErrorImageScale) << ", " << escape(kErrorImageColours)
+       << ". Hair: " << escape(hair_receivers_rule()) << ".</p>\n"
+       << "<table id=\"quality-table\">\n<tr><th>light</th><th>technique</th><th class=\"num\">receivers</th>"
+          "<th class=\"num\">mean</th><th class=\"num\">max</th><th class=\"num\">surface mean / max</th>"
+          "<th class=\"num\">smoke mean / max</th></tr>\n";
+  for (const LightQuality& light : quality.lights) {
+    const ErrorStats all = light.all();
+    const std::string receivers = std::to_string(all.receivers) + " (" + std::to_string(light.surface.receivers) +
+                                  " + " + std::to_string(light.smoke.receivers) + ")";
+    html << "<tr><td>" << escape(light.light) << "</td><td>" << escape(technique_label(light.settings))
+         << "</td><td class=\"num\">" << escape(receivers) << "</td><td class=\"num\">" << mean_text(all)
+         << "</td><td class=\"num\">" << max_text(all) << "</td><td class=\"num\">" << mean_text(light.surface)
+         << " / " << max_text(light.surface) << "</td><td class=\"num\">" << mean_text(light.smoke) << " / "
+         << max_text(light.smoke) << "</td></tr>\n";
+  }
+  html << "</table>\n<div id=\"quality-images\" style=\"display:flex;flex-wrap:wrap;gap:1em\">\n";
+  for (size_t i = 0; i < quality.lights.size(); ++i) {
+    const std::string file = error_image_name(i);
+    std::error_code ec;
+    if (!fs::is_regular_file(out_dir / file, ec)) continue;
+    html << "<figure><img class=\"error-image\" style=\"width:320px;height:auto;border:1px solid #ccc\" alt=\""
+         << escape(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
+         << escape(quality.lights[i].light + ": " + technique_label(quality.lights[i].settings) + " error")
+         << "</figcaption></figure>\n";
+  }
+  html << "</div>\n";
+}
+
+// The quality table when measured, then the texel curves (--plot-texel) as images.
+void write_quality(std::ostringstream& html, const fs::path& out_dir, const std::optional<QualityReport>& quality,
                    const std::vector<fs::path>& curves) {
   html << "<section>\n<h2>Shadow quality</h2>\n";
-  if (quality) {
-    html << "<p class=\"note\">|T &minus; T<sub>exact</sub>| against each light's capture lists at the receivers "
-            "the camera sees; images: error \u00d7"
-         << format("%g", number_at(*quality, {"error_image_scale"})) << ", "
-         << escape(text_at(*quality, {"error_image_colours"}))
-         << ". Hair: " << escape(text_at(*quality, {"receiver_kinds", "hair"})) << ".</p>\n"
-         << "<table id=\"quality-table\">\n<tr><th>light</th><th>technique</th><th class=\"num\">receivers</th>"
-            "<th class=\"num\">mean</th><th class=\"num\">max</th><th class=\"num\">surface mean / max</th>"
-            "<th class=\"num\">smoke mean / max</th></tr>\n";
-    const json& lights = array_at(*quality, "lights");
-    auto error = [](const json& light, std::initializer_list<const char*> keys) {
-      return format("%.4f", number_at(light, keys));
-    };
-    for (const json& light : lights) {
-      const std::string receivers = text_at(light, {"receivers", "total"}) + " (" +
-                                    text_at(light, {"receivers", "surface"}) + " + " +
-                                    text_at(light, {"receivers", "smoke"}) + ")";
-      html << "<tr><td>" << escape(text_at(light, {"light"})) << "</td><td>"
-           << escape(text_at(light, {"technique_label"})) << "</td><td class=\"num\">" << escape(receivers)
-           << "</td><td class=\"num\">" << error(light, {"mean_abs_error"}) << "</td><td class=\"num\">"
-           << error(light, {"max_abs_error"}) << "</td><td class=\"num\">"
-           << error(light, {"surface", "mean_abs_error"}) << " / " << error(light, {"surface", "max_abs_error"})
-           << "</td><td class=\"num\">" << error(light, {"smoke", "mean_abs_error"}) << " / "
-           << error(light, {"smoke", "max_abs_error"}) << "</td></tr>\n";
-    }
-    html << "</table>\n<div id=\"quality-images\" style=\"display:flex;flex-wrap:wrap;gap:1em\">\n";
-    for (const json& light : lights) {
-      const std::string file = text_at(light, {"error_image"});
-      std::error_code ec;
-      if (!fs::is_regular_file(out_dir / file, ec)) continue;
-      html << "<figure><img class=\"error-image\" style=\"width:320px;height:auto;border:1px solid #ccc\" alt=\""
-           << escape(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
-           << escape(text_at(light, {"light"}) + ": " + text_at(light, {"technique_label"}) + " error")
-           << "</figcaption></figure>\n";
-    }
-    html << "</div>\n";
-  }
+  if (quality) write_quality_table(html, out_dir, *quality);
   if (!curves.empty()) {
     html << "<div id=\"texel-curves\">\n";
     for (const fs::path& path : curves)
@@ -479,40 +425,39 @@ void write_quality(std::ostringstream& html, const fs::path& out_dir, const json
   html << "</section>\n";
 }
 
-void write_graph(std::ostringstream& html, const json& graph, const std::string& dot, const json& timings) {
-  const json& passes = array_at(graph, "passes");
-  const json& resources = array_at(graph, "resources");
-  const json& culled = array_at(graph, "culled_passes");
-  std::map<std::string, double> gpu_median;
-  for (const json& pass : array_at(timings, "passes"))
-    gpu_median[text_at(pass, {"name"})] = number_at(pass, {"gpu_ms", "median"});
-  auto pass_name = [&](const json* index) -> std::string {
-    if (!index || !index->is_number_unsigned() || index->get<uint64_t>() >= passes.size()) return text_of(index);
-    return std::to_string(index->get<uint64_t>()) + " " + text_at(passes[index->get<size_t>()], {"name"});
+std::string hex(uint64_t value) {
+  char text[20];
+  std::snprintf(text, sizeof text, "%llx", (unsigned long long)value);
+  return text;
+}
+
+std::string index_text(std::optional<uint32_t> index) { return index ? std::to_string(*index) : kDash; }
+
+void write_graph(std::ostringstream& html, const PlanSummary& plan, const std::string& dot,
+                 const TimingReport& timings) {
+  auto pass_name = [&](std::optional<uint32_t> index) -> std::string {
+    if (!index || *index >= plan.passes.size()) return index_text(index);
+    return std::to_string(*index) + " " + plan.passes[*index].name;
   };
 
-  html << "<section>\n<h2>Frame graph</h2>\n<p>" << passes.size() << " passes, " << culled.size() << " culled, "
-       << escape(text_at(graph, {"stats", "barrier_count"})) << " barriers ("
-       << array_at(graph, "final_barriers").size() << " after the last pass); aliasing "
-       << escape(text_at(graph, {"options", "aliasing"})) << ", culling " << escape(text_at(graph, {"options", "culling"}))
-       << "; shape hash " << escape(text_at(graph, {"shape_hash"})) << ".</p>\n";
+  html << "<section>\n<h2>Frame graph</h2>\n<p>" << plan.passes.size() << " passes, " << plan.culled_passes.size()
+       << " culled, " << plan.barrier_count << " barriers (" << plan.final_barrier_count
+       << " after the last pass); aliasing " << bool_text(plan.options.aliasing) << ", culling "
+       << bool_text(plan.options.culling) << "; shape hash " << hex(plan.shape_hash) << ".</p>\n";
 
   html << "<table id=\"graph-passes\">\n<tr><th class=\"num\">#</th><th>pass</th><th>queue</th>"
           "<th class=\"num\">barriers</th><th class=\"num\">GPU median</th></tr>\n";
-  for (size_t i = 0; i < passes.size(); ++i) {
-    const json& pass = passes[i];
-    const json* barriers = find(pass, {"barriers"});
-    const std::string name = text_at(pass, {"name"});
-    auto timing = gpu_median.find(name);
-    html << "<tr><td class=\"num\">" << i << "</td><td>" << escape(name) << "</td><td>"
-         << escape(text_at(pass, {"queue"})) << "</td><td class=\"num\">"
-         << (barriers && barriers->is_array() ? barriers->size() : 0) << "</td><td class=\"num\">"
-         << escape(timing == gpu_median.end() ? "\u2013" : ms(timing->second)) << "</td></tr>\n";
+  for (size_t i = 0; i < plan.passes.size(); ++i) {
+    const PlanPassSummary& pass = plan.passes[i];
+    const std::optional<double> median = timings.median_gpu_ms(pass.name);
+    html << "<tr><td class=\"num\">" << i << "</td><td>" << escape(pass.name) << "</td><td>"
+         << rg::to_string(pass.queue) << "</td><td class=\"num\">" << pass.barrier_count
+         << "</td><td class=\"num\">" << escape(median ? ms(*median) : kDash) << "</td></tr>\n";
   }
   html << "</table>\n";
-  if (!culled.empty()) {
+  if (!plan.culled_passes.empty()) {
     html << "<p>Culled (never recorded):";
-    for (const json& pass : culled) html << " " << escape(text_at(pass, {"name"})) << ";";
+    for (const std::string& name : plan.culled_passes) html << " " << escape(name) << ";";
     html << "</p>\n";
   }
 
@@ -520,24 +465,20 @@ void write_graph(std::ostringstream& html, const json& graph, const std::string&
           "<th>kind</th><th>description</th><th class=\"num\">size</th><th class=\"num\">heap</th>"
           "<th class=\"num\">offset</th><th>first pass</th><th>last pass</th></tr>\n";
   std::vector<std::string> imported;
-  for (size_t r = 0; r < resources.size(); ++r) {
-    const json& resource = resources[r];
-    const json* is_imported = find(resource, {"imported"});
-    if (is_imported && is_imported->is_boolean() && is_imported->get<bool>()) {
-      imported.push_back(text_at(resource, {"name"}));
+  for (size_t r = 0; r < plan.resources.size(); ++r) {
+    const PlanResourceSummary& resource = plan.resources[r];
+    if (resource.imported) {
+      imported.push_back(resource.name);
       continue;
     }
-    const json* used = find(resource, {"used"});
-    const bool unused = used && used->is_boolean() && !used->get<bool>();
-    html << "<tr><td class=\"num\">" << r << "</td><td>" << escape(text_at(resource, {"name"})) << "</td><td>"
-         << escape(text_at(resource, {"kind"})) << "</td><td>" << escape(text_at(resource, {"desc"}))
-         << "</td><td class=\"num\">" << escape(bytes_text(count_at(resource, {"size"}))) << "</td><td class=\"num\">"
-         << escape(text_at(resource, {"heap"})) << "</td><td class=\"num\">"
-         << escape(text_at(resource, {"offset"})) << "</td>";
-    if (unused) html << "<td colspan=\"2\" class=\"note\">unused</td></tr>\n";
+    html << "<tr><td class=\"num\">" << r << "</td><td>" << escape(resource.name) << "</td><td>"
+         << rg::to_string(resource.kind) << "</td><td>" << escape(resource.description) << "</td><td class=\"num\">"
+         << escape(bytes_text(resource.size)) << "</td><td class=\"num\">" << escape(index_text(resource.heap))
+         << "</td><td class=\"num\">" << resource.offset << "</td>";
+    if (!resource.used) html << "<td colspan=\"2\" class=\"note\">unused</td></tr>\n";
     else
-      html << "<td>" << escape(pass_name(find(resource, {"first_pass"}))) << "</td><td>"
-           << escape(pass_name(find(resource, {"last_pass"}))) << "</td></tr>\n";
+      html << "<td>" << escape(pass_name(resource.first_pass)) << "</td><td>" << escape(pass_name(resource.last_pass))
+           << "</td></tr>\n";
   }
   html << "</table>\n";
   if (!imported.empty()) {
@@ -562,28 +503,17 @@ void write_footer(std::ostringstream& html, const fs::path& out_dir) {
 
 }  // namespace
 
-void write_report(const fs::path& out_dir, const fs::path& html_path) {
-  // Every required file is read before anything is written.
-  const json timings = read_json(out_dir / "timings.json");
-  const json graph = read_json(out_dir / "graph.json");
-  const json memory = read_json(out_dir / "memory.json");
-  const std::string dot = read_bytes(out_dir / "graph.dot");
-  std::error_code ec;
-  const bool has_probes = fs::is_regular_file(out_dir / "probes.json", ec);
-  const json probes = has_probes ? read_json(out_dir / "probes.json") : json::object();
-  const bool has_quality = fs::is_regular_file(out_dir / "quality.json", ec);
-  const json quality = has_quality ? read_json(out_dir / "quality.json") : json::object();
+void write_report(const fs::path& out_dir, const FrameReport& report, const fs::path& html_path) {
   const std::vector<fs::path> curves = curve_plots(out_dir);
-
   std::ostringstream html;
-  write_head(html, timings);
-  write_frame(html, out_dir, timings);
-  write_light_images(html, out_dir, memory);
-  write_timing_chart(html, timings);
-  write_memory(html, memory);
-  if (has_probes) write_probes(html, probes);
-  if (has_quality || !curves.empty()) write_quality(html, out_dir, has_quality ? &quality : nullptr, curves);
-  write_graph(html, graph, dot, timings);
+  write_head(html, report.timings);
+  write_frame(html, out_dir, report.timings);
+  write_light_images(html, out_dir, report.memory.lights);
+  write_timing_chart(html, report.timings);
+  write_memory(html, report.memory);
+  if (report.probes) write_probes(html, *report.probes);
+  if (report.quality || !curves.empty()) write_quality(html, out_dir, report.quality, curves);
+  write_graph(html, report.plan, report.plan_dot, report.timings);
   write_footer(html, out_dir);
 
   std::ofstream out(html_path, std::ios::binary);

@@ -467,7 +467,7 @@ void ViewerApp::render_scene_frame() {
   scene_dirty_ = false;
   bool overflowed = false;
   for (const passes::LightShadowStats& light : renderer.shadows().frame_stats()) {
-    overflowed = overflowed || light.overflowed || light.pool_overflowed;
+    overflowed = overflowed || light.lost_shadowing();
     scene_dirty_ = scene_dirty_ || light.grew;
   }
   overflowed_frames_ += overflowed;

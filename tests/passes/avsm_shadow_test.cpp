@@ -584,8 +584,7 @@ void expect_box_probes_match_beer_lambert(gpu::Context& ctx, const gpu::ShaderLi
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
   render_frame(ctx, renderer, executor, passes::make_view(camera, kFrameWidth, kFrameHeight));
   for (const passes::LightShadowStats& stats : renderer.shadows().frame_stats()) {
-    ASSERT_FALSE(stats.overflowed) << stats.light;
-    ASSERT_FALSE(stats.pool_overflowed) << stats.light;
+    ASSERT_FALSE(stats.lost_shadowing()) << stats.light;
   }
   const std::vector<std::vector<float>> results = renderer.probe_results();
   ASSERT_EQ(results.size(), setups.size());

@@ -1,0 +1,446 @@
+#include "capture/frame_report.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <rendergraph/vk_names.h>
+#include <stdexcept>
+
+#include "capture/frame_outputs.h"
+
+namespace avsm::capture {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// ---- reading: every failure names the key ----
+
+const json& member(const json& object, const char* key) {
+  if (!object.is_object()) throw std::runtime_error(std::string("expected an object holding \"") + key + "\"");
+  const auto found = object.find(key);
+  if (found == object.end()) throw std::runtime_error(std::string("no \"") + key + "\"");
+  return *found;
+}
+
+template <class T>
+T value_of(const json& object, const char* key) {
+  try {
+    return member(object, key).get<T>();
+  } catch (const json::exception& e) {
+    throw std::runtime_error(std::string("\"") + key + "\": " + e.what());
+  }
+}
+
+// A number written as null where it had no value (no receivers, an infinite bound).
+template <class T>
+T number_or(const json& value, T fallback) {
+  return value.is_null() ? fallback : value.get<T>();
+}
+
+template <class T, class Read>
+std::vector<T> array_of(const json& object, const char* key, Read read) {
+  const json& items = member(object, key);
+  if (!items.is_array()) throw std::runtime_error(std::string("\"") + key + "\": expected an array");
+  std::vector<T> out;
+  for (const json& item : items) out.push_back(read(item));
+  return out;
+}
+
+rg::QueueType queue_from_string(const std::string& name) {
+  for (rg::QueueType queue : {rg::QueueType::Graphics, rg::QueueType::Compute, rg::QueueType::Transfer})
+    if (name == rg::to_string(queue)) return queue;
+  throw std::runtime_error("unknown queue '" + name + "'");
+}
+
+scene::ShadowTechnique technique_from_json(const json& object) {
+  const std::string name = value_of<std::string>(object, "technique");
+  if (auto technique = scene::shadow_technique_from_string(name)) return *technique;
+  throw std::runtime_error("unknown technique '" + name + "'");
+}
+
+scene::ShadowFilter filter_from_json(const json& object) {
+  const std::string name = value_of<std::string>(object, "filter");
+  if (auto filter = scene::shadow_filter_from_string(name)) return *filter;
+  throw std::runtime_error("unknown filter '" + name + "'");
+}
+
+json vec3_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// Components written as null (an empty box's infinities) keep `v`'s own.
+void read_vec3(const json& array, glm::vec3& v) {
+  if (!array.is_array() || array.size() != 3) throw std::runtime_error("expected [x, y, z]");
+  for (int i = 0; i < 3; ++i) v[i] = number_or(array[size_t(i)], v[i]);
+}
+
+// ---- timings.json ----
+
+json to_json(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
+
+Spread spread_from_json(const json& json) {
+  return {value_of<double>(json, "min"), value_of<double>(json, "median"), value_of<double>(json, "max")};
+}
+
+json to_json(const PassTiming& pass) {
+  return {{"name", pass.name},
+          {"queue", rg::to_string(pass.queue)},
+          {"gpu_ms", to_json(pass.gpu_ms)},
+          {"cpu_record_ms", to_json(pass.cpu_record_ms)}};
+}
+
+PassTiming pass_timing_from_json(const json& json) {
+  return {value_of<std::string>(json, "name"), queue_from_string(value_of<std::string>(json, "queue")),
+          spread_from_json(member(json, "gpu_ms")), spread_from_json(member(json, "cpu_record_ms"))};
+}
+
+json to_json(const FrameSample& frame) {
+  return {{"gpu_ms", frame.gpu_ms}, {"wall_ms", frame.wall_ms}, {"submit_wall_ms", frame.submit_wall_ms}};
+}
+
+FrameSample frame_sample_from_json(const json& json) {
+  return {value_of<double>(json, "gpu_ms"), value_of<double>(json, "wall_ms"),
+          value_of<double>(json, "submit_wall_ms")};
+}
+
+// ---- memory.json ----
+
+json to_json(const passes::LightShadowStats& s) {
+  json out = {{"light", s.light},
+              {"technique", scene::to_string(s.technique)},
+              {"nodes", s.nodes},
+              {"resolution", s.resolution},
+              {"mip_levels", s.mip_levels},
+              {"map_bytes", s.map_bytes},
+              {"capture_bytes", s.capture_bytes},
+              {"capture_capacity_segments", s.capture_capacity},
+              {"capture_requested_segments", s.capture_requested},
+              {"capture_overflowed", s.overflowed},
+              {"next_capture_capacity_segments", s.next_capture_capacity}};
+  if (s.dsm_pool) {
+    out["dsm_pool_capacity_nodes"] = s.dsm_pool->capacity_nodes;
+    out["dsm_pool_requested_nodes"] = s.dsm_pool->requested_nodes;
+    out["dsm_pool_overflowed"] = s.dsm_pool->overflowed;
+  }
+  return out;
+}
+
+passes::LightShadowStats light_stats_from_json(const json& json) {
+  passes::LightShadowStats s;
+  s.light = value_of<std::string>(json, "light");
+  s.technique = technique_from_json(json);
+  s.nodes = value_of<uint32_t>(json, "nodes");
+  s.resolution = value_of<uint32_t>(json, "resolution");
+  s.mip_levels = value_of<uint32_t>(json, "mip_levels");
+  s.map_bytes = value_of<uint64_t>(json, "map_bytes");
+  s.capture_bytes = value_of<uint64_t>(json, "capture_bytes");
+  s.capture_capacity = value_of<uint64_t>(json, "capture_capacity_segments");
+  s.capture_requested = value_of<uint64_t>(json, "capture_requested_segments");
+  s.overflowed = value_of<bool>(json, "capture_overflowed");
+  s.next_capture_capacity = value_of<uint64_t>(json, "next_capture_capacity_segments");
+  if (json.contains("dsm_pool_capacity_nodes"))
+    s.dsm_pool = passes::DsmPoolStats{value_of<uint64_t>(json, "dsm_pool_requested_nodes"),
+                                      value_of<uint64_t>(json, "dsm_pool_capacity_nodes"),
+                                      value_of<bool>(json, "dsm_pool_overflowed")};
+  return s;
+}
+
+json to_json(const VolumeStats& v) {
+  return {{"shading", scene::to_string(v.shading.mode)},
+          {"resolution_divisor", v.shading.resolution_divisor},
+          {"step_voxels", v.shading.step_voxels},
+          {"density_atlas_bytes", v.density_atlas_bytes},
+          {"lighting_cache_cells", v.lighting_cache_cells}};
+}
+
+VolumeStats volume_stats_from_json(const json& json) {
+  VolumeStats v;
+  const std::string mode = value_of<std::string>(json, "shading");
+  const auto parsed = scene::volume_shading_mode_from_string(mode);
+  if (!parsed) throw std::runtime_error("unknown volume shading '" + mode + "'");
+  v.shading.mode = *parsed;
+  v.shading.resolution_divisor = value_of<int>(json, "resolution_divisor");
+  v.shading.step_voxels = value_of<float>(json, "step_voxels");
+  v.density_atlas_bytes = value_of<uint64_t>(json, "density_atlas_bytes");
+  v.lighting_cache_cells = value_of<uint64_t>(json, "lighting_cache_cells");
+  return v;
+}
+
+// ---- quality.json ----
+
+// No receivers: no error to speak of (null rather than a made-up 0).
+json mean_json(const ErrorStats& s) { return s.receivers ? json(s.mean()) : json(nullptr); }
+json max_json(const ErrorStats& s) { return s.receivers ? json(s.max) : json(nullptr); }
+
+json to_json(const ErrorStats& s) {
+  return {{"receivers", s.receivers}, {"mean_abs_error", mean_json(s)}, {"max_abs_error", max_json(s)}};
+}
+
+// The file keeps the mean, not the sum: the sum read back is mean x receivers.
+ErrorStats error_stats_from_json(const json& json) {
+  ErrorStats s;
+  s.receivers = value_of<uint64_t>(json, "receivers");
+  s.sum = number_or(member(json, "mean_abs_error"), 0.0) * double(s.receivers);
+  s.max = number_or(member(json, "max_abs_error"), 0.0);
+  return s;
+}
+
+json to_json(const LightQuality& q, size_t index) {
+  const ErrorStats all = q.all();
+  return {
+      {"light", q.light},
+      {"index", index},
+      {"technique", scene::to_string(q.settings.technique)},
+      {"technique_label", technique_label(q.settings)},
+      {"filter", scene::to_string(q.settings.filter)},
+      {"sort", q.settings.sort},
+      {"resolution", q.settings.resolution},
+      {"error_image", error_image_name(index)},
+      {"receivers",
+       {{"surface", q.surface.receivers}, {"smoke", q.smoke.receivers}, {"hair", q.hair.receivers},
+        {"total", all.receivers}}},
+      {"surface", to_json(q.surface)},
+      {"smoke", to_json(q.smoke)},
+      {"hair", to_json(q.hair)},
+      // AVSM keeps N nodes per texel (the other techniques' sizes are in technique_label and parameters).
+      {"nodes", q.settings.technique == scene::ShadowTechnique::avsm ? json(q.settings.nodes) : json(nullptr)},
+      {"parameters", q.settings.parameters},
+      {"mean_abs_error", mean_json(all)},
+      {"max_abs_error", max_json(all)},
+  };
+}
+
+LightQuality light_quality_from_json(const json& json) {
+  LightQuality q;
+  q.light = value_of<std::string>(json, "light");
+  q.settings.technique = technique_from_json(json);
+  q.settings.filter = filter_from_json(json);
+  q.settings.sort = value_of<bool>(json, "sort");
+  q.settings.resolution = value_of<int>(json, "resolution");
+  q.settings.nodes = number_or(member(json, "nodes"), q.settings.nodes);
+  q.settings.parameters = value_of<std::map<std::string, double>>(json, "parameters");
+  q.surface = error_stats_from_json(member(json, "surface"));
+  q.smoke = error_stats_from_json(member(json, "smoke"));
+  q.hair = error_stats_from_json(member(json, "hair"));
+  return q;
+}
+
+// ---- probes.json ----
+
+json to_json(const ProbeLight& light) {
+  const scene::ShadowSettings& s = light.settings;
+  return {{"light", light.light},
+          {"technique", scene::to_string(s.technique)},
+          {"nodes", s.nodes},
+          {"filter", scene::to_string(s.filter)},
+          {"sort", s.sort},
+          {"resolution", s.resolution},
+          {"transmittance", light.transmittance}};
+}
+
+ProbeLight probe_light_from_json(const json& json) {
+  ProbeLight light;
+  light.light = value_of<std::string>(json, "light");
+  light.settings.technique = technique_from_json(json);
+  light.settings.nodes = value_of<int>(json, "nodes");
+  light.settings.filter = filter_from_json(json);
+  light.settings.sort = value_of<bool>(json, "sort");
+  light.settings.resolution = value_of<int>(json, "resolution");
+  light.transmittance = value_of<std::vector<float>>(json, "transmittance");
+  return light;
+}
+
+// ---- the plan ----
+
+// As CompiledPlan::to_json's "desc": "1920x1080 R16G16B16A16_SFLOAT", "256x256x64 ... mips 9", "4096 bytes".
+std::string describe(const rg::PlannedResource& r) {
+  if (r.kind == rg::ResourceKind::Buffer) return std::to_string(r.buffer.size) + " bytes";
+  const rg::TextureDesc& d = r.texture;
+  std::string text = std::to_string(d.width) + "x" + std::to_string(d.height);
+  if (d.depth > 1) text += "x" + std::to_string(d.depth);
+  text += " " + rg::format_name(d.format);
+  if (d.mip_levels > 1) text += " mips " + std::to_string(d.mip_levels);
+  if (d.array_layers > 1) text += " layers " + std::to_string(d.array_layers);
+  return text;
+}
+
+std::optional<uint32_t> index_or_none(uint32_t index) {
+  return index == rg::kInvalidIndex ? std::nullopt : std::optional<uint32_t>(index);
+}
+
+PlanResourceSummary summarize(const rg::PlannedResource& r) {
+  return {r.name,   r.kind,   describe(r),           r.imported,           r.used,
+          r.size,   r.offset, index_or_none(r.heap), index_or_none(r.first_pass), index_or_none(r.last_pass)};
+}
+
+// ---- files ----
+
+json read_json_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": missing or unreadable (run the capture first)");
+  json parsed = json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (parsed.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
+  return parsed;
+}
+
+// Reads `file` in out_dir with `from_json`, its errors prefixed with the file's path.
+template <class Report>
+Report read_report_file(const fs::path& path, Report (*from_json)(const json&)) {
+  const json parsed = read_json_file(path);
+  try {
+    return from_json(parsed);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+Spread spread_of(std::vector<double> values) {
+  if (values.empty()) return {};
+  std::sort(values.begin(), values.end());
+  return {values.front(), values[values.size() / 2], values.back()};
+}
+
+std::optional<double> TimingReport::median_gpu_ms(const std::string& pass) const {
+  for (const PassTiming& timing : passes)
+    if (timing.name == pass) return timing.gpu_ms.median;
+  return std::nullopt;
+}
+
+TimingReport timing_report(const FrameTimingLog& log) {
+  TimingReport report;
+  for (const FrameTimingLog::PassSamples& pass : log.passes())
+    report.passes.push_back({pass.name, pass.queue, spread_of(pass.gpu_ms), spread_of(pass.cpu_record_ms)});
+  report.frame_gpu_ms = spread_of(log.frame_gpu_ms());
+  report.frame_wall_ms = spread_of(log.frame_wall_ms());
+  report.frame_submit_wall_ms = spread_of(log.frame_submit_ms());
+  for (size_t i = 0; i < log.frame_gpu_ms().size(); ++i)
+    report.frames.push_back({log.frame_gpu_ms()[i], log.frame_wall_ms()[i], log.frame_submit_ms()[i]});
+  return report;
+}
+
+PlanSummary plan_summary(const rg::CompiledPlan& plan) {
+  PlanSummary summary;
+  for (const rg::PlannedPass& pass : plan.passes) summary.passes.push_back({pass.name, pass.queue, pass.barriers.size()});
+  for (const rg::PlannedPass& pass : plan.culled_passes) summary.culled_passes.push_back(pass.name);
+  for (const rg::PlannedResource& resource : plan.resources) summary.resources.push_back(summarize(resource));
+  summary.barrier_count = plan.stats.barrier_count;
+  summary.final_barrier_count = plan.final_barriers.size();
+  summary.heap_count = plan.heaps.size();
+  summary.options = plan.options;
+  summary.shape_hash = plan.shape_hash;
+  return summary;
+}
+
+json to_json(const TimingReport& t) {
+  json passes = json::array(), frames = json::array();
+  for (const PassTiming& pass : t.passes) passes.push_back(to_json(pass));
+  for (const FrameSample& frame : t.frames) frames.push_back(to_json(frame));
+  return {{"device", t.device},
+          {"driver", t.driver},
+          {"timestamp_mode", t.timestamp_mode},
+          {"width", t.width},
+          {"height", t.height},
+          {"frames_measured", t.frames.size()},
+          {"passes", passes},
+          {"frame_gpu_ms", to_json(t.frame_gpu_ms)},
+          {"frame_wall_ms", to_json(t.frame_wall_ms)},
+          {"frame_submit_wall_ms", to_json(t.frame_submit_wall_ms)},
+          {"frames", frames}};
+}
+
+TimingReport timing_report_from_json(const json& json) {
+  TimingReport t;
+  t.device = value_of<std::string>(json, "device");
+  t.driver = value_of<std::string>(json, "driver");
+  t.timestamp_mode = value_of<std::string>(json, "timestamp_mode");
+  t.width = value_of<uint32_t>(json, "width");
+  t.height = value_of<uint32_t>(json, "height");
+  t.passes = array_of<PassTiming>(json, "passes", pass_timing_from_json);
+  t.frame_gpu_ms = spread_from_json(member(json, "frame_gpu_ms"));
+  t.frame_wall_ms = spread_from_json(member(json, "frame_wall_ms"));
+  t.frame_submit_wall_ms = spread_from_json(member(json, "frame_submit_wall_ms"));
+  t.frames = array_of<FrameSample>(json, "frames", frame_sample_from_json);
+  return t;
+}
+
+json to_json(const MemoryReport& m) {
+  json lights = json::array();
+  for (const passes::LightShadowStats& light : m.lights) lights.push_back(to_json(light));
+  return {{"transient_bytes_aliased", m.transient_bytes_aliased},
+          {"transient_bytes_unaliased", m.transient_bytes_unaliased},
+          {"heaps", m.heap_count},
+          {"lights", lights},
+          {"scene_bounds", {{"min", vec3_json(m.scene_bounds.min)}, {"max", vec3_json(m.scene_bounds.max)}}},
+          {"frames_with_capture_overflow", m.frames_with_capture_overflow},
+          {"volumes", to_json(m.volumes)}};
+}
+
+MemoryReport memory_report_from_json(const json& json) {
+  MemoryReport m;
+  m.transient_bytes_aliased = value_of<uint64_t>(json, "transient_bytes_aliased");
+  m.transient_bytes_unaliased = value_of<uint64_t>(json, "transient_bytes_unaliased");
+  m.heap_count = value_of<uint64_t>(json, "heaps");
+  m.lights = array_of<passes::LightShadowStats>(json, "lights", light_stats_from_json);
+  const nlohmann::json& bounds = member(json, "scene_bounds");
+  read_vec3(member(bounds, "min"), m.scene_bounds.min);
+  read_vec3(member(bounds, "max"), m.scene_bounds.max);
+  m.frames_with_capture_overflow = value_of<uint64_t>(json, "frames_with_capture_overflow");
+  m.volumes = volume_stats_from_json(member(json, "volumes"));
+  return m;
+}
+
+json to_json(const QualityReport& q) {
+  json lights = json::array();
+  for (size_t i = 0; i < q.lights.size(); ++i) lights.push_back(to_json(q.lights[i], i));
+  return {
+      {"reference", "uncompressed"},
+      {"error", "absolute transmittance difference |T - T_ref| between the light's technique and its exact "
+                "capture lists, both looked up with the light's filter"},
+      {"width", q.width},
+      {"height", q.height},
+      {"error_image_scale", kErrorImageScale},
+      {"error_image_colours", kErrorImageColours},
+      {"receiver_kinds",
+       {{"surface", surface_receivers_rule()}, {"smoke", smoke_receivers_rule()}, {"hair", hair_receivers_rule()}}},
+      {"lights", lights},
+  };
+}
+
+QualityReport quality_report_from_json(const json& json) {
+  return {value_of<uint32_t>(json, "width"), value_of<uint32_t>(json, "height"),
+          array_of<LightQuality>(json, "lights", light_quality_from_json)};
+}
+
+json to_json(const ProbeReport& p) {
+  json points = json::array(), lights = json::array();
+  for (const glm::vec3& point : p.points) points.push_back(vec3_json(point));
+  for (const ProbeLight& light : p.lights) lights.push_back(to_json(light));
+  return {{"points", points}, {"lights", lights}};
+}
+
+ProbeReport probe_report_from_json(const json& json) {
+  ProbeReport p;
+  p.points = array_of<glm::vec3>(json, "points", [](const nlohmann::json& item) {
+    glm::vec3 point(0.0f);
+    read_vec3(item, point);
+    return point;
+  });
+  p.lights = array_of<ProbeLight>(json, "lights", probe_light_from_json);
+  return p;
+}
+
+FrameReport read_frame_report(const fs::path& out_dir) {
+  FrameReport report;
+  report.timings = read_report_file(out_dir / "timings.json", timing_report_from_json);
+  report.memory = read_report_file(out_dir / "memory.json", memory_report_from_json);
+  std::error_code ec;
+  if (fs::is_regular_file(out_dir / "quality.json", ec))
+    report.quality = read_report_file(out_dir / "quality.json", quality_report_from_json);
+  if (fs::is_regular_file(out_dir / "probes.json", ec))
+    report.probes = read_report_file(out_dir / "probes.json", probe_report_from_json);
+  return report;
+}
+
+}  // namespace avsm::capture

@@ -1,0 +1,160 @@
+#pragma once
+// One typed report of a captured frame: what timings.json, memory.json,
+// quality.json and probes.json hold, what report.html shows (capture/report.h) and
+// what the viewer's panel reads. Each file's keys are spelled once, in
+// frame_report.cpp: its to_json (the file's only writer) and its from_json (for a
+// tool that reads a capture folder back, read_frame_report()). nlohmann::json
+// objects keep their keys sorted, so a file's bytes do not depend on the order of
+// the fields here.
+#include <nlohmann/json_fwd.hpp>
+#include <rendergraph/plan.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "capture/quality.h"
+#include "passes/shadow_stats.h"
+#include "scene/bounds.h"
+#include "scene/volume.h"
+
+namespace avsm::capture {
+
+class FrameTimingLog;
+
+// ---- timings.json ----
+
+// Of one figure over the measured frames.
+struct Spread {
+  double min = 0, median = 0, max = 0;
+  bool operator==(const Spread&) const = default;
+};
+Spread spread_of(std::vector<double> values);  // all 0 when empty
+
+struct PassTiming {
+  std::string name;
+  rg::QueueType queue = rg::QueueType::Graphics;
+  Spread gpu_ms, cpu_record_ms;
+  bool operator==(const PassTiming&) const = default;
+};
+
+struct FrameSample {
+  double gpu_ms = 0;          // the passes' GPU times summed
+  double wall_ms = 0;         // build, record, submit and wait
+  double submit_wall_ms = 0;  // submit to completion on the CPU clock
+  bool operator==(const FrameSample&) const = default;
+};
+
+struct TimingReport {
+  std::string device, driver, timestamp_mode;
+  uint32_t width = 0, height = 0;
+  std::vector<PassTiming> passes;  // in the order first recorded
+  Spread frame_gpu_ms, frame_wall_ms, frame_submit_wall_ms;
+  std::vector<FrameSample> frames;  // one per measured frame
+
+  // Each pass's median over the measured frames; nullopt for a pass never timed.
+  std::optional<double> median_gpu_ms(const std::string& pass) const;
+  bool operator==(const TimingReport&) const = default;
+};
+
+// The passes, frame spreads and samples of `log`'s measured frames; the device
+// fields are left for the caller.
+TimingReport timing_report(const FrameTimingLog& log);
+
+// ---- memory.json ----
+
+struct VolumeStats {
+  scene::VolumeShading shading;
+  uint64_t density_atlas_bytes = 0;
+  uint64_t lighting_cache_cells = 0;  // 0 unless the shading is fast
+};
+
+struct MemoryReport {
+  uint64_t transient_bytes_aliased = 0, transient_bytes_unaliased = 0;
+  uint64_t heap_count = 0;
+  std::vector<passes::LightShadowStats> lights;
+  scene::Bounds scene_bounds;
+  uint64_t frames_with_capture_overflow = 0;
+  VolumeStats volumes;
+};
+
+// Built by memory_report() in capture/frame_outputs.h.
+
+// ---- the compiled frame graph (graph.json is the plan's own CompiledPlan::to_json) ----
+
+struct PlanPassSummary {
+  std::string name;
+  rg::QueueType queue = rg::QueueType::Graphics;
+  size_t barrier_count = 0;  // before the pass
+};
+
+struct PlanResourceSummary {
+  std::string name;
+  rg::ResourceKind kind = rg::ResourceKind::Texture;
+  std::string description;  // "1920x1080 R16G16B16A16_SFLOAT", "4096 bytes"
+  bool imported = false, used = false;
+  uint64_t size = 0, offset = 0;
+  std::optional<uint32_t> heap;                   // used transients only
+  std::optional<uint32_t> first_pass, last_pass;  // positions in PlanSummary::passes
+};
+
+struct PlanSummary {
+  std::vector<PlanPassSummary> passes;  // execution order
+  std::vector<std::string> culled_passes;
+  std::vector<PlanResourceSummary> resources;  // the plan's resource indices
+  uint32_t barrier_count = 0;                  // final barriers included
+  size_t final_barrier_count = 0;
+  uint64_t heap_count = 0;
+  rg::CompileOptions options;
+  uint64_t shape_hash = 0;
+};
+
+PlanSummary plan_summary(const rg::CompiledPlan& plan);
+
+// ---- quality.json (--compare-to uncompressed) ----
+
+// QualityReport: capture/quality.h.
+
+// ---- probes.json (--probe) ----
+
+struct ProbeLight {
+  std::string light;
+  scene::ShadowSettings settings;  // technique, nodes, filter, sort and resolution are written
+  std::vector<float> transmittance;  // one per point
+};
+
+struct ProbeReport {
+  std::vector<glm::vec3> points;
+  std::vector<ProbeLight> lights;
+};
+
+// ---- the whole frame ----
+
+struct FrameReport {
+  TimingReport timings;
+  MemoryReport memory;
+  // Not read back from disk: graph.json and graph.dot are the frame graph's own formats.
+  PlanSummary plan;
+  std::string plan_dot;  // CompiledPlan::to_dot()
+  std::optional<QualityReport> quality;
+  std::optional<ProbeReport> probes;
+};
+
+nlohmann::json to_json(const TimingReport& timings);
+nlohmann::json to_json(const MemoryReport& memory);
+nlohmann::json to_json(const QualityReport& quality);
+nlohmann::json to_json(const ProbeReport& probes);
+// Throw std::runtime_error naming the first key that is missing or of the wrong type.
+TimingReport timing_report_from_json(const nlohmann::json& json);
+MemoryReport memory_report_from_json(const nlohmann::json& json);
+QualityReport quality_report_from_json(const nlohmann::json& json);
+ProbeReport probe_report_from_json(const nlohmann::json& json);
+
+// timings.json and memory.json from out_dir (required), quality.json and
+// probes.json when there; the plan summary and its dot text stay empty. Throws std::runtime_error
+// naming the file.
+FrameReport read_frame_report(const std::filesystem::path& out_dir);
+
+}  // namespace avsm::capture
