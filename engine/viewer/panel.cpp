@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "capture/frame_outputs.h"
+#include "capture/frame_report.h"
+
 namespace avsm::viewer {
 
 namespace {
@@ -275,26 +278,33 @@ void Panel::draw_timings(const PanelView& view) {
   ImGui::Text("total %.2f ms GPU", view.frame.gpu_ms());
 }
 
+// The figures memory.json and report.html show, from the same report types.
 void Panel::draw_memory(const PanelView& view) {
-  const rg::PlanStats& stats = view.plan.stats;
-  ImGui::Text("transient: %s aliased in %zu heaps (%s without aliasing)", bytes_text(stats.transient_bytes_aliased).c_str(),
-              view.plan.heaps.size(), bytes_text(stats.transient_bytes_unaliased).c_str());
-  for (const passes::LightShadowStats& light : view.live.renderer().shadows().frame_stats()) {
+  const capture::MemoryReport memory =
+      capture::memory_report(view.plan, view.live.renderer(), view.live.scene(), /*frames_with_capture_overflow=*/0);
+  ImGui::Text("transient: %s aliased in %llu heaps (%s without aliasing)",
+              bytes_text(memory.transient_bytes_aliased).c_str(), (unsigned long long)memory.heap_count,
+              bytes_text(memory.transient_bytes_unaliased).c_str());
+  for (const passes::LightShadowStats& light : memory.lights) {
     ImGui::Text("%s: %s %ux%u, map %s, capture %s", light.light.c_str(), std::string(scene::to_string(light.technique)).c_str(),
                 light.resolution, light.resolution, bytes_text(light.map_bytes).c_str(), bytes_text(light.capture_bytes).c_str());
     ImGui::Text("  segments %llu of %llu%s", (unsigned long long)light.capture_requested,
                 (unsigned long long)light.capture_capacity, light.overflowed ? " (overflowed: buffer grows)" : "");
+    if (light.dsm_pool)
+      ImGui::Text("  pool nodes %llu of %llu%s", (unsigned long long)light.dsm_pool->requested_nodes,
+                  (unsigned long long)light.dsm_pool->capacity_nodes,
+                  light.dsm_pool->overflowed ? " (overflowed: pool grows)" : "");
   }
 }
 
 void Panel::draw_plan(const PanelView& view) {
-  ImGui::Text("%zu passes, %u barriers, %zu culled", view.plan.passes.size(), view.plan.stats.barrier_count,
-              view.plan.culled_passes.size());
-  for (size_t i = 0; i < view.plan.passes.size(); ++i) {
-    const rg::PlannedPass& pass = view.plan.passes[i];
-    ImGui::Text("%2zu %-8s %s (%zu barriers)", i, rg::to_string(pass.queue), pass.name.c_str(), pass.barriers.size());
+  const capture::PlanSummary plan = capture::plan_summary(view.plan);
+  ImGui::Text("%zu passes, %u barriers, %zu culled", plan.passes.size(), plan.barrier_count, plan.culled_passes.size());
+  for (size_t i = 0; i < plan.passes.size(); ++i) {
+    const capture::PlanPassSummary& pass = plan.passes[i];
+    ImGui::Text("%2zu %-8s %s (%zu barriers)", i, rg::to_string(pass.queue), pass.name.c_str(), pass.barrier_count);
   }
-  for (const rg::PlannedPass& pass : view.plan.culled_passes) ImGui::TextDisabled("   culled: %s", pass.name.c_str());
+  for (const std::string& name : plan.culled_passes) ImGui::TextDisabled("   culled: %s", name.c_str());
 }
 
 void Panel::draw_inspection(const PanelView& view, PanelRequests& requests) {
