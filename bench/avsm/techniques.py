@@ -24,6 +24,8 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/
+import capture_report  # noqa: E402
 
 
 def grid_points(lo, hi, counts):
@@ -61,16 +63,16 @@ def run(capture, scene, out, args, technique, nodes, probe_file, params=()):
     for param in params:
         cmd += ["--shadow-param", param]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    timings = json.load(open(os.path.join(out, "timings.json")))
-    memory = json.load(open(os.path.join(out, "memory.json")))
-    probes = json.load(open(os.path.join(out, "probes.json")))
+    timings = capture_report.timings(out)
+    memory = capture_report.memory(out)
+    probes = capture_report.probes(out)
     ms = {}
-    for p in timings["passes"]:
-        ms[stage(p["name"])] = ms.get(stage(p["name"]), 0.0) + p["gpu_ms"]["median"]
-    ms["frame"] = timings["frame_gpu_ms"]["median"]
-    map_bytes = sum(light["map_bytes"] for light in memory["lights"])
-    capture_bytes = sum(light["capture_bytes"] for light in memory["lights"])
-    values = [light["transmittance"] for light in probes["lights"]]
+    for p in timings.passes:
+        ms[stage(p.name)] = ms.get(stage(p.name), 0.0) + p.gpu_ms.median
+    ms["frame"] = timings.frame_gpu_ms.median
+    map_bytes = sum(light.map_bytes for light in memory.lights)
+    capture_bytes = sum(light.capture_bytes for light in memory.lights)
+    values = [light.transmittance for light in probes.lights]
     return ms, map_bytes, capture_bytes, values
 
 
@@ -98,9 +100,9 @@ def main():
     subprocess.run([capture, "--out", bounds_run, "--width", "16", "--height", "16", "--frames", "1",
                     "--shadow-res", "16", "--quiet"] + (["--scene", args.scene] if args.scene else []),
                    check=True, stdout=subprocess.DEVNULL)
-    bounds = json.load(open(os.path.join(bounds_run, "memory.json")))["scene_bounds"]
-    lo = [a + 0.02 * (b - a) for a, b in zip(bounds["min"], bounds["max"])]
-    hi = [b - 0.02 * (b - a) for a, b in zip(bounds["min"], bounds["max"])]
+    bounds = capture_report.memory(bounds_run).scene_bounds
+    lo = [a + 0.02 * (b - a) for a, b in zip(bounds.min, bounds.max)]
+    hi = [b - 0.02 * (b - a) for a, b in zip(bounds.min, bounds.max)]
     points = grid_points(lo, hi, [20, 12, 16])
     probe_file = os.path.join(work, "probes.json")
     json.dump(points, open(probe_file, "w"))

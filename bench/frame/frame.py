@@ -8,11 +8,14 @@ against the reference (mean and 99th percentile of |dL| relative to the mean
 luminance, on linear HDR).
 """
 import argparse
-import json
+import os
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/
+import capture_report  # noqa: E402
 
 # Camera-side passes of each path; everything else (shadow maps, tonemap, debug) is common.
 FAST_VOLUME = ["volume cache layout", "volume lighting cache", "volume march", "volume composite"]
@@ -27,7 +30,7 @@ def run_capture(capture, scene, width, height, frames, extra):
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"frame.py: {' '.join(command)} failed:\n{result.stderr}")
-    return json.loads((out / "volume_quality.json").read_text())
+    return capture_report.volume_quality(out)
 
 
 def total(passes, names):
@@ -49,8 +52,8 @@ def main():
         extra += arg.split("=", 1) if arg.startswith("--") and "=" in arg else [arg]
 
     q = run_capture(args.capture, args.scene, args.width, args.height, args.frames, extra)
-    fast, reference = q["fast_gpu_ms"], q["reference_gpu_ms"]
-    print(f"## {Path(args.scene).name} at {args.width}x{args.height} ({q['fast_settings']})")
+    fast, reference = q.fast_gpu_ms, q.reference_gpu_ms
+    print(f"## {Path(args.scene).name} at {args.width}x{args.height} ({q.fast_settings})")
     print(f"{'pass':32} {'fast ms':>10} {'reference ms':>13} {'ref/fast':>9}")
     for name in sorted(set(fast) | set(reference), key=lambda n: -max(fast.get(n, 0.0), reference.get(n, 0.0))):
         f, r = fast.get(name), reference.get(name)
@@ -82,9 +85,9 @@ def main():
     for label, value, bound, unit in checks:
         ok = value >= bound if label.startswith("frame") else value <= bound
         print(f"target {label:38} {value:6.2f} {unit:9} {'met' if ok else 'MISSED'}")
-    print(f"quality over {q['smoke_pixels']} smoke pixels: mean |dL| {100 * q['mean_relative']:.2f}% (bound 2%), "
-          f"p99 {100 * q['p99_relative']:.2f}% (bound 10%) of mean luminance {q['mean_luminance']:.4f}: "
-          f"{'within' if q['within_bound'] else 'OUTSIDE'} the bound")
+    print(f"quality over {q.smoke_pixels} smoke pixels: mean |dL| {100 * q.mean_relative:.2f}% (bound 2%), "
+          f"p99 {100 * q.p99_relative:.2f}% (bound 10%) of mean luminance {q.mean_luminance:.4f}: "
+          f"{'within' if q.within_bound else 'OUTSIDE'} the bound")
 
 
 if __name__ == "__main__":

@@ -10,13 +10,14 @@ and the share aliasing saves.
 usage: bench/rendergraph/frame_memory.py [--build DIR] [--scene FILE] [extra avsm-capture flags...]
 """
 import argparse
-import json
 import os
 import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/
+import capture_report  # noqa: E402
 
 
 def main():
@@ -31,22 +32,22 @@ def main():
     out = tempfile.mkdtemp(prefix="avsm-frame-memory-")
     cmd = [capture, "--out", out, "--frames", "1", "--quiet"] + (["--scene", args.scene] if args.scene else []) + extra
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    plan = json.load(open(os.path.join(out, "graph.json")))
-    memory = json.load(open(os.path.join(out, "memory.json")))
-    passes = [p["name"] for p in plan["passes"]]
+    plan = capture_report.plan(out)
+    memory = capture_report.memory(out)
+    passes = plan.pass_names
 
     print(f"transient resources of the frame ({' '.join(cmd[1:])}):")
     header = f"{'resource':<24}{'kind':>8}{'MiB':>9}{'heap':>6}{'offset MiB':>12}  lifetime (passes)"
     print(header)
     print("-" * (len(header) + 30))
-    for r in plan["resources"]:
-        if r["imported"] or not r["used"]:
+    for r in plan.resources:
+        if r.imported or not r.used:
             continue
-        first, last = passes[r["first_pass"]], passes[r["last_pass"]]
-        print(f"{r['name']:<24}{r['kind']:>8}{r['size'] / 2**20:>9.2f}{r['heap']:>6}{r['offset'] / 2**20:>12.2f}"
+        first, last = passes[r.first_pass], passes[r.last_pass]
+        print(f"{r.name:<24}{r.kind:>8}{r.size / 2**20:>9.2f}{r.heap:>6}{r.offset / 2**20:>12.2f}"
               f"  {first} .. {last}")
-    aliased = memory["transient_bytes_aliased"]
-    unaliased = memory["transient_bytes_unaliased"]
+    aliased = memory.transient_bytes_aliased
+    unaliased = memory.transient_bytes_unaliased
     saved = 1.0 - aliased / unaliased if unaliased else 0.0
     print()
     print(f"{'transient bytes without aliasing':<36}{unaliased / 2**20:>10.2f} MiB")

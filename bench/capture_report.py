@@ -1,0 +1,162 @@
+"""An avsm-capture output folder, read into typed records for the bench scripts.
+
+The Python side of engine/capture/frame_report.h: timings.json, memory.json and
+probes.json as the engine's FrameReport writes them, graph.json as the frame graph's
+CompiledPlan::to_json writes it, and volume_quality.json (--compare-volume-shading).
+The scripts read fields, not string keys: a key the engine renames breaks here, once.
+"""
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Dict, List, Optional
+
+
+@dataclass
+class Spread:  # of one figure over the measured frames
+    min: float
+    median: float
+    max: float
+
+    @staticmethod
+    def from_json(j):
+        return Spread(j["min"], j["median"], j["max"])
+
+
+@dataclass
+class PassTiming:
+    name: str
+    queue: str
+    gpu_ms: Spread
+    cpu_record_ms: Spread
+
+    @staticmethod
+    def from_json(j):
+        return PassTiming(j["name"], j["queue"], Spread.from_json(j["gpu_ms"]), Spread.from_json(j["cpu_record_ms"]))
+
+
+@dataclass
+class Timings:  # timings.json
+    device: str
+    passes: List[PassTiming]
+    frame_gpu_ms: Spread
+
+    @staticmethod
+    def from_json(j):
+        return Timings(j["device"], [PassTiming.from_json(p) for p in j["passes"]], Spread.from_json(j["frame_gpu_ms"]))
+
+
+@dataclass
+class LightShadowStats:
+    light: str
+    technique: str
+    map_bytes: int
+    capture_bytes: int
+
+    @staticmethod
+    def from_json(j):
+        return LightShadowStats(j["light"], j["technique"], j["map_bytes"], j["capture_bytes"])
+
+
+@dataclass
+class Bounds:
+    min: List[float]
+    max: List[float]
+
+
+@dataclass
+class Memory:  # memory.json
+    transient_bytes_aliased: int
+    transient_bytes_unaliased: int
+    lights: List[LightShadowStats]
+    scene_bounds: Bounds
+
+    @staticmethod
+    def from_json(j):
+        bounds = j["scene_bounds"]
+        return Memory(j["transient_bytes_aliased"], j["transient_bytes_unaliased"],
+                      [LightShadowStats.from_json(light) for light in j["lights"]],
+                      Bounds(bounds["min"], bounds["max"]))
+
+
+@dataclass
+class ProbeLight:
+    light: str
+    transmittance: List[float]
+
+
+@dataclass
+class Probes:  # probes.json
+    lights: List[ProbeLight]
+
+    @staticmethod
+    def from_json(j):
+        return Probes([ProbeLight(light["light"], light["transmittance"]) for light in j["lights"]])
+
+
+@dataclass
+class PlanResource:
+    name: str
+    kind: str
+    imported: bool
+    used: bool
+    size: int
+    heap: Optional[int]
+    offset: int
+    first_pass: Optional[int]
+    last_pass: Optional[int]
+
+    @staticmethod
+    def from_json(j):
+        return PlanResource(j["name"], j["kind"], j["imported"], j["used"], j["size"], j["heap"], j["offset"],
+                            j["first_pass"], j["last_pass"])
+
+
+@dataclass
+class Plan:  # graph.json
+    pass_names: List[str]
+    resources: List[PlanResource]
+
+    @staticmethod
+    def from_json(j):
+        return Plan([p["name"] for p in j["passes"]], [PlanResource.from_json(r) for r in j["resources"]])
+
+
+@dataclass
+class VolumeQuality:  # volume_quality.json
+    fast_settings: str
+    smoke_pixels: int
+    mean_luminance: float
+    mean_relative: float
+    p99_relative: float
+    within_bound: bool
+    fast_gpu_ms: Dict[str, float]
+    reference_gpu_ms: Dict[str, float]
+
+    @staticmethod
+    def from_json(j):
+        return VolumeQuality(j["fast_settings"], j["smoke_pixels"], j["mean_luminance"], j["mean_relative"],
+                             j["p99_relative"], j["within_bound"], j["fast_gpu_ms"], j["reference_gpu_ms"])
+
+
+def _read(folder, name, record):
+    return record.from_json(json.loads((Path(folder) / name).read_text()))
+
+
+def timings(folder) -> Timings:
+    return _read(folder, "timings.json", Timings)
+
+
+def memory(folder) -> Memory:
+    return _read(folder, "memory.json", Memory)
+
+
+def probes(folder) -> Probes:
+    return _read(folder, "probes.json", Probes)
+
+
+def plan(folder) -> Plan:
+    return _read(folder, "graph.json", Plan)
+
+
+def volume_quality(folder) -> VolumeQuality:
+    return _read(folder, "volume_quality.json", VolumeQuality)
