@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <rendergraph/vk_names.h>
 #include <stdexcept>
@@ -78,8 +77,8 @@ void read_vec3(const json& array, glm::vec3& v) {
 
 json to_json(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
 
-Spread spread_from_json(const json& json) {
-  return {value_of<double>(json, "min"), value_of<double>(json, "median"), value_of<double>(json, "max")};
+Spread spread_from_json(const json& in) {
+  return {value_of<double>(in, "min"), value_of<double>(in, "median"), value_of<double>(in, "max")};
 }
 
 json to_json(const PassTiming& pass) {
@@ -89,18 +88,18 @@ json to_json(const PassTiming& pass) {
           {"cpu_record_ms", to_json(pass.cpu_record_ms)}};
 }
 
-PassTiming pass_timing_from_json(const json& json) {
-  return {value_of<std::string>(json, "name"), queue_from_string(value_of<std::string>(json, "queue")),
-          spread_from_json(member(json, "gpu_ms")), spread_from_json(member(json, "cpu_record_ms"))};
+PassTiming pass_timing_from_json(const json& in) {
+  return {value_of<std::string>(in, "name"), queue_from_string(value_of<std::string>(in, "queue")),
+          spread_from_json(member(in, "gpu_ms")), spread_from_json(member(in, "cpu_record_ms"))};
 }
 
 json to_json(const FrameSample& frame) {
   return {{"gpu_ms", frame.gpu_ms}, {"wall_ms", frame.wall_ms}, {"submit_wall_ms", frame.submit_wall_ms}};
 }
 
-FrameSample frame_sample_from_json(const json& json) {
-  return {value_of<double>(json, "gpu_ms"), value_of<double>(json, "wall_ms"),
-          value_of<double>(json, "submit_wall_ms")};
+FrameSample frame_sample_from_json(const json& in) {
+  return {value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"),
+          value_of<double>(in, "submit_wall_ms")};
 }
 
 // ---- memory.json ----
@@ -125,23 +124,23 @@ json to_json(const passes::LightShadowStats& s) {
   return out;
 }
 
-passes::LightShadowStats light_stats_from_json(const json& json) {
+passes::LightShadowStats light_stats_from_json(const json& in) {
   passes::LightShadowStats s;
-  s.light = value_of<std::string>(json, "light");
-  s.technique = technique_from_json(json);
-  s.nodes = value_of<uint32_t>(json, "nodes");
-  s.resolution = value_of<uint32_t>(json, "resolution");
-  s.mip_levels = value_of<uint32_t>(json, "mip_levels");
-  s.map_bytes = value_of<uint64_t>(json, "map_bytes");
-  s.capture_bytes = value_of<uint64_t>(json, "capture_bytes");
-  s.capture_capacity = value_of<uint64_t>(json, "capture_capacity_segments");
-  s.capture_requested = value_of<uint64_t>(json, "capture_requested_segments");
-  s.overflowed = value_of<bool>(json, "capture_overflowed");
-  s.next_capture_capacity = value_of<uint64_t>(json, "next_capture_capacity_segments");
-  if (json.contains("dsm_pool_capacity_nodes"))
-    s.dsm_pool = passes::DsmPoolStats{value_of<uint64_t>(json, "dsm_pool_requested_nodes"),
-                                      value_of<uint64_t>(json, "dsm_pool_capacity_nodes"),
-                                      value_of<bool>(json, "dsm_pool_overflowed")};
+  s.light = value_of<std::string>(in, "light");
+  s.technique = technique_from_json(in);
+  s.nodes = value_of<uint32_t>(in, "nodes");
+  s.resolution = value_of<uint32_t>(in, "resolution");
+  s.mip_levels = value_of<uint32_t>(in, "mip_levels");
+  s.map_bytes = value_of<uint64_t>(in, "map_bytes");
+  s.capture_bytes = value_of<uint64_t>(in, "capture_bytes");
+  s.capture_capacity = value_of<uint64_t>(in, "capture_capacity_segments");
+  s.capture_requested = value_of<uint64_t>(in, "capture_requested_segments");
+  s.overflowed = value_of<bool>(in, "capture_overflowed");
+  s.next_capture_capacity = value_of<uint64_t>(in, "next_capture_capacity_segments");
+  if (in.contains("dsm_pool_capacity_nodes"))
+    s.dsm_pool = passes::DsmPoolStats{value_of<uint64_t>(in, "dsm_pool_requested_nodes"),
+                                      value_of<uint64_t>(in, "dsm_pool_capacity_nodes"),
+                                      value_of<bool>(in, "dsm_pool_overflowed")};
   return s;
 }
 
@@ -153,16 +152,16 @@ json to_json(const VolumeStats& v) {
           {"lighting_cache_cells", v.lighting_cache_cells}};
 }
 
-VolumeStats volume_stats_from_json(const json& json) {
+VolumeStats volume_stats_from_json(const json& in) {
   VolumeStats v;
-  const std::string mode = value_of<std::string>(json, "shading");
+  const std::string mode = value_of<std::string>(in, "shading");
   const auto parsed = scene::volume_shading_mode_from_string(mode);
   if (!parsed) throw std::runtime_error("unknown volume shading '" + mode + "'");
   v.shading.mode = *parsed;
-  v.shading.resolution_divisor = value_of<int>(json, "resolution_divisor");
-  v.shading.step_voxels = value_of<float>(json, "step_voxels");
-  v.density_atlas_bytes = value_of<uint64_t>(json, "density_atlas_bytes");
-  v.lighting_cache_cells = value_of<uint64_t>(json, "lighting_cache_cells");
+  v.shading.resolution_divisor = value_of<int>(in, "resolution_divisor");
+  v.shading.step_voxels = value_of<float>(in, "step_voxels");
+  v.density_atlas_bytes = value_of<uint64_t>(in, "density_atlas_bytes");
+  v.lighting_cache_cells = value_of<uint64_t>(in, "lighting_cache_cells");
   return v;
 }
 
@@ -177,11 +176,11 @@ json to_json(const ErrorStats& s) {
 }
 
 // The file keeps the mean, not the sum: the sum read back is mean x receivers.
-ErrorStats error_stats_from_json(const json& json) {
+ErrorStats error_stats_from_json(const json& in) {
   ErrorStats s;
-  s.receivers = value_of<uint64_t>(json, "receivers");
-  s.sum = number_or(member(json, "mean_abs_error"), 0.0) * double(s.receivers);
-  s.max = number_or(member(json, "max_abs_error"), 0.0);
+  s.receivers = value_of<uint64_t>(in, "receivers");
+  s.sum = number_or(member(in, "mean_abs_error"), 0.0) * double(s.receivers);
+  s.max = number_or(member(in, "max_abs_error"), 0.0);
   return s;
 }
 
@@ -210,18 +209,18 @@ json to_json(const LightQuality& q, size_t index) {
   };
 }
 
-LightQuality light_quality_from_json(const json& json) {
+LightQuality light_quality_from_json(const json& in) {
   LightQuality q;
-  q.light = value_of<std::string>(json, "light");
-  q.settings.technique = technique_from_json(json);
-  q.settings.filter = filter_from_json(json);
-  q.settings.sort = value_of<bool>(json, "sort");
-  q.settings.resolution = value_of<int>(json, "resolution");
-  q.settings.nodes = number_or(member(json, "nodes"), q.settings.nodes);
-  q.settings.parameters = value_of<std::map<std::string, double>>(json, "parameters");
-  q.surface = error_stats_from_json(member(json, "surface"));
-  q.smoke = error_stats_from_json(member(json, "smoke"));
-  q.hair = error_stats_from_json(member(json, "hair"));
+  q.light = value_of<std::string>(in, "light");
+  q.settings.technique = technique_from_json(in);
+  q.settings.filter = filter_from_json(in);
+  q.settings.sort = value_of<bool>(in, "sort");
+  q.settings.resolution = value_of<int>(in, "resolution");
+  q.settings.nodes = number_or(member(in, "nodes"), q.settings.nodes);
+  q.settings.parameters = value_of<std::map<std::string, double>>(in, "parameters");
+  q.surface = error_stats_from_json(member(in, "surface"));
+  q.smoke = error_stats_from_json(member(in, "smoke"));
+  q.hair = error_stats_from_json(member(in, "hair"));
   return q;
 }
 
@@ -238,15 +237,15 @@ json to_json(const ProbeLight& light) {
           {"transmittance", light.transmittance}};
 }
 
-ProbeLight probe_light_from_json(const json& json) {
+ProbeLight probe_light_from_json(const json& in) {
   ProbeLight light;
-  light.light = value_of<std::string>(json, "light");
-  light.settings.technique = technique_from_json(json);
-  light.settings.nodes = value_of<int>(json, "nodes");
-  light.settings.filter = filter_from_json(json);
-  light.settings.sort = value_of<bool>(json, "sort");
-  light.settings.resolution = value_of<int>(json, "resolution");
-  light.transmittance = value_of<std::vector<float>>(json, "transmittance");
+  light.light = value_of<std::string>(in, "light");
+  light.settings.technique = technique_from_json(in);
+  light.settings.nodes = value_of<int>(in, "nodes");
+  light.settings.filter = filter_from_json(in);
+  light.settings.sort = value_of<bool>(in, "sort");
+  light.settings.resolution = value_of<int>(in, "resolution");
+  light.transmittance = value_of<std::vector<float>>(in, "transmittance");
   return light;
 }
 
@@ -283,7 +282,7 @@ json read_json_file(const fs::path& path) {
   return parsed;
 }
 
-// Reads `file` in out_dir with `from_json`, its errors prefixed with the file's path.
+// Reads `path` with `from_json`, its errors prefixed with the path.
 template <class Report>
 Report read_report_file(const fs::path& path, Report (*from_json)(const json&)) {
   const json parsed = read_json_file(path);
@@ -350,18 +349,18 @@ json to_json(const TimingReport& t) {
           {"frames", frames}};
 }
 
-TimingReport timing_report_from_json(const json& json) {
+TimingReport timing_report_from_json(const json& in) {
   TimingReport t;
-  t.device = value_of<std::string>(json, "device");
-  t.driver = value_of<std::string>(json, "driver");
-  t.timestamp_mode = value_of<std::string>(json, "timestamp_mode");
-  t.width = value_of<uint32_t>(json, "width");
-  t.height = value_of<uint32_t>(json, "height");
-  t.passes = array_of<PassTiming>(json, "passes", pass_timing_from_json);
-  t.frame_gpu_ms = spread_from_json(member(json, "frame_gpu_ms"));
-  t.frame_wall_ms = spread_from_json(member(json, "frame_wall_ms"));
-  t.frame_submit_wall_ms = spread_from_json(member(json, "frame_submit_wall_ms"));
-  t.frames = array_of<FrameSample>(json, "frames", frame_sample_from_json);
+  t.device = value_of<std::string>(in, "device");
+  t.driver = value_of<std::string>(in, "driver");
+  t.timestamp_mode = value_of<std::string>(in, "timestamp_mode");
+  t.width = value_of<uint32_t>(in, "width");
+  t.height = value_of<uint32_t>(in, "height");
+  t.passes = array_of<PassTiming>(in, "passes", pass_timing_from_json);
+  t.frame_gpu_ms = spread_from_json(member(in, "frame_gpu_ms"));
+  t.frame_wall_ms = spread_from_json(member(in, "frame_wall_ms"));
+  t.frame_submit_wall_ms = spread_from_json(member(in, "frame_submit_wall_ms"));
+  t.frames = array_of<FrameSample>(in, "frames", frame_sample_from_json);
   return t;
 }
 
@@ -377,17 +376,17 @@ json to_json(const MemoryReport& m) {
           {"volumes", to_json(m.volumes)}};
 }
 
-MemoryReport memory_report_from_json(const json& json) {
+MemoryReport memory_report_from_json(const json& in) {
   MemoryReport m;
-  m.transient_bytes_aliased = value_of<uint64_t>(json, "transient_bytes_aliased");
-  m.transient_bytes_unaliased = value_of<uint64_t>(json, "transient_bytes_unaliased");
-  m.heap_count = value_of<uint64_t>(json, "heaps");
-  m.lights = array_of<passes::LightShadowStats>(json, "lights", light_stats_from_json);
-  const nlohmann::json& bounds = member(json, "scene_bounds");
+  m.transient_bytes_aliased = value_of<uint64_t>(in, "transient_bytes_aliased");
+  m.transient_bytes_unaliased = value_of<uint64_t>(in, "transient_bytes_unaliased");
+  m.heap_count = value_of<uint64_t>(in, "heaps");
+  m.lights = array_of<passes::LightShadowStats>(in, "lights", light_stats_from_json);
+  const json& bounds = member(in, "scene_bounds");
   read_vec3(member(bounds, "min"), m.scene_bounds.min);
   read_vec3(member(bounds, "max"), m.scene_bounds.max);
-  m.frames_with_capture_overflow = value_of<uint64_t>(json, "frames_with_capture_overflow");
-  m.volumes = volume_stats_from_json(member(json, "volumes"));
+  m.frames_with_capture_overflow = value_of<uint64_t>(in, "frames_with_capture_overflow");
+  m.volumes = volume_stats_from_json(member(in, "volumes"));
   return m;
 }
 
@@ -408,9 +407,9 @@ json to_json(const QualityReport& q) {
   };
 }
 
-QualityReport quality_report_from_json(const json& json) {
-  return {value_of<uint32_t>(json, "width"), value_of<uint32_t>(json, "height"),
-          array_of<LightQuality>(json, "lights", light_quality_from_json)};
+QualityReport quality_report_from_json(const json& in) {
+  return {value_of<uint32_t>(in, "width"), value_of<uint32_t>(in, "height"),
+          array_of<LightQuality>(in, "lights", light_quality_from_json)};
 }
 
 json to_json(const ProbeReport& p) {
@@ -420,14 +419,14 @@ json to_json(const ProbeReport& p) {
   return {{"points", points}, {"lights", lights}};
 }
 
-ProbeReport probe_report_from_json(const json& json) {
+ProbeReport probe_report_from_json(const json& in) {
   ProbeReport p;
-  p.points = array_of<glm::vec3>(json, "points", [](const nlohmann::json& item) {
+  p.points = array_of<glm::vec3>(in, "points", [](const nlohmann::json& item) {
     glm::vec3 point(0.0f);
     read_vec3(item, point);
     return point;
   });
-  p.lights = array_of<ProbeLight>(json, "lights", probe_light_from_json);
+  p.lights = array_of<ProbeLight>(in, "lights", probe_light_from_json);
   return p;
 }
 

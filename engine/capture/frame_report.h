@@ -147,10 +147,10 @@ nlohmann::json to_json(const MemoryReport& memory);
 nlohmann::json to_json(const QualityReport& quality);
 nlohmann::json to_json(const ProbeReport& probes);
 // Throw std::runtime_error naming the first key that is missing or of the wrong type.
-TimingReport timing_report_from_json(const nlohmann::json& json);
-MemoryReport memory_report_from_json(const nlohmann::json& json);
-QualityReport quality_report_from_json(const nlohmann::json& json);
-ProbeReport probe_report_from_json(const nlohmann::json& json);
+TimingReport timing_report_from_json(const nlohmann::json& in);
+MemoryReport memory_report_from_json(const nlohmann::json& in);
+QualityReport quality_report_from_json(const nlohmann::json& in);
+ProbeReport probe_report_from_json(const nlohmann::json& in);
 
 // timings.json and memory.json from out_dir (required), quality.json and
 // probes.json when there; the plan summary and its dot text stay empty. Throws std::runtime_error
