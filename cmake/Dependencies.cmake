@@ -7,6 +7,7 @@ find_package(tinyexr CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+pkg_check_modules(SPIRV_CROSS REQUIRED IMPORTED_TARGET spirv-cross-c-shared)
 # The viewer only (engine/viewer): a window and Dear ImGui (libimgui.a holds the GLFW backend).
 if(AVSM_BUILD_VIEWER)
   find_package(glfw3 CONFIG REQUIRED)

@@ -31,10 +31,12 @@ install(DIRECTORY passes/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}/passes
 install(DIRECTORY rendergraph/include/rendergraph rendergraph/vulkan/include/rendergraph
         DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY engine/api/include/avsm/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
+# The structs C++ shares with GLSL, for C++ ("shared/lights.h"); the GLSL copy is below.
+install(DIRECTORY shaders/shared DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
 
 # Shaders: GLSL (run-time compilation, and the includes of a host's shaders) and the
 # prebuilt SPIR-V, both under the engine's relative names (shaders/passes/x.comp[.spv]).
-set(AVSM_SHADER_PATTERNS PATTERN "*.glsl" PATTERN "*.vert" PATTERN "*.geom" PATTERN "*.frag" PATTERN "*.comp")
+set(AVSM_SHADER_PATTERNS PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.vert" PATTERN "*.geom" PATTERN "*.frag" PATTERN "*.comp")
 install(DIRECTORY shaders/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/shaders
         FILES_MATCHING ${AVSM_SHADER_PATTERNS} PATTERN "tests" EXCLUDE)
 install(DIRECTORY ${AVSM_SPIRV_DIR}/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/spirv

@@ -1,8 +1,9 @@
 #pragma once
-// Where each texel's curve lives in a light's AVSM map buffer; mirrors
-// avsm_texel_base() in shaders/common/shadow_lookup.glsl. Offsets count vec4s.
-#include <algorithm>
+// Where each texel's curve lives in a light's AVSM map buffer (the layout itself is
+// shaders/shared/map_layouts.h, shared with the shaders). Offsets count vec4s.
 #include <cstdint>
+
+#include "shared/map_layouts.h"
 
 namespace avsm::passes {
 
@@ -16,12 +17,11 @@ struct AvsmMapLayout {
     while ((resolution >> levels) > 0) ++levels;
     return levels;
   }
-  uint32_t level_size(uint32_t level) const { return std::max(resolution >> level, 1u); }
+  uint32_t level_size(uint32_t level) const { return shared::avsm_level_size(resolution, level); }
   uint32_t vec4s_per_texel() const { return nodes / 2; }
-  uint64_t level_offset(uint32_t level) const {
-    uint64_t offset = 0;
-    for (uint32_t l = 0; l < level; ++l) offset += uint64_t(level_size(l)) * level_size(l) * vec4s_per_texel();
-    return offset;
+  uint64_t level_offset(uint32_t level) const { return shared::avsm_level_offset(resolution, nodes, level); }
+  uint64_t texel_base(uint32_t level, uint32_t x, uint32_t y) const {
+    return shared::avsm_map_texel_base(resolution, nodes, level, x, y);
   }
   uint64_t bytes() const { return level_offset(levels) * 16; }
 };

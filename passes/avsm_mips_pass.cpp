@@ -3,16 +3,12 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/barriers.h"
+#include "shared/passes/avsm_mips.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/avsm_mips.comp.
-struct Push {
-  uint32_t source_offset, source_size;
-  uint32_t target_offset, target_size;
-  uint32_t node_count;
-};
+using Push = shared::AvsmMipsPush;  // shaders/shared/passes/avsm_mips.h
 
 }  // namespace
 
@@ -30,7 +26,7 @@ rg::BufferHandle AvsmMipsPass::add_to_graph(rg::Graph& graph, const std::string&
       [this, layout](const Data& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         pipeline_.bind(cmd);
-        gpu::Bindings(ctx_, pipeline_).buffer(0, c.buffer(d.map)).push(cmd);
+        gpu::Bindings(ctx_, pipeline_).buffer("AvsmMap", c.buffer(d.map)).push(cmd);
         for (uint32_t level = 1; level < layout.levels; ++level) {
           if (level > 1) {
             // The level just written is the next dispatch's source (same buffer, inside this pass).

@@ -3,21 +3,12 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/rendering.h"
+#include "shared/passes/capture_hair.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/capture_hair.vert and .frag.
-struct Push {
-  glm::mat4 view_projection;
-  glm::vec4 camera_position;  // where ribbons face: the light
-  glm::vec2 viewport;
-  uint32_t light_count;
-  float pad;
-  glm::vec4 depth_plane;
-  glm::vec4 texel_size;
-};
-static_assert(sizeof(Push) == 128);
+using Push = shared::CaptureHairPush;  // shaders/shared/passes/capture_hair.h
 
 // The point ribbons turn to face: the spot light itself, or for a directional
 // light a point far back along its direction (so ribbons face along it).
@@ -47,8 +38,8 @@ CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& 
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
         pipeline_.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, hair.points).buffer(1, hair.segments).buffer(2, hair.strands);
-        bind_capture_lists(bindings, 3, c, d);
+        bindings.buffer("Points", hair.points).buffer("Segments", hair.segments).buffer("Strands", hair.strands);
+        bind_capture_lists(bindings, c, d);
         bindings.push(cmd);
         const float resolution = float(light.resolution);
         pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(ribbon_facing_point(light), 1.0f),

@@ -34,11 +34,10 @@ CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists
           builder.read_write(lists.counter, rg::Usage::StorageReadWrite)};
 }
 
-void bind_capture_lists(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context,
-                        const CaptureLists& lists) {
-  bindings.image(first_binding, context.view(lists.heads), context.layout(lists.heads))
-      .buffer(first_binding + 1, context.buffer(lists.nodes))
-      .buffer(first_binding + 2, context.buffer(lists.counter), 0, 4);
+void bind_capture_lists(gpu::Bindings& bindings, const rg::PassContext& context, const CaptureLists& lists) {
+  bindings.image("capture_heads", context.view(lists.heads), context.layout(lists.heads))
+      .buffer("CaptureNodes", context.buffer(lists.nodes))
+      .buffer("CaptureCounter", {context.buffer(lists.counter).buffer, sizeof(uint32_t)});
 }
 
 }  // namespace avsm::passes

@@ -10,13 +10,15 @@
 #include <cstdint>
 #include <string>
 
+#include "shared/capture.h"
+
 namespace avsm::gpu {
 class Bindings;
 }
 
 namespace avsm::passes {
 
-inline constexpr uint64_t kCaptureSegmentBytes = 16;  // struct CaptureSegment
+inline constexpr uint64_t kCaptureSegmentBytes = sizeof(shared::CaptureSegment);
 inline constexpr VkFormat kCaptureHeadFormat = VK_FORMAT_R32_UINT;
 
 struct CaptureLists {
@@ -36,8 +38,8 @@ CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix,
 // the new versions.
 CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists);
 
-// Binds heads, nodes, counter at first_binding, +1, +2 (AVSM_CAPTURE_BINDING).
-void bind_capture_lists(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context,
+// Binds heads, nodes and counter by their shader names (shaders/common/capture_lists.glsl).
+void bind_capture_lists(gpu::Bindings& bindings, const rg::PassContext& context,
                         const CaptureLists& lists);
 
 }  // namespace avsm::passes

@@ -3,16 +3,12 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/rendering.h"
+#include "shared/passes/capture_opaque.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/capture_opaque.vert/.frag.
-struct Push {
-  glm::mat4 light_from_world;
-  glm::vec4 depth_plane;
-  glm::vec2 texel_size;
-};
+using Push = shared::CaptureOpaquePush;  // shaders/shared/passes/capture_opaque.h
 
 }  // namespace
 
@@ -36,8 +32,8 @@ CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
         pipeline_.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, meshes.vertices);
-        bind_capture_lists(bindings, 1, c, d);
+        bindings.buffer("Vertices", meshes.vertices);
+        bind_capture_lists(bindings, c, d);
         bindings.push(cmd);
         pipeline_.push_constants(cmd, Push{light.light_from_world, light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth}});

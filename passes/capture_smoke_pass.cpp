@@ -3,19 +3,12 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "passes/volume_pass.h"
+#include "shared/passes/capture_smoke.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/capture_smoke.comp.
-struct Push {
-  glm::mat4 world_from_light;
-  glm::vec4 depth_plane;
-  uint32_t resolution;
-  uint32_t volume_count;
-  uint32_t samples_per_segment;
-  float pad;
-};
+using Push = shared::CaptureSmokePush;  // shaders/shared/passes/capture_smoke.h
 
 }  // namespace
 
@@ -36,8 +29,8 @@ CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string&
         const gpu::Pipeline& pipeline = atlas ? from_atlas_ : from_nanovdb_;
         pipeline.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline);
-        bind_volumes(bindings, volumes, 0, atlas);
-        bind_capture_lists(bindings, 5, c, d);
+        bind_volumes(bindings, volumes, atlas);
+        bind_capture_lists(bindings, c, d);
         bindings.push(c.cmd());
         pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
                                                volumes.volume_count, samples_per_segment, 0.0f});

@@ -2,6 +2,8 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include "shared/passes/capture_sort.h"
+
 namespace avsm::passes {
 
 CaptureSortPass::CaptureSortPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
@@ -18,10 +20,10 @@ CaptureLists CaptureSortPass::add_to_graph(rg::Graph& graph, const std::string& 
       [this, resolution](const CaptureLists& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings(ctx_, pipeline_)
-            .image(0, c.view(d.heads), c.layout(d.heads))
-            .buffer(1, c.buffer(d.nodes))
+            .image("capture_heads", c.view(d.heads), c.layout(d.heads))
+            .buffer("CaptureNodes", c.buffer(d.nodes))
             .push(c.cmd());
-        pipeline_.push_constants(c.cmd(), resolution);
+        pipeline_.push_constants(c.cmd(), shared::CaptureSortPush{resolution});
         pipeline_.dispatch_threads(c.cmd(), resolution, resolution);
       });
 }

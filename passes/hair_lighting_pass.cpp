@@ -5,18 +5,12 @@
 #include "gpu/context.h"
 #include "passes/hair_pass.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/hair_lighting.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors the push constants of shaders/common/hair_lighting.glsl.
-struct Push {
-  glm::vec4 camera_position;
-  uint32_t point_count;
-  uint32_t volume_count;
-  uint32_t light_count;
-  float step_voxels;
-};
+using Push = shared::HairLightingPush;  // shaders/shared/passes/hair_lighting.h
 
 }  // namespace
 
@@ -44,13 +38,13 @@ rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass
         const gpu::Pipeline& pipeline = cached ? cached_ : reference_;
         pipeline.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline);
-        b.buffer(0, hair.points().handle())
-            .buffer(1, hair.tangents().handle())
-            .buffer(2, c.buffer(d.lights))
-            .buffer(3, inputs.lights->handle());
-        inputs.shadows.bind(b, 4, c);
-        bind_volumes(b, volumes, 8, /*with_atlas=*/cached);
-        if (cached) inputs.cache->bind(b, 13, c);
+        b.buffer("Points", hair.points())
+            .buffer("Tangents", hair.tangents())
+            .buffer("VertexLights", c.buffer(d.lights))
+            .buffer("Lights", *inputs.lights);
+        inputs.shadows.bind(b, c);
+        bind_volumes(b, volumes, /*with_atlas=*/cached);
+        if (cached) inputs.cache->bind(b, c);
         b.push(c.cmd());
         pipeline.push_constants(c.cmd(), Push{glm::vec4(camera, 1.0f), hair.point_count(),
                                               inputs.smoke_visible() ? volumes.volume_count : 0u, inputs.light_count,

@@ -13,16 +13,13 @@
 #include "gpu/shader_compiler.h"
 #include "passes/view.h"
 #include "passes/volume_frame_inputs.h"
+#include "shared/hair.h"
 
 namespace avsm::passes {
 
 class HairPass;
 
-// std430, 32 bytes; mirrors struct HairVertexLight in shaders/common/hair_lighting.glsl.
-struct HairVertexLight {
-  glm::vec4 lit;  // rgb: light reaching the fibre, sky included
-  glm::vec4 fog;  // rgb: in-scattering between camera and vertex; a: transmittance
-};
+using shared::HairVertexLight;  // shaders/shared/hair.h
 
 class HairLightingPass {
  public:

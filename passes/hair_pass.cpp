@@ -9,25 +9,13 @@
 #include "gpu/transfer.h"
 #include "passes/opaque_pass.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/hair.h"
 
 namespace avsm::passes {
 
 namespace {
 
-// std430 mirrors of shaders/common/hair_ribbon.glsl and hair.vert.
-struct GpuStrand {
-  glm::vec4 color_opacity;
-  float width;
-  float pad[3];
-};
-static_assert(sizeof(GpuStrand) == sizeof(StrandParameters));  // what StrandCasters document
-struct HairPush {
-  glm::mat4 view_projection;
-  glm::vec4 camera_position;
-  glm::vec2 viewport;
-  uint32_t light_count;
-  float pad;
-};
+using HairPush = shared::HairPush;  // shaders/shared/passes/hair.h
 
 // Central differences inside a strand, one-sided at its ends.
 void add_tangents(const scene::HairGroom& groom, std::vector<glm::vec4>& tangents) {
@@ -62,7 +50,7 @@ HairPass::HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(
 void HairPass::set_scene(const scene::Scene& scene) {
   std::vector<glm::vec4> points, tangents;
   std::vector<glm::uvec2> segments;  // (first point, strand)
-  std::vector<GpuStrand> strands;
+  std::vector<shared::Strand> strands;
   for (const scene::HairGroom& groom : scene.hair) {
     uint32_t point_base = uint32_t(points.size());
     for (const glm::vec3& p : groom.points) points.emplace_back(p, 1.0f);
@@ -105,13 +93,13 @@ rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle col
         const gpu::Pipeline& pipeline = light_per_fragment ? lit_per_fragment_ : lit_per_vertex_;
         pipeline.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline);
-        bindings.buffer(0, points_.handle())
-            .buffer(1, segments_.handle())
-            .buffer(2, strands_.handle())
-            .buffer(8, c.buffer(d.vertex_lights));
+        bindings.buffer("Points", points_)
+            .buffer("Segments", segments_)
+            .buffer("Strands", strands_)
+            .buffer("VertexLights", c.buffer(d.vertex_lights));
         if (light_per_fragment) {
-          bindings.buffer(3, lights.handle());
-          shadows.bind(bindings, 4, c);
+          bindings.buffer("Lights", lights);
+          shadows.bind(bindings, c);
         }
         bindings.push(cmd);
         pipeline.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),

@@ -4,7 +4,6 @@
 
 namespace avsm::passes {
 
-static_assert(sizeof(MapBuildParameters) == 20, "mirrors the build shaders' push constants");
 
 MapBuildPass::MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader,
                            std::string name)
@@ -28,8 +27,10 @@ rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string&
       [this, parameters](const Data& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.image(0, c.view(d.heads), c.layout(d.heads)).buffer(1, c.buffer(d.nodes)).buffer(2, c.buffer(d.map));
-        if (d.counter.valid()) bindings.buffer(3, c.buffer(d.counter));
+        bindings.image("capture_heads", c.view(d.heads), c.layout(d.heads))
+            .buffer("CaptureNodes", c.buffer(d.nodes))
+            .buffer("Map", c.buffer(d.map));
+        if (d.counter.valid()) bindings.buffer("Counter", c.buffer(d.counter));
         bindings.push(c.cmd());
         pipeline_.push_constants(c.cmd(), parameters);
         pipeline_.dispatch_threads(c.cmd(), parameters.resolution, parameters.resolution);

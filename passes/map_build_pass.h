@@ -3,7 +3,7 @@
 // one compute dispatch per light, one thread per texel, with the technique's
 // shader (shaders/passes/avsm_resolve.comp, osm_build.comp: opacity shadow maps,
 // fom_build.comp: Fourier opacity maps, dsm_build.comp: deep shadow maps). All
-// share the push constants below.
+// share one push-constant block.
 #include <rendergraph/graph.h>
 
 #include <string>
@@ -11,16 +11,11 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/capture_lists.h"
+#include "shared/passes/map_build.h"
 
 namespace avsm::passes {
 
-struct MapBuildParameters {
-  uint32_t resolution = 1;
-  uint32_t count = 0;      // slices (osm) or terms (fom)
-  float near_depth = 0.0f;  // the light's caster depth range the map covers
-  float far_depth = 1.0f;
-  float error = 0.0f;       // error threshold (dsm)
-};
+using MapBuildParameters = shared::MapBuildPush;  // shaders/shared/passes/map_build.h
 
 class MapBuildPass {
  public:

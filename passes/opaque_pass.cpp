@@ -6,26 +6,15 @@
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/opaque.h"
 
 namespace avsm::passes {
 
 namespace {
 
-// std430 mirrors of shaders/passes/opaque.vert/.frag.
 using GpuVertex = CasterVertex;  // the captures read the same vertex buffer
-struct GpuMaterial {
-  glm::vec4 base_color;
-  uint32_t alpha_mask;  // 1: discard below alpha_cutoff
-  float alpha_cutoff;
-  uint32_t has_texture;
-  float pad;
-};
-struct OpaquePush {
-  glm::mat4 view_projection;
-  glm::vec4 camera_position;
-  uint32_t material;
-  uint32_t light_count;
-};
+using shared::GpuMaterial;      // shaders/shared/mesh.h
+using OpaquePush = shared::OpaquePush;  // shaders/shared/passes/opaque.h
 
 constexpr glm::vec4 kSkyColor{0.35f, 0.45f, 0.6f, 1.0f};
 
@@ -128,11 +117,11 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
   for (const Draw& draw : draws_) {
     int texture = draw.material < material_textures_.size() ? material_textures_[draw.material] : -1;
     gpu::Bindings bindings(ctx_, pipeline_);
-    bindings.buffer(0, vertices_.handle())
-        .buffer(1, materials_.handle())
-        .buffer(2, lights.handle())
-        .image(3, texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
-    shadows.bind(bindings, 4, c);
+    bindings.buffer("Vertices", vertices_)
+        .buffer("Materials", materials_)
+        .buffer("Lights", lights)
+        .image("base_color_texture", texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    shadows.bind(bindings, c);
     bindings.push(cmd);
     pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                              draw.material, light_count});

@@ -10,16 +10,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "shared/hair.h"
+#include "shared/mesh.h"
+
 namespace avsm::passes {
 
-// One vertex as shaders/passes/capture_opaque.vert reads it (std430, 32 bytes); the
-// capture uses the position only, the camera passes the rest.
-struct CasterVertex {
-  float position[3];
-  float normal[3];
-  float uv[2];
-};
-static_assert(sizeof(CasterVertex) == 32);
+// One vertex as the opaque shaders read it (shaders/shared/mesh.h): the capture uses
+// the position only, the camera passes the rest.
+using shared::CasterVertex;
 
 // A vkCmdDrawIndexed range of the shared index buffer.
 struct MeshDraw {
@@ -36,19 +34,12 @@ struct MeshCasters {
   bool empty() const { return draws.empty() || vertices == VK_NULL_HANDLE || indices == VK_NULL_HANDLE; }
 };
 
-// std430 mirrors of shaders/common/hair_ribbon.glsl's buffers. A strand is a polyline of
-// points; each segment joins point `first_point` and the next one.
-struct StrandSegment {
-  uint32_t first_point;
-  uint32_t strand;
-};
-struct StrandParameters {
-  float color[3];
-  float opacity;  // per strand crossing; the capture stores 1 - opacity
-  float width;    // world units (ribbons are widened to one map texel with opacity scaled down)
-  float pad[3];
-};
-static_assert(sizeof(StrandParameters) == 32);
+// Strands as the hair shaders read them (shaders/shared/hair.h): a strand is a polyline
+// of points; each segment joins point `first_point` and the next one. A strand's
+// colour_opacity.a is its opacity per crossing (the capture stores 1 - opacity); its
+// width is in world units (ribbons are widened to one map texel, opacity scaled down).
+using shared::StrandSegment;
+using StrandParameters = shared::Strand;
 
 // Hair: ribbons facing the light.
 struct StrandCasters {

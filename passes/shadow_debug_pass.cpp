@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "shared/passes/shadow_debug.h"
+
 namespace avsm::passes {
 
 ShadowDebugPass::ShadowDebugPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
@@ -40,10 +42,10 @@ void ShadowDebugPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& execu
         [this, inputs, light](const Data& d, rg::PassContext& c) {
           pipeline_.bind(c.cmd());
           gpu::Bindings bindings(ctx_, pipeline_);
-          bindings.image(0, c.view(d.image), c.layout(d.image));
-          inputs.bind(bindings, 1, c);
+          bindings.image("debug_image", c.view(d.image), c.layout(d.image));
+          inputs.bind(bindings, c);
           bindings.push(c.cmd());
-          pipeline_.push_constants(c.cmd(), light);
+          pipeline_.push_constants(c.cmd(), shared::ShadowDebugPush{light});
           const rg::TextureDesc& size = c.desc(d.image);
           pipeline_.dispatch_threads(c.cmd(), size.width, size.height);
         });

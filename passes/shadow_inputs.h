@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 
+#include "shared/shadow.h"
+
 namespace rg {
 class PassContext;
 }
@@ -20,28 +22,11 @@ class Bindings;
 
 namespace avsm::passes {
 
-inline constexpr uint32_t kMaxShadowedLights = 4;  // AVSM_MAX_SHADOWED_LIGHTS in shadow_lookup.glsl
+using shared::GpuShadow;  // shaders/shared/shadow.h
+using shared::kMaxShadowedLights;
+using shared::kNoReference;
 
-// std430, 160 bytes; mirrors struct GpuShadow in shaders/common/shadow_lookup.glsl.
-struct GpuShadow {
-  glm::mat4 light_from_world;
-  glm::vec4 depth_plane;
-  glm::vec4 texel_camera;     // x + y * depth: texel world size; z: far depth; w: camera radians per pixel
-  glm::vec4 camera_position;  // w: receivers' normal offset in texels
-  glm::vec4 depth_range;      // x, y: the light's caster depth range (osm, fom); z: osm/fom lookup bias
-  uint32_t technique;         // 0 none, 1 avsm, 2 uncompressed, 3 osm, 4 fom, 5 dsm
-  uint32_t node_count;
-  uint32_t resolution;
-  uint32_t mip_count;
-  uint32_t filter_mode;       // 0 point, 1 bilinear, 2 trilinear
-  uint32_t exponential;
-  uint32_t slot;
-  uint32_t reference;         // index of this light's exact-reference entry, or kNoReference
-};
-static_assert(sizeof(GpuShadow) == 160);
-inline constexpr uint32_t kNoReference = ~0u;
-
-// What a camera pass reads to look shadows up (bindings AVSM_SHADOW_BINDING .. +3).
+// What a camera pass reads to look shadows up (shaders/common/shadow_lookup.glsl).
 struct ShadowInputs {
   VkBuffer parameters = VK_NULL_HANDLE;  // one GpuShadow per scene light
   std::array<rg::BufferHandle, kMaxShadowedLights> maps{};
@@ -52,10 +37,9 @@ struct ShadowInputs {
 
   // Declares the reads in a camera pass's setup.
   void declare_reads(rg::PassBuilder& builder) const;
-  // In the pass's execute step: the parameters at `first_binding`, then the maps, the
-  // list heads and the list nodes (each an array of kMaxShadowedLights) at +1, +2, +3,
-  // matching AVSM_SHADOW_BINDING = first_binding in the shader.
-  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const;
+  // In the pass's execute step: the parameters, then the maps, the list heads and the
+  // list nodes (each an array of kMaxShadowedLights), by their shader names.
+  void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
 };
 
 }  // namespace avsm::passes

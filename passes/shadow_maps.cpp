@@ -25,9 +25,7 @@ uint32_t technique_code(scene::ShadowTechnique technique) {
   return 0u;
 }
 
-// Deep shadow maps: map words before the node pool (dsm_build.comp), and the
-// exact-curve nodes kept before compression.
-uint64_t dsm_pool_base_words(uint32_t resolution) { return (4 + 2 * uint64_t(resolution) * resolution + 3) & ~3ull; }
+// Deep shadow maps: the exact-curve nodes kept before compression.
 constexpr uint32_t kDsmInputNodes = 16;
 
 // Planes of an opacity shadow map (`slices`, default 32) or terms of a Fourier
@@ -90,20 +88,20 @@ void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
   }
 }
 
-void ShadowInputs::bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const {
-  std::array<VkBuffer, kMaxShadowedLights> map_buffers, node_buffers;
+void ShadowInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  std::array<gpu::BufferRange, kMaxShadowedLights> map_buffers, node_buffers;
   std::array<VkImageView, kMaxShadowedLights> head_views;
   std::array<VkImageLayout, kMaxShadowedLights> head_layouts;
   for (uint32_t slot = 0; slot < kMaxShadowedLights; ++slot) {
-    map_buffers[slot] = maps[slot].valid() ? context.buffer(maps[slot]) : unused_buffer;
-    node_buffers[slot] = nodes[slot].valid() ? context.buffer(nodes[slot]) : unused_buffer;
+    map_buffers[slot] = maps[slot].valid() ? context.buffer(maps[slot]) : gpu::BufferRange(unused_buffer);
+    node_buffers[slot] = nodes[slot].valid() ? context.buffer(nodes[slot]) : gpu::BufferRange(unused_buffer);
     head_views[slot] = heads[slot].valid() ? context.view(heads[slot]) : unused_heads;
     head_layouts[slot] = heads[slot].valid() ? context.layout(heads[slot]) : VK_IMAGE_LAYOUT_GENERAL;
   }
-  bindings.buffer(first_binding, parameters)
-      .buffer_array(first_binding + 1, map_buffers)
-      .image_array(first_binding + 2, head_views, head_layouts)
-      .buffer_array(first_binding + 3, node_buffers);
+  bindings.buffer("ShadowParameters", parameters)
+      .buffer_array("AvsmMap", map_buffers)
+      .image_array("shadow_list_heads", head_views, head_layouts)
+      .buffer_array("ShadowListNodes", node_buffers);
 }
 
 UnshadowedInputs::UnshadowedInputs(gpu::Context& ctx) {
@@ -199,7 +197,7 @@ void ShadowMaps::create_map(uint32_t light) {
     case scene::ShadowTechnique::avsm: bytes = state.layout.bytes(); break;
     case scene::ShadowTechnique::osm: bytes = texels * technique_count(settings) * 4; break;  // K planes
     case scene::ShadowTechnique::fom: bytes = texels * technique_count(settings) * 8; break;  // K (a, b) pairs
-    case scene::ShadowTechnique::dsm: bytes = (dsm_pool_base_words(state.layout.resolution) + 2 * state.pool_nodes) * 4; break;
+    case scene::ShadowTechnique::dsm: bytes = (uint64_t(shared::dsm_pool_base(state.layout.resolution)) + 2 * state.pool_nodes) * 4; break;
   }
   // Transfer source too, so tests and tools can read a map back.
   state.map = gpu::Buffer::create(

@@ -65,11 +65,10 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& execu
       [this, shadows](const Data& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, points_.handle()).buffer(1, c.buffer(d.results));
-        shadows.bind(bindings, 2, c);
+        bindings.buffer("Points", points_).buffer("Results", c.buffer(d.results));
+        shadows.bind(bindings, c);
         bindings.push(c.cmd());
-        const uint32_t push[3] = {point_count_, light_count_, uint32_t(mode_)};
-        pipeline_.push_constants(c.cmd(), push, sizeof(push));
+        pipeline_.push_constants(c.cmd(), shared::ShadowProbePush{point_count_, light_count_, uint32_t(mode_)});
         pipeline_.dispatch_threads(c.cmd(), point_count_);
       });
 }

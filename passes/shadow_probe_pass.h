@@ -17,6 +17,7 @@
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/shadow_probe.h"
 
 namespace avsm::passes {
 
@@ -51,7 +52,7 @@ class ShadowProbePass {
   std::vector<TexelSampleResult> texel_results() const;
 
  private:
-  enum class Mode : uint32_t { points = 0, texel_curves = 1 };
+  enum class Mode : uint32_t { points = shared::kProbePoints, texel_curves = shared::kProbeTexelCurves };
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Buffer points_, results_;

@@ -5,17 +5,12 @@
 #include <algorithm>
 #include <cstring>
 
+#include "shared/passes/shadow_quality_hair.h"
+
 namespace avsm::passes {
 namespace {
 
-// Mirrors shaders/passes/shadow_quality_hair.comp.
-struct Push {
-  glm::mat4 view_projection;
-  glm::uvec2 image_size;
-  uint32_t receiver_count;
-  uint32_t stride;
-  uint32_t light_count;
-};
+using Push = shared::ShadowQualityHairPush;  // shaders/shared/passes/shadow_quality_hair.h
 
 }  // namespace
 
@@ -57,10 +52,10 @@ void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor&
       [this, view, shadows](const Data& data, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer(0, points_->handle())
-            .image(1, c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
-            .buffer(2, c.buffer(data.results));
-        shadows.bind(bindings, 3, c);
+        bindings.buffer("Points", *points_)
+            .image("depth_texture", c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
+            .buffer("Results", c.buffer(data.results));
+        shadows.bind(bindings, c);
         bindings.push(c.cmd());
         pipeline_.push_constants(c.cmd(), Push{view.view_projection, {view.width, view.height}, receiver_count_,
                                                stride_, light_count_});

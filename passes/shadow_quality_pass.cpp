@@ -7,19 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "shared/passes/shadow_quality.h"
+
 namespace avsm::passes {
 namespace {
 
-// Mirrors the push constants of shaders/passes/shadow_quality.comp.
-struct Push {
-  glm::mat4 inverse_view_projection;
-  glm::vec3 camera_position;
-  uint32_t volume_count;
-  glm::uvec2 image_size;
-  uint32_t light_count;
-  uint32_t smoke_samples;
-};
-static_assert(sizeof(Push) == 96);
+using Push = shared::ShadowQualityPush;  // shaders/shared/passes/shadow_quality.h
 
 }  // namespace
 
@@ -69,11 +62,11 @@ void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& exe
       [this, view, &lights, light_count, shadows, volume_data](const Data& data, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.image(0, c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
-            .buffer(1, c.buffer(data.results))
-            .buffer(5, lights.handle());
-        bind_volumes(bindings, volume_data, 2, /*with_atlas=*/false);
-        shadows.bind(bindings, 6, c);
+        bindings.image("depth_texture", c.view(data.depth), c.layout(data.depth), depth_sampler_.handle())
+            .buffer("Errors", c.buffer(data.results))
+            .buffer("Lights", lights);
+        bind_volumes(bindings, volume_data, /*with_atlas=*/false);
+        shadows.bind(bindings, c);
         bindings.push(c.cmd());
         const Push push{view.inverse_view_projection, view.camera_position, volume_data.volume_count, {width_, height_},
                         light_count, kSmokeSamplesPerVolume};

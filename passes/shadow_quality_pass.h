@@ -19,17 +19,11 @@
 #include "passes/shadow_maps.h"
 #include "passes/view.h"
 #include "passes/volume_pass.h"
+#include "shared/passes/shadow_quality.h"
 
 namespace avsm::passes {
 
-// One light's errors at one pixel; mirrors a vec4 of shadow_quality.comp's output.
-struct PixelShadowError {
-  float surface;      // |T - T_ref| at the opaque surface; < 0: no surface the light reaches
-  float smoke_sum;    // sum of |T - T_ref| over the pixel's smoke receivers
-  float smoke_max;    // their maximum (0 when there are none)
-  float smoke_count;  // how many there are
-};
-static_assert(sizeof(PixelShadowError) == 16);
+using shared::PixelShadowError;  // shaders/shared/passes/shadow_quality.h
 
 class ShadowQualityPass {
  public:

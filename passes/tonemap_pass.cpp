@@ -2,6 +2,8 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include "shared/passes/tonemap.h"
+
 namespace avsm::passes {
 
 TonemapPass::TonemapPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
@@ -21,10 +23,10 @@ rg::TextureHandle TonemapPass::add_to_graph(rg::Graph& graph, rg::TextureHandle 
         const rg::TextureDesc& size = c.desc(d.ldr);
         pipeline_.bind(c.cmd());
         gpu::Bindings(ctx_, pipeline_)
-            .image(0, c.view(d.hdr), c.layout(d.hdr))
-            .image(1, c.view(d.ldr), c.layout(d.ldr))
+            .image("hdr", c.view(d.hdr), c.layout(d.hdr))
+            .image("ldr", c.view(d.ldr), c.layout(d.ldr))
             .push(c.cmd());
-        pipeline_.push_constants(c.cmd(), exposure);
+        pipeline_.push_constants(c.cmd(), shared::TonemapPush{exposure});
         pipeline_.dispatch_threads(c.cmd(), size.width, size.height);
       });
   return targets.ldr;

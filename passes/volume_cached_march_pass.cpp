@@ -6,25 +6,13 @@
 #include <string>
 
 #include "gpu/context.h"
+#include "shared/passes/volume_cached_march.h"
 
 namespace avsm::passes {
 namespace {
 
-constexpr uint32_t kFlagNoMajorantSkipping = 1u;
 
-// Mirrors the push constants of shaders/passes/volume_cached_march.comp.
-struct Push {
-  glm::mat4 inverse_view_projection;
-  glm::vec3 camera_position;
-  uint32_t volume_count;
-  glm::uvec2 output_size;
-  glm::uvec2 march_size;
-  uint32_t divisor;
-  float step_voxels;
-  uint32_t flags;
-  uint32_t light_count;
-};
-static_assert(sizeof(Push) == 112);
+using Push = shared::VolumeCachedMarchPush;  // shaders/shared/passes/volume_cached_march.h
 
 }  // namespace
 
@@ -59,16 +47,16 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
         const gpu::Pipeline& pipeline = inputs.map_lookups() ? with_lookups_ : cached_;
         pipeline.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline);
-        b.image(0, c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
-            .image(1, c.view(d.scattering), c.layout(d.scattering))
-            .image(2, c.view(d.distance), c.layout(d.distance));
-        inputs.bind(b, 3, c);
+        b.image("depth_texture", c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
+            .image("scattering_image", c.view(d.scattering), c.layout(d.scattering))
+            .image("distance_image", c.view(d.distance), c.layout(d.distance));
+        inputs.bind(b, c);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position,
                                               inputs.volumes->volume_count(), {view.width, view.height},
                                                {width, height}, divisor, inputs.shading.step_voxels,
-                                               skipping ? 0u : kFlagNoMajorantSkipping, inputs.light_count});
+                                               skipping ? 0u : shared::kMarchNoMajorantSkipping, inputs.light_count});
         pipeline.dispatch_threads(c.cmd(), width, height);
       });
   return {targets.scattering, targets.distance, divisor};

@@ -12,6 +12,7 @@
 
 #include "gpu/resources.h"
 #include "scene/volume.h"
+#include "shared/volume.h"
 
 namespace avsm::gpu {
 class Context;
@@ -19,7 +20,7 @@ class Context;
 
 namespace avsm::passes {
 
-struct GpuVolume;
+using shared::GpuVolume;  // shaders/shared/volume.h
 
 class VolumeDensityAtlas {
  public:

@@ -11,9 +11,9 @@ void VolumeLightingCache::declare_reads(rg::PassBuilder& builder) const {
   builder.read(layouts, rg::Usage::StorageRead);
 }
 
-void VolumeLightingCache::bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const {
-  bindings.buffer(first_binding, context.buffer(layouts))
-      .image(first_binding + 1, context.view(image), context.layout(image), sampler);
+void VolumeLightingCache::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  bindings.buffer("CacheLayouts", context.buffer(layouts))
+      .image("lighting_cache", context.view(image), context.layout(image), sampler);
 }
 
 void VolumeFrameInputs::declare_reads(rg::PassBuilder& builder) const {
@@ -21,12 +21,12 @@ void VolumeFrameInputs::declare_reads(rg::PassBuilder& builder) const {
   shadows.declare_reads(builder);
 }
 
-void VolumeFrameInputs::bind(gpu::Bindings& bindings, uint32_t first, const rg::PassContext& context) const {
-  bind_volumes(bindings, volumes->casters(), first, /*with_atlas=*/true);
-  cache.value().bind(bindings, first + 5, context);
+void VolumeFrameInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  bind_volumes(bindings, volumes->casters(), /*with_atlas=*/true);
+  cache.value().bind(bindings, context);
   if (!map_lookups()) return;
-  bindings.buffer(first + 7, lights->handle());
-  shadows.bind(bindings, first + 8, context);
+  bindings.buffer("Lights", *lights);
+  shadows.bind(bindings, context);
 }
 
 }  // namespace avsm::passes

@@ -17,14 +17,13 @@
 namespace avsm::passes {
 
 // One frame's lighting cache (passes/volume_lighting_cache_pass.h): the image, the
-// per-volume layouts, and the sampler its readers filter it with
-// (AVSM_CACHE_BINDING: layouts, +1: image).
+// per-volume layouts, and the sampler its readers filter it with.
 struct VolumeLightingCache {
   rg::TextureHandle image;
   rg::BufferHandle layouts;
   VkSampler sampler = VK_NULL_HANDLE;
   void declare_reads(rg::PassBuilder& builder) const;
-  void bind(gpu::Bindings& bindings, uint32_t first_binding, const rg::PassContext& context) const;
+  void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
 };
 
 struct VolumeFrameInputs {
@@ -41,10 +40,9 @@ struct VolumeFrameInputs {
   bool map_lookups() const { return volumes->needs_map_lookups(); }
   // The cache (when there is one) and the shadow maps.
   void declare_reads(rg::PassBuilder& builder) const;
-  // For the fast march and composite: volumes at `first` .. +4, the cache at +5, +6,
-  // and with map lookups the lights at +7 and the shadow maps from +8 (the shaders'
-  // AVSM_*_BINDING values). Needs the cache.
-  void bind(gpu::Bindings& bindings, uint32_t first, const rg::PassContext& context) const;
+  // For the fast march and composite: the volumes with their atlas, the cache and, with
+  // map lookups, the lights and the shadow maps. Needs the cache.
+  void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
 };
 
 }  // namespace avsm::passes

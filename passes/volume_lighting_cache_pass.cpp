@@ -11,17 +11,12 @@
 #include "gpu/context.h"
 #include "passes/lights.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/volume_lighting_cache.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors the push constants of shaders/passes/volume_lighting_cache.comp.
-struct Push {
-  glm::vec3 camera_position;
-  uint32_t volume_count;
-  glm::uvec3 image_size;
-  uint32_t light_count;
-};
+using Push = shared::VolumeLightingCachePush;  // shaders/shared/passes/volume_lighting_cache.h
 
 float distance_to_box(const glm::vec3& p, const scene::Bounds& box) {
   const glm::vec3 outside = glm::max(glm::max(box.min - p, p - box.max), glm::vec3(0.0f));
@@ -150,10 +145,10 @@ void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, const View& view, c
         const VolumeCasters volumes = inputs.volumes->casters();
         pipeline_.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline_);
-        b.image(0, c.view(d.image), c.layout(d.image));
-        bind_volumes(b, volumes, 1, /*with_atlas=*/false);
-        b.buffer(4, c.buffer(d.layouts)).buffer(5, inputs.lights->handle());
-        inputs.shadows.bind(b, 6, c);
+        b.image("cache_image", c.view(d.image), c.layout(d.image));
+        bind_volumes(b, volumes, /*with_atlas=*/false);
+        b.buffer("CacheLayouts", c.buffer(d.layouts)).buffer("Lights", *inputs.lights);
+        inputs.shadows.bind(b, c);
         b.push(c.cmd());
         pipeline_.push_constants(c.cmd(), Push{camera, volumes.volume_count, size, inputs.light_count});
         pipeline_.dispatch_threads(c.cmd(), size.x, size.y, size.z);

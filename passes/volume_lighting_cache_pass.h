@@ -27,20 +27,11 @@
 #include "passes/view.h"
 #include "passes/volume_frame_inputs.h"
 #include "passes/volume_pass.h"
+#include "shared/volume.h"
 
 namespace avsm::passes {
 
-// std430, 112 bytes; mirrors struct GpuCacheLayout in shaders/common/volume_lighting_cache.glsl.
-struct GpuCacheLayout {
-  glm::mat4 world_from_cell;
-  glm::vec3 cell_origin;       // index position of cell coordinate 0
-  int32_t first_slice;         // z of the volume's first slice in the cache image
-  glm::vec3 cells_per_voxel;   // cell coordinates per index unit
-  int32_t pad0 = 0;
-  glm::ivec3 dims;             // cells per axis
-  int32_t pad1 = 0;
-};
-static_assert(sizeof(GpuCacheLayout) == 112);
+using shared::GpuCacheLayout;  // shaders/shared/volume.h
 
 class VolumeLightingCachePass {
  public:

@@ -14,6 +14,7 @@
 #include "gpu/transfer.h"
 #include "passes/lights.h"
 #include "passes/shadow_maps.h"
+#include "shared/passes/volume_march.h"
 
 namespace avsm::passes {
 namespace {
@@ -23,18 +24,8 @@ constexpr size_t kGridAlignment = 32;
 // PNanoVDB in GLSL addresses its buffer with 32-bit byte offsets.
 constexpr uint64_t kMaxGridBytes = uint64_t(std::numeric_limits<uint32_t>::max()) + 1;
 
-constexpr uint32_t kFlagNoMajorantSkipping = 1u;
 
-// Mirrors the push constants of shaders/passes/volume_march.comp.
-struct Push {
-  glm::mat4 inverse_view_projection;
-  glm::vec3 camera_position;
-  uint32_t volume_count;
-  glm::uvec2 image_size;
-  uint32_t light_count;
-  uint32_t flags;
-};
-static_assert(sizeof(Push) == 96);
+using Push = shared::VolumeMarchPush;  // shaders/shared/passes/volume_march.h
 
 std::string label(const scene::Volume& volume, size_t index) {
   return "volume " + std::to_string(index) + (volume.name.empty() ? "" : " '" + volume.name + "'");
@@ -153,11 +144,13 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   volume_count_ = uint32_t(volumes.size());
 }
 
-void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, uint32_t first, bool with_atlas) {
-  bindings.buffer(first, volumes.grids).buffer(first + 1, volumes.majorants).buffer(first + 2, volumes.parameters);
+void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool with_atlas) {
+  bindings.buffer("VolumeNanoVdb", volumes.grids)
+      .buffer("VolumeMajorants", volumes.majorants)
+      .buffer("VolumeParameters", volumes.parameters);
   if (with_atlas)
-    bindings.image(first + 3, volumes.atlas, VolumeDensityAtlas::kLayout, volumes.atlas_sampler)
-        .buffer(first + 4, volumes.brick_slots);
+    bindings.image("density_atlas", volumes.atlas, VolumeDensityAtlas::kLayout, volumes.atlas_sampler)
+        .buffer("VolumeBrickSlots", volumes.brick_slots);
 }
 
 VolumeCasters VolumePass::casters() const {
@@ -216,16 +209,16 @@ void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::Texture
   const rg::TextureDesc& size = c.desc(color);
   pipeline_.bind(c.cmd());
   gpu::Bindings bindings(ctx_, pipeline_);
-  bindings.image(0, c.view(color), c.layout(color))
-      .image(1, c.view(depth), c.layout(depth), depth_sampler_.handle())
-      .buffer(2, grids_.handle())
-      .buffer(3, majorants_.handle())
-      .buffer(4, parameters_.handle())
-      .buffer(5, lights.handle());
-  shadows.bind(bindings, 6, c);
+  bindings.image("color_image", c.view(color), c.layout(color))
+      .image("depth_texture", c.view(depth), c.layout(depth), depth_sampler_.handle())
+      .buffer("VolumeNanoVdb", grids_)
+      .buffer("VolumeMajorants", majorants_)
+      .buffer("VolumeParameters", parameters_)
+      .buffer("Lights", lights);
+  shadows.bind(bindings, c);
   bindings.push(c.cmd());
   Push push{view.inverse_view_projection, view.camera_position, volume_count_, {size.width, size.height},
-            light_count, majorant_skipping ? 0u : kFlagNoMajorantSkipping};
+            light_count, majorant_skipping ? 0u : shared::kMarchNoMajorantSkipping};
   pipeline_.push_constants(c.cmd(), push);
   pipeline_.dispatch_threads(c.cmd(), size.width, size.height);
 }

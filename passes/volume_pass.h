@@ -35,39 +35,18 @@
 #include "passes/view.h"
 #include "passes/volume_density_atlas.h"
 #include "scene/volume.h"
+#include "shared/volume.h"
 
 namespace avsm::passes {
 
-// std430, 176 bytes; mirrors struct GpuVolume in shaders/common/volume.glsl.
-struct GpuVolume {
-  glm::mat4 index_from_world;
-  glm::vec3 support_min;        // index space: where the trilinear density can be non-zero
-  float step_length;            // world units between samples
-  glm::vec3 support_max;
-  float extinction_scale;       // sigma_t = extinction_scale * density, per world unit
-  glm::vec3 albedo;             // sigma_s = albedo * sigma_t
-  uint32_t grid_byte_offset;    // start of this volume's NanoVDB grid in the shared buffer
-  glm::ivec3 majorant_origin;   // index coordinate of the corner of brick (0, 0, 0)
-  int32_t brick_size;           // voxels per brick edge
-  glm::ivec3 majorant_dims;     // bricks per axis, x fastest
-  uint32_t majorant_offset;     // start of this volume's bricks in the shared majorant (and slot) buffer
-  glm::ivec3 atlas_slots;       // this volume's region of the density atlas, slots per axis
-  int32_t atlas_first_slice;    // atlas z of the region's first voxel slice
-  float atlas_density_scale;    // density = atlas value * this
-  float voxel_size;             // smallest voxel edge, world units
-  float pad[2];
-};
-static_assert(sizeof(GpuVolume) == 176);
-static_assert(offsetof(GpuVolume, step_length) == 76 && offsetof(GpuVolume, grid_byte_offset) == 108 &&
-              offsetof(GpuVolume, majorant_offset) == 140 && offsetof(GpuVolume, atlas_first_slice) == 156 &&
-              offsetof(GpuVolume, voxel_size) == 164);
+using shared::GpuVolume;  // shaders/shared/volume.h
 
 using scene::VolumeShading;
 
-// Binds the volumes for a pass that reads them: the NanoVDB grids, the majorants and
-// the parameter blocks at `first` .. +2, and with the atlas the density atlas at +3
-// and its brick slots at +4 (AVSM_VOLUME_BINDING_* = first .. in the shader).
-void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, uint32_t first, bool with_atlas);
+// Binds the volumes for a pass that reads them (shaders/common/volume.glsl): the NanoVDB
+// grids, the majorants and the parameter blocks, and with the atlas the density atlas
+// and its brick slots.
+void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool with_atlas);
 
 // What the lighting cache needs of one volume on the CPU (passes/volume_lighting_cache_pass.h).
 struct VolumeBox {

@@ -3,24 +3,12 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/context.h"
+#include "shared/passes/volume_upsample.h"
 
 namespace avsm::passes {
 namespace {
 
-// Mirrors the push constants of shaders/passes/volume_upsample.comp.
-struct Push {
-  glm::mat4 inverse_view_projection;
-  glm::vec3 camera_position;
-  uint32_t divisor;
-  glm::uvec2 output_size;
-  glm::uvec2 march_size;
-  uint32_t volume_count;
-  float step_voxels;
-  uint32_t flags;
-  uint32_t light_count;
-};
-static_assert(sizeof(Push) == 112);
-constexpr uint32_t kFlagNoMajorantSkipping = 1u;
+using Push = shared::VolumeUpsamplePush;  // shaders/shared/passes/volume_upsample.h
 
 }  // namespace
 
@@ -51,17 +39,17 @@ rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::Texture
         const gpu::Pipeline& pipeline = inputs.map_lookups() ? with_lookups_ : cached_;
         pipeline.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline);
-        b.image(0, c.view(d.color), c.layout(d.color))
-            .image(1, c.view(d.depth), c.layout(d.depth), nearest_.handle())
-            .image(2, c.view(d.scattering), c.layout(d.scattering), nearest_.handle())
-            .image(3, c.view(d.distance), c.layout(d.distance), nearest_.handle());
-        inputs.bind(b, 4, c);
+        b.image("color_image", c.view(d.color), c.layout(d.color))
+            .image("depth_texture", c.view(d.depth), c.layout(d.depth), nearest_.handle())
+            .image("scattering_texture", c.view(d.scattering), c.layout(d.scattering), nearest_.handle())
+            .image("distance_texture", c.view(d.distance), c.layout(d.distance), nearest_.handle());
+        inputs.bind(b, c);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, divisor,
                                                {view.width, view.height}, {march_size.width, march_size.height},
                                                inputs.volumes->volume_count(), inputs.shading.step_voxels,
-                                               skipping ? 0u : kFlagNoMajorantSkipping, inputs.light_count});
+                                               skipping ? 0u : shared::kMarchNoMajorantSkipping, inputs.light_count});
         pipeline.dispatch_threads(c.cmd(), view.width, view.height);
       });
   return targets.color;

@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   cmake g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools glslang-dev spirv-tools
+  glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev
   libgtest-dev assimp-testmodels

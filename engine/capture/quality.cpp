@@ -243,7 +243,7 @@ std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& 
   if (!map || technique != scene::ShadowTechnique::avsm) return {};
   const passes::AvsmMapLayout& layout = shadows.map_layout(light);
   const uint32_t groups = layout.nodes / 4;
-  const uint64_t base = layout.level_offset(0) + (uint64_t(y) * layout.resolution + x) * layout.vec4s_per_texel();
+  const uint64_t base = layout.texel_base(0, x, y);
   const std::vector<glm::vec4> curve = read_vec4s(ctx, map, base, layout.vec4s_per_texel());
   std::vector<CurveNode> nodes;
   for (uint32_t i = 0; i < layout.nodes; ++i) {

@@ -10,6 +10,7 @@
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/vk_check.h"
+#include "shared/gpu/spin.h"
 
 namespace avsm::gpu {
 
@@ -87,10 +88,7 @@ std::vector<ScopeTiming> GpuTimer::read_scopes() const {
 
 // --------------------------------------------------------------- calibration
 
-struct SpinPush {
-  uint32_t iterations;
-  uint32_t count;
-};
+using shared::SpinPush;  // shaders/shared/gpu/spin.h
 
 TimestampCalibration calibrate_timestamps(const Context& ctx, const ShaderLibrary& shaders) {
   TimestampCalibration result;
@@ -114,7 +112,7 @@ TimestampCalibration calibrate_timestamps(const Context& ctx, const ShaderLibrar
       timer.begin_frame(cmd);
       uint32_t scope = timer.begin_scope(cmd, "spin");
       spin.bind(cmd);
-      Bindings(ctx, spin).buffer(0, values.handle()).push(cmd);
+      Bindings(ctx, spin).buffer("Values", values).push(cmd);
       spin.push_constants(cmd, SpinPush{iterations, invocations});
       spin.dispatch_threads(cmd, invocations);
       timer.end_scope(cmd, scope);

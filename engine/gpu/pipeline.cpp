@@ -83,7 +83,7 @@ Pipeline Pipeline::copy_sharing() const {
   p.set_layout_ = set_layout_;
   p.bind_point_ = bind_point_;
   p.stages_ = stages_;
-  p.has_push_constants_ = has_push_constants_;
+  p.push_block_ = push_block_;
   p.bindings_ = bindings_;
   p.local_size_ = local_size_;
   p.name_ = name_;
@@ -144,9 +144,10 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
   objects_ = std::make_shared<Objects>();
   objects_->ctx = &ctx;
   // Merge bindings across stages; the same binding must mean the same thing everywhere.
+  check_shared_structs(name_, stages);
   for (const ShaderReflection& stage : stages) {
     stages_ |= stage.stage;
-    has_push_constants_ |= stage.uses_push_constants;
+    if (stage.push_constants) push_block_ = stage.push_constants->name;
     for (const DescriptorBinding& b : stage.bindings) {
       if (b.set != 0)
         throw std::runtime_error("pipeline '" + name_ + "': binding '" + b.name + "' uses set " +
@@ -154,10 +155,13 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
       bool merged = false;
       for (DescriptorBinding& existing : bindings_)
         if (existing.binding == b.binding) {
-          if (existing.type != b.type || existing.count != b.count)
-            throw std::runtime_error("pipeline '" + name_ + "': binding " + std::to_string(b.binding) +
-                                     " differs between stages");
+          if (existing.type != b.type || existing.count != b.count || existing.name != b.name)
+            throw InterfaceError("pipeline '" + name_ + "': binding " + std::to_string(b.binding) + " ('" + b.name +
+                                 "') differs between stages");
           merged = true;
+        } else if (existing.name == b.name) {
+          throw InterfaceError("pipeline '" + name_ + "': '" + b.name + "' names bindings " +
+                               std::to_string(existing.binding) + " and " + std::to_string(b.binding));
         }
       if (!merged) bindings_.push_back(b);
     }
@@ -181,7 +185,7 @@ void Pipeline::create_layout(const Context& ctx, const std::vector<ShaderReflect
   VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layout_info.setLayoutCount = 1;
   layout_info.pSetLayouts = &set_layout_;
-  layout_info.pushConstantRangeCount = has_push_constants_ ? 1 : 0;
+  layout_info.pushConstantRangeCount = push_block_.empty() ? 0 : 1;
   layout_info.pPushConstantRanges = &range;
   VK_CHECK(vkCreatePipelineLayout(ctx.device(), &layout_info, nullptr, &layout_));
   objects_->layout = layout_;
@@ -324,7 +328,7 @@ Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
     set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
     bind_point_ = other.bind_point_;
     stages_ = other.stages_;
-    has_push_constants_ = other.has_push_constants_;
+    push_block_ = std::move(other.push_block_);
     bindings_ = std::move(other.bindings_);
     local_size_ = other.local_size_;
     name_ = std::move(other.name_);
@@ -341,9 +345,11 @@ void Pipeline::release() {
 
 void Pipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
 
-void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
-  if (!has_push_constants_) throw std::runtime_error("pipeline '" + name_ + "' declares no push constants");
-  vkCmdPushConstants(cmd, layout_, stages_, 0, bytes, data);
+void Pipeline::push_constants(VkCommandBuffer cmd, const StructLayout& layout, const void* data) const {
+  if (push_block_ != layout.name)
+    throw InterfaceError("pipeline '" + name_ + "': pushed " + layout.name + ", but its shaders' push constants are " +
+                         (push_block_.empty() ? std::string("none") : push_block_));
+  vkCmdPushConstants(cmd, layout_, stages_, 0, layout.size, data);
 }
 
 void Pipeline::dispatch_threads(VkCommandBuffer cmd, uint32_t x, uint32_t y, uint32_t z) const {
@@ -351,16 +357,21 @@ void Pipeline::dispatch_threads(VkCommandBuffer cmd, uint32_t x, uint32_t y, uin
   vkCmdDispatch(cmd, groups(x, local_size_[0]), groups(y, local_size_[1]), groups(z, local_size_[2]));
 }
 
-const DescriptorBinding& Pipeline::binding(uint32_t index) const {
+const DescriptorBinding& Pipeline::binding(std::string_view name) const {
   for (const DescriptorBinding& b : bindings_)
-    if (b.binding == index) return b;
-  throw std::runtime_error("pipeline '" + name_ + "' has no binding " + std::to_string(index));
+    if (b.name == name) return b;
+  throw InterfaceError("pipeline '" + name_ + "' has no binding named '" + std::string(name) + "'");
 }
 
 // ---------------------------------------------------------------- Bindings
 
+void Bindings::fail(const DescriptorBinding& binding, const std::string& problem) const {
+  throw InterfaceError("pipeline '" + pipeline_.name() + "': binding '" + binding.name + "' (" +
+                       std::to_string(binding.binding) + ") " + problem);
+}
+
 // Infos are stored in vectors reserved up front, so the pointers the writes keep stay valid.
-VkWriteDescriptorSet& Bindings::add(uint32_t binding, uint32_t count) {
+VkWriteDescriptorSet& Bindings::add(const DescriptorBinding& binding, uint32_t count) {
   if (writes_.size() == kMaxBindingsPerPush) throw std::runtime_error("too many bindings in one push");
   if (buffers_.capacity() < kMaxInfosPerPush) {
     buffers_.reserve(kMaxInfosPerPush);
@@ -368,70 +379,81 @@ VkWriteDescriptorSet& Bindings::add(uint32_t binding, uint32_t count) {
   }
   if (buffers_.size() + images_.size() + count > kMaxInfosPerPush)
     throw std::runtime_error("pipeline '" + pipeline_.name() + "': too many descriptors in one push");
-  const DescriptorBinding& b = pipeline_.binding(binding);
-  if (count != b.count)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " has " +
-                             std::to_string(b.count) + " elements, " + std::to_string(count) + " given");
+  if (count != binding.count)
+    fail(binding, "has " + std::to_string(binding.count) + " elements, " + std::to_string(count) + " given");
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstBinding = binding;
+  write.dstBinding = binding.binding;
   write.descriptorCount = count;
-  write.descriptorType = b.type;
+  write.descriptorType = binding.type;
   writes_.push_back(write);
   return writes_.back();
 }
 
-void Bindings::check_buffer_type(uint32_t binding, VkDescriptorType type) const {
-  if (type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not a buffer");
+// A buffer must hold the block's fixed part and, with a runtime array, at least one
+// element (when its size is known).
+void Bindings::check_buffer(const DescriptorBinding& binding, const BufferRange& buffer) const {
+  if (binding.type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && binding.type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+    fail(binding, "is not a buffer");
+  if (buffer.buffer == VK_NULL_HANDLE) fail(binding, "is given no buffer");
+  const uint64_t needed = uint64_t(binding.fixed_bytes) + binding.runtime_stride;
+  if (buffer.size != VK_WHOLE_SIZE && buffer.size < needed)
+    fail(binding, "needs at least " + std::to_string(needed) + " bytes, the buffer given has " +
+                      std::to_string(buffer.size));
 }
 
-void Bindings::check_image_type(uint32_t binding, VkDescriptorType type, bool has_sampler) const {
+void Bindings::check_image_type(const DescriptorBinding& binding, bool has_sampler) const {
+  const VkDescriptorType type = binding.type;
   if (type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE && type != VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE &&
       type != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) + " is not an image");
+    fail(binding, "is not an image");
   if ((type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) != has_sampler)
-    throw std::runtime_error("pipeline '" + pipeline_.name() + "': binding " + std::to_string(binding) +
-                             (has_sampler ? " takes no sampler" : " needs a sampler"));
+    fail(binding, has_sampler ? "takes no sampler" : "needs a sampler");
 }
 
-Bindings& Bindings::buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
-  VkWriteDescriptorSet& write = add(binding, 1);
-  check_buffer_type(binding, write.descriptorType);
-  buffers_.push_back({buffer, offset, range});
+Bindings& Bindings::buffer(std::string_view name, BufferRange buffer) {
+  const DescriptorBinding& b = pipeline_.binding(name);
+  check_buffer(b, buffer);
+  VkWriteDescriptorSet& write = add(b, 1);
+  buffers_.push_back({buffer.buffer, buffer.offset, buffer.size});
   write.pBufferInfo = &buffers_.back();
   return *this;
 }
 
 // One write for the whole array: lavapipe (Mesa 22.3) ignores dstArrayElement in
 // pushed descriptor writes, so element-by-element writes all landed on element 0.
-Bindings& Bindings::buffer_array(uint32_t binding, std::span<const VkBuffer> buffers) {
-  VkWriteDescriptorSet& write = add(binding, uint32_t(buffers.size()));
-  check_buffer_type(binding, write.descriptorType);
+Bindings& Bindings::buffer_array(std::string_view name, std::span<const BufferRange> buffers) {
+  const DescriptorBinding& b = pipeline_.binding(name);
+  for (const BufferRange& buffer : buffers) check_buffer(b, buffer);
+  VkWriteDescriptorSet& write = add(b, uint32_t(buffers.size()));
   write.pBufferInfo = buffers_.data() + buffers_.size();
-  for (VkBuffer buffer : buffers) buffers_.push_back({buffer, 0, VK_WHOLE_SIZE});
+  for (const BufferRange& buffer : buffers) buffers_.push_back({buffer.buffer, buffer.offset, buffer.size});
   return *this;
 }
 
-Bindings& Bindings::image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding, 1);
-  check_image_type(binding, write.descriptorType, sampler != VK_NULL_HANDLE);
+Bindings& Bindings::image(std::string_view name, VkImageView view, VkImageLayout layout, VkSampler sampler) {
+  const DescriptorBinding& b = pipeline_.binding(name);
+  check_image_type(b, sampler != VK_NULL_HANDLE);
+  VkWriteDescriptorSet& write = add(b, 1);
   images_.push_back({sampler, view, layout});
   write.pImageInfo = &images_.back();
   return *this;
 }
 
-Bindings& Bindings::image_array(uint32_t binding, std::span<const VkImageView> views,
+Bindings& Bindings::image_array(std::string_view name, std::span<const VkImageView> views,
                                 std::span<const VkImageLayout> layouts) {
   if (views.size() != layouts.size()) throw std::invalid_argument("image_array: one layout per view");
-  VkWriteDescriptorSet& write = add(binding, uint32_t(views.size()));
-  check_image_type(binding, write.descriptorType, false);
+  const DescriptorBinding& b = pipeline_.binding(name);
+  check_image_type(b, false);
+  VkWriteDescriptorSet& write = add(b, uint32_t(views.size()));
   write.pImageInfo = images_.data() + images_.size();
   for (size_t i = 0; i < views.size(); ++i) images_.push_back({VK_NULL_HANDLE, views[i], layouts[i]});
   return *this;
 }
 
-Bindings& Bindings::sampler(uint32_t binding, VkSampler sampler) {
-  VkWriteDescriptorSet& write = add(binding, 1);
+Bindings& Bindings::sampler(std::string_view name, VkSampler sampler) {
+  const DescriptorBinding& b = pipeline_.binding(name);
+  if (b.type != VK_DESCRIPTOR_TYPE_SAMPLER) fail(b, "is not a sampler");
+  VkWriteDescriptorSet& write = add(b, 1);
   images_.push_back({sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED});
   write.pImageInfo = &images_.back();
   return *this;

@@ -1,22 +1,38 @@
 #pragma once
 // Compute and graphics pipelines whose layouts come from SPIR-V reflection.
 // Descriptor set 0 is a push-descriptor set (VK_KHR_push_descriptor): a pass
-// binds its resources right before it draws or dispatches, with no pools or
-// set lifetimes to manage. One 128-byte push-constant range covers all stages.
+// binds its resources by their shader names right before it draws or dispatches,
+// with no pools or set lifetimes to manage. One 128-byte push-constant range
+// covers all stages.
+//
+// At creation every struct the shaders share with C++ (shaders/shared/*.h) is
+// checked against the SPIR-V layout, member by member, and every push-constant
+// block must be such a struct: a mismatch is an InterfaceError naming the shader,
+// the struct and the member.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "gpu/resources.h"
 #include "gpu/spirv_reflect.h"
+#include "gpu/struct_layout.h"
 
 namespace avsm::gpu {
 
 class Context;
+
+// A shader and the C++ that drives it disagree on a shared struct or a binding.
+class InterfaceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 enum class BlendMode { None, Alpha, PremultipliedAlpha, Additive };
 
@@ -60,16 +76,17 @@ class Pipeline {
   explicit operator bool() const { return pipeline_ != VK_NULL_HANDLE; }
 
   void bind(VkCommandBuffer cmd) const;
-  void push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const;
+  // `T` is the shared struct the shaders declare with GPU_PUSH_CONSTANTS.
   template <class T>
   void push_constants(VkCommandBuffer cmd, const T& value) const {
     static_assert(sizeof(T) <= 128, "push constants are limited to 128 bytes");
-    push_constants(cmd, &value, sizeof(T));
+    push_constants(cmd, T::gpu_layout(), &value);
   }
   // Dispatches enough workgroups to cover `threads` invocations in each dimension.
   void dispatch_threads(VkCommandBuffer cmd, uint32_t x, uint32_t y = 1, uint32_t z = 1) const;
 
-  const DescriptorBinding& binding(uint32_t index) const;
+  // The binding the shaders declare under `name`; an InterfaceError when there is none.
+  const DescriptorBinding& binding(std::string_view name) const;
 
   struct Objects;  // the Vulkan objects, shared between equal pipelines
 
@@ -79,6 +96,7 @@ class Pipeline {
   // The live pipeline made from `key`, else create()'s, remembered under `key`.
   static Pipeline shared(const Context& ctx, const std::string& key, const std::function<Pipeline()>& create);
   void create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages);
+  void push_constants(VkCommandBuffer cmd, const StructLayout& layout, const void* data) const;
   void release();
   Pipeline copy_sharing() const;
   std::shared_ptr<Objects> objects_;
@@ -87,30 +105,37 @@ class Pipeline {
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   VkShaderStageFlags stages_ = 0;
-  bool has_push_constants_ = false;
+  std::string push_block_;  // the push-constant struct's name; empty: none
   std::vector<DescriptorBinding> bindings_;
   std::array<uint32_t, 3> local_size_ = {1, 1, 1};
   std::string name_;
 };
 
-// Collects the resources of set 0 and pushes them. The descriptor type of each
-// binding comes from the pipeline's reflection, so callers only say what to bind.
+// Checks the shared structs of a pipeline's shaders against C++ (see above).
+void check_shared_structs(const std::string& pipeline, const std::vector<ShaderReflection>& stages);
+
+// Collects the resources of set 0 and pushes them. Resources are named as the
+// shaders declare them (buffers by their block name, images and samplers by their
+// variable name); type, element count and buffer size are checked against the
+// reflection, so callers only say what to bind.
 class Bindings {
  public:
   Bindings(const Context& ctx, const Pipeline& pipeline) : ctx_(ctx), pipeline_(pipeline) {}
-  Bindings& buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE);
+  Bindings& buffer(std::string_view name, BufferRange buffer);
   // Sampled, storage or combined image; `sampler` only for combined image samplers.
-  Bindings& image(uint32_t binding, VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
-  Bindings& sampler(uint32_t binding, VkSampler sampler);
+  Bindings& image(std::string_view name, VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
+  Bindings& sampler(std::string_view name, VkSampler sampler);
   // Every element of an array binding (whole buffers; storage or sampled images).
-  Bindings& buffer_array(uint32_t binding, std::span<const VkBuffer> buffers);
-  Bindings& image_array(uint32_t binding, std::span<const VkImageView> views, std::span<const VkImageLayout> layouts);
+  Bindings& buffer_array(std::string_view name, std::span<const BufferRange> buffers);
+  Bindings& image_array(std::string_view name, std::span<const VkImageView> views,
+                        std::span<const VkImageLayout> layouts);
   void push(VkCommandBuffer cmd);
 
  private:
-  VkWriteDescriptorSet& add(uint32_t binding, uint32_t count);
-  void check_buffer_type(uint32_t binding, VkDescriptorType type) const;
-  void check_image_type(uint32_t binding, VkDescriptorType type, bool has_sampler) const;
+  VkWriteDescriptorSet& add(const DescriptorBinding& binding, uint32_t count);
+  void check_buffer(const DescriptorBinding& binding, const BufferRange& buffer) const;
+  void check_image_type(const DescriptorBinding& binding, bool has_sampler) const;
+  [[noreturn]] void fail(const DescriptorBinding& binding, const std::string& problem) const;
   const Context& ctx_;
   const Pipeline& pipeline_;
   std::vector<VkWriteDescriptorSet> writes_;

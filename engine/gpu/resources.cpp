@@ -362,4 +362,6 @@ Sampler& Sampler::operator=(Sampler&& other) noexcept {
   return *this;
 }
 
+BufferRange::BufferRange(const Buffer& whole) : buffer(whole.handle()), size(whole.size()) {}
+
 }  // namespace avsm::gpu

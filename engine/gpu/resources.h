@@ -55,6 +55,22 @@ class MemoryHeap {
   void* mapped_ = nullptr;
 };
 
+class Buffer;
+
+// The part of a buffer a descriptor or a command sees: the whole buffer unless a
+// range is given. Converts to VkBuffer, for commands that take the handle. A bare
+// VkBuffer (a host's buffer) is its whole range, of a size the engine does not know.
+struct BufferRange {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceSize size = VK_WHOLE_SIZE;  // bytes from offset; VK_WHOLE_SIZE: the rest, size unknown
+  VkDeviceSize offset = 0;
+  BufferRange() = default;
+  BufferRange(VkBuffer buffer) : buffer(buffer) {}  // NOLINT(google-explicit-constructor)
+  BufferRange(VkBuffer buffer, VkDeviceSize size, VkDeviceSize offset = 0) : buffer(buffer), size(size), offset(offset) {}
+  BufferRange(const Buffer& whole);  // NOLINT(google-explicit-constructor): a buffer is its whole range
+  operator VkBuffer() const { return buffer; }  // NOLINT(google-explicit-constructor)
+};
+
 struct BufferDesc {
   VkDeviceSize size = 0;
   VkBufferUsageFlags usage = 0;

@@ -9,6 +9,7 @@
 #include "gpu/rendering.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/transfer.h"
+#include "shared/viewer/imgui.h"
 
 namespace avsm::viewer {
 
@@ -92,13 +93,9 @@ void ImGuiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data, VkImageV
   gpu::begin_rendering(cmd, extent, {&color, 1});
   pipeline_.bind(cmd);
   vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT16);
-  struct {
-    float scale[2], translate[2];
-  } push{};
-  push.scale[0] = 2.0f / data.DisplaySize.x;
-  push.scale[1] = 2.0f / data.DisplaySize.y;
-  push.translate[0] = -1.0f - data.DisplayPos.x * push.scale[0];
-  push.translate[1] = -1.0f - data.DisplayPos.y * push.scale[1];
+  shared::ImguiPush push{};
+  push.scale = {2.0f / data.DisplaySize.x, 2.0f / data.DisplaySize.y};
+  push.translate = {-1.0f - data.DisplayPos.x * push.scale.x, -1.0f - data.DisplayPos.y * push.scale.y};
   pipeline_.push_constants(cmd, push);
 
   // Clip rectangles are in display coordinates; the framebuffer may be scaled (HiDPI).
@@ -123,8 +120,8 @@ void ImGuiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data, VkImageV
       vkCmdSetScissor(cmd, 0, 1, &scissor);
       if (draw.TextureId != bound) {
         gpu::Bindings(ctx_, pipeline_)
-            .buffer(0, vertices_.handle())
-            .image(1, textures_.at(index_of(draw.TextureId)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+            .buffer("Vertices", vertices_)
+            .image("panel_texture", textures_.at(index_of(draw.TextureId)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                    sampler_.handle())
             .push(cmd);
         bound = draw.TextureId;

@@ -39,6 +39,8 @@
 #include "gpu/transfer.h"
 #include "io/image_io.h"
 
+#include "ground_shading.h"
+
 namespace {
 
 // ---------------------------------------------------------------------------------------
@@ -249,7 +251,7 @@ HostCasters upload_casters(const avsm::gpu::Context& ctx) {
     const float y = kHairHeight + 0.1f * float(sheet);
     for (float x = kHairMinX + 0.5f * kSpacing; x < kHairMaxX; x += kSpacing) {
       const uint32_t strand = uint32_t(strands.size());
-      strands.push_back({{0.4f, 0.3f, 0.2f}, /*opacity=*/0.4f, /*width=*/kSpacing / 3.0f, {}});
+      strands.push_back({{0.4f, 0.3f, 0.2f, /*opacity=*/0.4f}, /*width=*/kSpacing / 3.0f, {}});
       for (int p = 0; p <= 4; ++p) {
         if (p < 4) segments.push_back({uint32_t(points.size()), strand});
         const glm::vec3 point(x, y, kHairMinZ + (kHairMaxZ - kHairMinZ) * float(p) / 4.0f);
@@ -271,10 +273,7 @@ HostCasters upload_casters(const avsm::gpu::Context& ctx) {
 // ---------------------------------------------------------------------------------------
 // The host's frame: its own graph with the engine's shadow passes and its own shading pass.
 
-struct GroundPush {
-  glm::vec4 ground;
-  glm::vec4 to_light;
-};
+using avsm::shared::GroundPush;  // shaders/ground_shading.h
 
 class GroundShading {
  public:
@@ -308,8 +307,8 @@ class GroundShading {
         [this, shadows, size](const Data& d, rg::PassContext& c) {
           pipeline_.bind(c.cmd());
           avsm::gpu::Bindings bindings(ctx_, pipeline_);
-          bindings.image(0, c.view(d.image), c.layout(d.image));
-          shadows.bind(bindings, 1, c);
+          bindings.image("ground_image", c.view(d.image), c.layout(d.image));
+          shadows.bind(bindings, c);
           bindings.push(c.cmd());
           pipeline_.push_constants(c.cmd(), GroundPush{{-kGroundHalf, -kGroundHalf, 2 * kGroundHalf, 2 * kGroundHalf},
                                                        glm::vec4(-kLightTravel, 0.0f)});

@@ -1,4 +1,4 @@
-// Storing AVSM curves in a light's map (layout: shaders/common/shadow_lookup.glsl):
+// Storing AVSM curves in a light's map (layout: shared/map_layouts.h):
 // N/4 vec4 of depths then N/4 vec4 of transmittances per texel, the last node
 // repeated into unused slots. The includer declares `vec4 map_texels[]`.
 #ifndef AVSM_MAP_GLSL

@@ -1,6 +1,6 @@
 // Per-pixel segment lists of a light's capture (the paper's light-space "fragment
 // lists"): a head-pointer image with one list per texel and a node buffer the
-// captures append to with one atomic counter. Mirrors passes/capture_lists.h.
+// captures append to with one atomic counter.
 //
 // Before including, define AVSM_CAPTURE_BINDING: the head image is at that
 // binding, the node buffer at +1 and the counter at +2. Define
@@ -10,17 +10,8 @@
 #ifndef AVSM_CAPTURE_LISTS_GLSL
 #define AVSM_CAPTURE_LISTS_GLSL
 
-// The end of a list, and the value the head image is cleared to.
-const uint kListEnd = 0xffffffffu;
-
-// One occluding segment: transmittance falls linearly from 1 at `entry` to
-// `exit_trans` at `exit_depth` (light-space depths, world units).
-struct CaptureSegment {
-  float entry;
-  float exit_depth;
-  float exit_trans;
-  uint next;  // older node of the same texel, or kListEnd
-};
+#extension GL_GOOGLE_include_directive : require
+#include "shared/capture.h"
 
 #ifndef AVSM_CAPTURE_APPEND
 #ifndef AVSM_CAPTURE_NODE_ACCESS

@@ -25,15 +25,7 @@ struct SmokeRay {
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// Mirrors CaptureSmokePass's push constants (passes/capture_smoke_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 world_from_light;  // light clip -> world
-  vec4 depth_plane;       // light depth(p) = dot(xyz, p) + w
-  uint resolution;
-  uint volume_count;
-  uint samples_per_segment;
-  float pad;
-} pc;
+#include "shared/passes/capture_smoke.h"
 
 // Below this a segment changes transmittance by less than 1e-5: not worth a node.
 const float kMinOpticalDepth = 1e-5;

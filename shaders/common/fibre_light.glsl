@@ -6,8 +6,6 @@
 #ifndef AVSM_FIBRE_LIGHT_GLSL
 #define AVSM_FIBRE_LIGHT_GLSL
 
-const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);  // as in opaque.frag
-
 vec3 fibre_light(vec3 p, vec3 tangent, uint light_count) {
   vec3 lit = kSkyAmbient;
   for (uint i = 0u; i < light_count; ++i) {

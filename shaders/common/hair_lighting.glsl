@@ -11,24 +11,15 @@
 #ifndef AVSM_HAIR_LIGHTING_GLSL
 #define AVSM_HAIR_LIGHTING_GLSL
 
+#extension GL_GOOGLE_include_directive : require
+#include "shared/hair.h"
+#include "shared/passes/hair_lighting.h"
+
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
 layout(std430, binding = 1) readonly buffer Tangents { vec4 tangents[]; };
-struct HairVertexLight {
-  vec4 lit;  // rgb: light reaching the fibre (sky included), times the strand colour later
-  vec4 fog;  // rgb: smoke in-scattering between the camera and the vertex; a: its transmittance
-};
 layout(std430, binding = 2) writeonly buffer VertexLights { HairVertexLight vertex_lights[]; };
-
-// Mirrors HairLightingPass's Push (passes/hair_lighting_pass.cpp).
-layout(push_constant) uniform Push {
-  vec4 camera_position;
-  uint point_count;
-  uint volume_count;
-  uint light_count;
-  float step_voxels;
-} pc;
 
 #include "common/fibre_light.glsl"
 

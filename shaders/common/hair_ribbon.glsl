@@ -1,13 +1,13 @@
 // Hair strand segments as ribbons turned towards a point (the camera, or a light):
 // one quad (6 vertices) per segment. Shared by hair.vert and capture_hair.vert.
-// The strand buffers are at bindings 0 (points), 1 (segments), 2 (strands); mirrors
-// passes/shadow_casters.h (StrandCasters).
+// The strand buffers (shared/hair.h) are at bindings 0 (points), 1 (segments), 2 (strands).
 #ifndef AVSM_HAIR_RIBBON_GLSL
 #define AVSM_HAIR_RIBBON_GLSL
 
-struct Strand { vec4 color_opacity; float width; float pad0, pad1, pad2; };
+#extension GL_GOOGLE_include_directive : require
+#include "shared/hair.h"
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
-layout(std430, binding = 1) readonly buffer Segments { uvec2 segments[]; };  // (first point, strand)
+layout(std430, binding = 1) readonly buffer Segments { StrandSegment segments[]; };
 layout(std430, binding = 2) readonly buffer Strands { Strand strands[]; };
 
 struct RibbonVertex {
@@ -21,9 +21,9 @@ struct RibbonVertex {
 // (coverage), so thin strands keep their weight instead of flickering.
 RibbonVertex hair_ribbon_vertex(uint vertex_index, mat4 view_projection, vec3 facing_point, vec2 viewport) {
   uint segment = vertex_index / 6u, corner = vertex_index % 6u;
-  uvec2 s = segments[segment];
-  Strand strand = strands[s.y];
-  vec3 p0 = points[s.x].xyz, p1 = points[s.x + 1u].xyz;
+  StrandSegment s = segments[segment];
+  Strand strand = strands[s.strand];
+  vec3 p0 = points[s.first_point].xyz, p1 = points[s.first_point + 1u].xyz;
   const uint kAlong[6] = uint[](0, 1, 1, 0, 1, 0);
   const float kSide[6] = float[](-1, -1, 1, -1, 1, 1);
   vec3 p = kAlong[corner] == 0u ? p0 : p1;
@@ -41,7 +41,7 @@ RibbonVertex hair_ribbon_vertex(uint vertex_index, mat4 view_projection, vec3 fa
   v.world = p + side * (0.5 * strand.width * widen * kSide[corner]);
   v.tangent = tangent;
   v.color_opacity = vec4(strand.color_opacity.rgb, strand.color_opacity.a / widen);
-  v.point = s.x + kAlong[corner];
+  v.point = s.first_point + kAlong[corner];
   return v;
 }
 

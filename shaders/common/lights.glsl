@@ -1,12 +1,12 @@
-// Scene lights; mirrors passes/lights.h.
+// Scene lights (shared/lights.h) and the light they send to a point.
 #ifndef AVSM_LIGHTS_GLSL
 #define AVSM_LIGHTS_GLSL
 
-struct GpuLight {
-  vec4 position_type;        // xyz position (spot), w: 0 directional, 1 spot
-  vec4 direction_cos_outer;  // xyz direction the light travels, w cos(outer cone)
-  vec4 radiance_cos_inner;   // rgb colour * intensity, w cos(inner cone)
-};
+#extension GL_GOOGLE_include_directive : require
+#include "shared/lights.h"
+
+// Light from the sky, the same on every surface and fibre.
+const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);
 
 // Radiance arriving at `p` from light `L` (unshadowed) and the unit vector towards the light.
 vec3 light_radiance(GpuLight L, vec3 p, out vec3 to_light) {

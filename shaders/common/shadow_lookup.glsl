@@ -1,16 +1,13 @@
 // Transmittance from a light to a world point: the one place every camera pass
-// asks about shadows. Mirrors passes/shadow_maps.h (GpuShadow).
+// asks about shadows (GpuShadow: shared/shadow.h).
 //
 // Before including, define AVSM_SHADOW_BINDING: the per-light parameters are at
 // that binding, the AVSM maps at +1, and (uncompressed reference) the capture
 // list heads at +2 and nodes at +3, each an array of AVSM_MAX_SHADOWED_LIGHTS.
 //
-// AVSM map layout, per light, one vec4 array: mip levels one after another; in a
-// level, texels row by row; per texel N/4 vec4 of node depths, then N/4 vec4 of
-// node transmittances (a curve is 2N floats, contiguous). Texels with fewer than N
-// nodes repeat their last node. Lookups search the depths two levels deep (the
-// course notes' 4-stride search): the last depth of each vec4 first, then inside
-// the vec4 that holds the answer.
+// The maps' layouts are in shared/map_layouts.h. AVSM lookups search a texel's
+// depths two levels deep (the course notes' 4-stride search): the last depth of each
+// vec4 first, then inside the vec4 that holds the answer.
 #ifndef AVSM_SHADOW_LOOKUP_GLSL
 #define AVSM_SHADOW_LOOKUP_GLSL
 
@@ -18,48 +15,18 @@
 #include "avsm/avsm_core.glsl"
 #include "techniques/opacity_maps.glsl"
 
-#define AVSM_MAX_SHADOWED_LIGHTS 4
-
-const uint kShadowNone = 0u;
-const uint kShadowAvsm = 1u;
-const uint kShadowUncompressed = 2u;
-const uint kShadowOsm = 3u;  // opacity shadow maps
-const uint kShadowFom = 4u;  // Fourier opacity maps
-const uint kShadowDsm = 5u;  // deep shadow maps
-const uint kFilterPoint = 0u;
-const uint kFilterBilinear = 1u;
-const uint kFilterTrilinear = 2u;
-
-struct GpuShadow {
-  mat4 light_from_world;  // world -> light clip; uv = clip.xy / clip.w * 0.5 + 0.5
-  vec4 depth_plane;       // light depth(p) = dot(xyz, p) + w
-  vec4 texel_camera;      // x, y: level-0 texel world size = x + y * depth; z: far depth; w: camera radians per pixel
-  vec4 camera_position;   // xyz; w: receivers' normal offset in texels
-  vec4 depth_range;       // x, y: the light's caster depth range (osm and fom normalise over it);
-                          // z: osm/fom lookup bias (depth units), against self-shadowing inside a slice
-  uint technique;         // kShadow*
-  uint node_count;        // avsm: N nodes (a multiple of 4); osm: K planes; fom: K terms
-  uint resolution;        // level-0 texels per side
-  uint mip_count;
-  uint filter_mode;       // kFilter*
-  uint exponential;       // 1: exponential interpolation between nodes
-  uint slot;              // index into the map and list arrays
-  uint reference;         // index of this light's exact-reference entry in shadows[], or kNoReference
-};
-const uint kNoReference = 0xffffffffu;
-
-struct ShadowListNode {
-  float entry;
-  float exit_depth;
-  float exit_trans;
-  uint next;
-};
+#include "shared/capture.h"
+#include "shared/map_layouts.h"
+#include "shared/shadow.h"
+#if AVSM_MAX_SHADOWED_LIGHTS != 4
+#error "the per-slot chains below index each of the AVSM_MAX_SHADOWED_LIGHTS slots: extend them"
+#endif
 
 layout(std430, binding = AVSM_SHADOW_BINDING) readonly buffer ShadowParameters { GpuShadow shadows[]; };
 layout(std430, binding = AVSM_SHADOW_BINDING + 1) readonly buffer AvsmMap { vec4 texels[]; }
 avsm_maps[AVSM_MAX_SHADOWED_LIGHTS];
 layout(binding = AVSM_SHADOW_BINDING + 2, r32ui) uniform readonly uimage2D shadow_list_heads[AVSM_MAX_SHADOWED_LIGHTS];
-layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { ShadowListNode nodes[]; }
+layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { CaptureSegment nodes[]; }
 shadow_list_nodes[AVSM_MAX_SHADOWED_LIGHTS];
 
 // The per-light arrays are indexed only with constants: lavapipe took the index of
@@ -79,7 +46,7 @@ uint shadow_list_head(uint slot, ivec2 texel) {
   return imageLoad(shadow_list_heads[3], texel).r;
 }
 
-ShadowListNode shadow_list_node(uint slot, uint i) {
+CaptureSegment shadow_list_node(uint slot, uint i) {
   if (slot == 0u) return shadow_list_nodes[0].nodes[i];
   if (slot == 1u) return shadow_list_nodes[1].nodes[i];
   if (slot == 2u) return shadow_list_nodes[2].nodes[i];
@@ -92,14 +59,7 @@ float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.
 
 // First vec4 of a texel's curve in its light's map.
 uint avsm_texel_base(GpuShadow s, uint level, ivec2 texel) {
-  uint vec4s_per_texel = s.node_count / 2u;
-  uint base = 0u;
-  for (uint l = 0u; l < level; ++l) {
-    uint size = max(s.resolution >> l, 1u);
-    base += size * size * vec4s_per_texel;
-  }
-  uint size = max(s.resolution >> level, 1u);
-  return base + (uint(texel.y) * size + uint(texel.x)) * vec4s_per_texel;
+  return avsm_map_texel_base(s.resolution, s.node_count, level, uint(texel.x), uint(texel.y));
 }
 
 // One texel's stored curve at depth d; the same answer as avsm_evaluate_linear on
@@ -134,7 +94,7 @@ float list_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   float t = 1.0;
   uint previous = 0xffffffffu;
   while (node < previous) {  // indices fall along a list; kListEnd ends it
-    ShadowListNode n = shadow_list_node(slot, node);
+    CaptureSegment n = shadow_list_node(slot, node);
     t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
     previous = node;
     node = n.next;
@@ -169,16 +129,16 @@ float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   return fom_transmittance(optical_depth);
 }
 
-// Deep shadow map texel (layout: shaders/passes/dsm_build.comp): its own count of
+// Deep shadow map texel (layout: shared/map_layouts.h): its own count of
 // nodes in the shared pool, searched front to back.
 uint dsm_word(uint slot, uint word) { return floatBitsToUint(shadow_map_texel(slot, word >> 2u)[word & 3u]); }
 
 float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
   uint index = uint(texel.y) * s.resolution + uint(texel.x);
-  uint first = dsm_word(s.slot, 4u + 2u * index), count = dsm_word(s.slot, 5u + 2u * index);
+  uint first = dsm_word(s.slot, dsm_first_node_word(index)), count = dsm_word(s.slot, dsm_node_count_word(index));
   // A texel the full pool could not take (counted and reported; the pool grows for the next frame).
-  if (count == 0u || count == 0xffffffffu) return 1.0;
-  uint pool = (4u + 2u * s.resolution * s.resolution + 3u) & ~3u;
+  if (count == 0u || count == kDsmLost) return 1.0;
+  uint pool = dsm_pool_base(s.resolution);
   float previous_depth = 0.0, previous_trans = 1.0;
   for (uint k = 0u; k < uint(AVSM_CURVE_CAPACITY); ++k) {  // at most the build's curve capacity
     if (k >= count) break;

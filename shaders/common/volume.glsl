@@ -1,5 +1,5 @@
 // Fog volumes on the GPU: the parameter block, NanoVDB density lookups and the
-// majorant grid. Mirrors passes/volume_pass.h (struct GpuVolume). Shared by every
+// majorant grid. (GpuVolume: shared/volume.h.) Shared by every
 // pass that marches volumes (the camera march today, the AVSM shadow march later).
 //
 // Before including, define the bindings of the three storage buffers:
@@ -24,24 +24,7 @@ layout(std430, binding = AVSM_VOLUME_BINDING_NANOVDB) readonly buffer VolumeNano
 
 layout(std430, binding = AVSM_VOLUME_BINDING_MAJORANTS) readonly buffer VolumeMajorants { float volume_majorants[]; };
 
-struct GpuVolume {
-  mat4 index_from_world;
-  vec3 support_min;         // index space: where the trilinear density can be non-zero
-  float step_length;        // world units between samples (a fraction of the smallest voxel edge)
-  vec3 support_max;
-  float extinction_scale;   // sigma_t = extinction_scale * density, per world unit
-  vec3 albedo;              // sigma_s = albedo * sigma_t
-  uint grid_byte_offset;    // where this volume's NanoVDB grid starts in pnanovdb_buf_data
-  ivec3 majorant_origin;    // index coordinate of the corner of brick (0, 0, 0)
-  int brick_size;           // voxels per brick edge
-  ivec3 majorant_dims;      // bricks along x, y, z (x fastest in volume_majorants)
-  uint majorant_offset;     // where this volume's bricks start in volume_majorants (and brick_slots)
-  ivec3 atlas_slots;        // this volume's region of the density atlas, in slots per axis (x fastest)
-  int atlas_first_slice;    // atlas z of the region's first voxel slice
-  float atlas_density_scale;  // density = atlas value * this
-  float voxel_size;         // smallest voxel edge, world units
-  float pad0, pad1;
-};
+#include "shared/volume.h"
 
 layout(std430, binding = AVSM_VOLUME_BINDING_PARAMETERS) readonly buffer VolumeParameters { GpuVolume volumes[]; };
 

@@ -2,22 +2,15 @@
 // box of cells over its support, each holding the radiance scattered towards the
 // camera per unit sigma_s at its centre (sum over lights of radiance * phase * the
 // light's map transmittance). All volumes' boxes are stacked along z in one 3D image.
-// Mirrors passes/volume_lighting_cache_pass.h (GpuCacheLayout).
+// (GpuCacheLayout: shared/volume.h.)
 //
 // Before including, define AVSM_CACHE_BINDING: the cache layouts (one per volume) at
 // that binding; with AVSM_CACHE_SAMPLED also the cache image (sampler3D) at +1.
 #ifndef AVSM_VOLUME_LIGHTING_CACHE_GLSL
 #define AVSM_VOLUME_LIGHTING_CACHE_GLSL
 
-struct GpuCacheLayout {
-  mat4 world_from_cell;  // cell coordinates (cell i spans [i, i + 1)) -> world
-  vec3 cell_origin;      // index position of cell coordinate 0
-  int first_slice;       // z of this volume's first cell slice in the cache image
-  vec3 cells_per_voxel;  // cell coordinates per index unit, per axis
-  int pad0;
-  ivec3 dims;            // cells per axis
-  int pad1;
-};
+#extension GL_GOOGLE_include_directive : require
+#include "shared/volume.h"
 
 layout(std430, binding = AVSM_CACHE_BINDING) readonly buffer CacheLayouts { GpuCacheLayout cache_layouts[]; };
 

@@ -15,7 +15,7 @@
 #include "common/lights.glsl"
 #include "common/shadow_lookup.glsl"
 
-layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer MarchLights { GpuLight lights[]; };
+layout(std430, binding = AVSM_MARCH_LIGHTS_BINDING) readonly buffer Lights { GpuLight lights[]; };
 #include "common/scattered_light.glsl"
 
 uint march_light_count = 0u;

@@ -3,10 +3,8 @@
 // dependent steps. Used to calibrate timestamps and in the timing tests.
 layout(local_size_x = 64) in;
 
-layout(push_constant) uniform Push {
-  uint iterations;
-  uint count;
-} pc;
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu/spin.h"
 
 layout(std430, binding = 0) buffer Values { float values[]; };
 

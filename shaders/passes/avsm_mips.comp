@@ -9,14 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) buffer AvsmMap { vec4 map_texels[]; };
 #include "avsm/avsm_map.glsl"
 
-// Mirrors AvsmMipsPass's push constants (passes/avsm_mips_pass.cpp).
-layout(push_constant) uniform Push {
-  uint source_offset;  // first vec4 of the level above
-  uint source_size;    // its texels per side
-  uint target_offset;  // first vec4 of this level
-  uint target_size;
-  uint node_count;
-} pc;
+#include "shared/passes/avsm_mips.h"
 
 AvsmCurve load_curve(ivec2 texel, int n) {
   uint base = pc.source_offset + (uint(texel.y) * pc.source_size + uint(texel.x)) * uint(n / 2);

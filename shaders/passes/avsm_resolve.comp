@@ -10,22 +10,15 @@
 #include "avsm/avsm_core.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 2) writeonly buffer AvsmMap { vec4 map_texels[]; };
+layout(std430, binding = 2) writeonly buffer Map { vec4 map_texels[]; };
 #include "avsm/avsm_map.glsl"
 
-// Mirrors MapBuildParameters (passes/map_build_pass.h).
-layout(push_constant) uniform Push {
-  uint resolution;
-  uint node_count;  // N: 4, 8, 12 or 16
-  float near_depth;
-  float far_depth;
-  float error;
-} pc;
+#include "shared/passes/map_build.h"
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
-  int n = int(pc.node_count);
+  int n = int(pc.count);
   AvsmCurve curve = avsm_clear(pc.far_depth);
   // The subgroup walks its lists in step (a lane whose list has ended idles) rather
   // than each lane leaving the loop on its own: with lists of very different lengths

@@ -8,15 +8,7 @@
 #include "common/capture_lists.glsl"
 
 // As in capture_hair.vert.
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 facing_point;
-  vec2 viewport;
-  uint light_count;
-  float pad;
-  vec4 depth_plane;  // light depth(p) = dot(xyz, p) + w
-  vec4 texel_size;   // world size of a texel at depth d: x + y * d
-} pc;
+#include "shared/passes/capture_hair.h"
 
 layout(location = 0) in vec3 in_world;
 layout(location = 2) flat in vec4 in_color_opacity;

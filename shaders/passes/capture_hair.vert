@@ -3,16 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/hair_ribbon.glsl"
 
-// Mirrors CaptureHairPass's Push (passes/capture_hair_pass.cpp); shared with capture_hair.frag.
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 facing_point;  // xyz: where ribbons turn to (the light)
-  vec2 viewport;
-  uint light_count;
-  float pad;
-  vec4 depth_plane;
-  vec4 texel_size;
-} pc;
+#include "shared/passes/capture_hair.h"
 
 layout(location = 0) out vec3 out_world;
 layout(location = 2) flat out vec4 out_color_opacity;

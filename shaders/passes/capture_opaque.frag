@@ -6,11 +6,7 @@
 #define AVSM_CAPTURE_BINDING 1
 #include "common/capture_lists.glsl"
 
-layout(push_constant) uniform Push {
-  mat4 light_from_world;
-  vec4 depth_plane;
-  vec2 texel_size;
-} pc;
+#include "shared/passes/capture_opaque.h"
 
 layout(location = 0) in vec3 in_world;
 

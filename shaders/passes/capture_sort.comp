@@ -9,7 +9,7 @@
 #include "common/capture_lists.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(push_constant) uniform Push { uint resolution; } pc;
+#include "shared/passes/capture_sort.h"
 
 // Lists up to this long are sorted in registers; longer ones in place in memory.
 const int kLocalCapacity = 32;

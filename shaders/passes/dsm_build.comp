@@ -5,10 +5,7 @@
 // beyond; curves of 32 or 64 nodes came out corrupt on lavapipe), compressed by
 // Lokovic & Veach's greedy rule to the user error, and stored with a variable node count: a per-texel header (first node, count) and
 // a node pool shared by the texels, allocated with an atomic counter.
-//
-// Map words (uint): [0] pool nodes allocated, [1..3] unused, [4 + 2 t] texel t's
-// first node, [5 + 2 t] its node count (kDsmLost: the pool was full), then the
-// pool from word dsm_pool_base(resolution): per node depth, transmittance (floats).
+// The map's words: shared/map_layouts.h.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #define AVSM_CURVE_CAPACITY 18
@@ -16,24 +13,14 @@
 #include "common/capture_lists.glsl"
 #include "avsm/avsm_core.glsl"
 #include "techniques/deep_shadow.glsl"
+#include "shared/map_layouts.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 2) buffer MapWords { uint words[]; };
+layout(std430, binding = 2) buffer Map { uint words[]; };
 // The light's host-readable capture counter: word 1 gathers the pool nodes asked for.
 layout(std430, binding = 3) buffer Counter { uint counter_words[]; };
 
-// Mirrors MapBuildParameters (passes/map_build_pass.h).
-layout(push_constant) uniform Push {
-  uint resolution;
-  uint count;  // input curve nodes kept before compression (at most 16)
-  float near_depth;
-  float far_depth;
-  float error;
-} pc;
-
-const uint kDsmLost = 0xffffffffu;
-
-uint dsm_pool_base(uint resolution) { return (4u + 2u * resolution * resolution + 3u) & ~3u; }
+#include "shared/passes/map_build.h"
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -54,8 +41,8 @@ void main() {
   uint pool = dsm_pool_base(pc.resolution);
   uint capacity = (uint(words.length()) - pool) / 2u;
   bool fits = first + count <= capacity;
-  words[4u + 2u * index] = first;
-  words[5u + 2u * index] = fits ? count : kDsmLost;
+  words[dsm_first_node_word(index)] = first;
+  words[dsm_node_count_word(index)] = fits ? count : kDsmLost;
   if (!fits) return;
   for (uint k = 0u; k < uint(AVSM_CURVE_CAPACITY); ++k) {  // constant bound: see avsm_core.glsl
     if (k >= count) break;

@@ -12,14 +12,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 2) writeonly buffer Map { vec4 map_texels[]; };
 
-// Mirrors MapBuildPass's push constants (passes/map_build_pass.cpp).
-layout(push_constant) uniform Push {
-  uint resolution;
-  uint count;  // K terms, even, at most 32
-  float near_depth;
-  float far_depth;
-  float error;
-} pc;
+#include "shared/passes/map_build.h"
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

@@ -4,15 +4,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/hair_ribbon.glsl"
 
-struct HairVertexLight { vec4 lit; vec4 fog; };  // as in common/hair_lighting.glsl
+#include "shared/hair.h"
 layout(std430, binding = 8) readonly buffer VertexLights { HairVertexLight vertex_lights[]; };
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 camera_position;
-  vec2 viewport;
-  uint light_count;
-  float pad;
-} pc;
+#include "shared/passes/hair.h"
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_tangent;

@@ -9,13 +9,7 @@
 
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };
 #include "common/fibre_light.glsl"
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 camera_position;
-  vec2 viewport;
-  uint light_count;
-  float pad;
-} pc;
+#include "shared/passes/hair.h"
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_tangent;

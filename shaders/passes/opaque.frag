@@ -5,32 +5,21 @@
 #define AVSM_SHADOW_BINDING 4
 #include "common/shadow_lookup.glsl"
 
-struct Material {
-  vec4 base_color;
-  uint alpha_mask;
-  float alpha_cutoff;
-  uint has_texture;
-  float pad;
-};
-layout(std430, binding = 1) readonly buffer Materials { Material materials[]; };
+#include "shared/mesh.h"
+
+layout(std430, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
 layout(std430, binding = 2) readonly buffer Lights { GpuLight lights[]; };
 layout(binding = 3) uniform sampler2D base_color_texture;
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  vec4 camera_position;
-  uint material;
-  uint light_count;
-} pc;
+#include "shared/passes/opaque.h"
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 0) out vec4 out_color;
 
-const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);
 
 void main() {
-  Material m = materials[pc.material];
+  GpuMaterial m = materials[pc.material];
   vec4 albedo = m.base_color;
   if (m.has_texture != 0u) albedo *= texture(base_color_texture, in_uv);
   if (m.alpha_mask != 0u && albedo.a < m.alpha_cutoff) discard;

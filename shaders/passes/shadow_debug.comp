@@ -10,7 +10,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba8) uniform writeonly image2D debug_image;
-layout(push_constant) uniform Push { uint light; } pc;
+#include "shared/passes/shadow_debug.h"
 
 // Below this a node counts as opaque (opaque segments end at exactly 0).
 const float kOpaque = 1e-4;
@@ -25,7 +25,7 @@ float first_opaque_depth(GpuShadow s, ivec2 texel) {
     uint previous = 0xffffffffu;
     for (uint node = shadow_list_head(s.slot, texel); node < previous;
          node = shadow_list_node(s.slot, node).next) {
-      ShadowListNode n = shadow_list_node(s.slot, node);
+      CaptureSegment n = shadow_list_node(s.slot, node);
       if (n.exit_trans <= kOpaque) nearest = min(nearest, n.entry);
       previous = node;
     }

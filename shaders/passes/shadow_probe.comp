@@ -16,19 +16,13 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
 // Mode 0: [light * point_count + point]. Mode 1: [2 * sample] technique, [2 * sample + 1] reference.
 layout(std430, binding = 1) writeonly buffer Results { float results[]; };
-layout(push_constant) uniform Push {
-  uint point_count;
-  uint light_count;
-  uint mode;
-} pc;
+#include "shared/passes/shadow_probe.h"
 
-const uint kModePoints = 0u;
-const uint kModeTexelCurves = 1u;
 
 void main() {
   uint point = gl_GlobalInvocationID.x;
   if (point >= pc.point_count) return;
-  if (pc.mode == kModeTexelCurves) {
+  if (pc.mode == kProbeTexelCurves) {
     vec4 sample_ = points[point];
     uint light = uint(sample_.w);
     ivec2 texel = ivec2(sample_.xy);

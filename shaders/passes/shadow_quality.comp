@@ -22,22 +22,14 @@
 #include "common/lights.glsl"
 #define AVSM_SHADOW_BINDING 6
 #include "common/shadow_lookup.glsl"
+#include "shared/passes/shadow_quality.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 0) uniform sampler2D depth_texture;
-layout(std430, binding = 1) writeonly buffer Errors { vec4 errors[]; };  // [light * width * height + y * width + x]
+layout(std430, binding = 1) writeonly buffer Errors { PixelShadowError errors[]; };  // [light * width * height + y * width + x]
 layout(std430, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 
-// Mirrors ShadowQualityPass's Push (passes/shadow_quality_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 inverse_view_projection;
-  vec3 camera_position;
-  uint volume_count;
-  uvec2 image_size;
-  uint light_count;
-  uint smoke_samples;  // per volume and pixel
-} pc;
 
 // Depth-buffer value of the far plane: no surface.
 const float kFarDepth = 1.0;
@@ -142,5 +134,8 @@ void main() {
       }
     }
   }
-  for (uint light = 0u; light < light_count; ++light) errors[light * pixel_count + pixel_index] = results[light];
+  for (uint light = 0u; light < light_count; ++light) {
+    vec4 r = results[light];
+    errors[light * pixel_count + pixel_index] = PixelShadowError(r.x, r.y, r.z, r.w);
+  }
 }

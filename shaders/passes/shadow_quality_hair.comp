@@ -14,14 +14,7 @@ layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
 layout(binding = 1) uniform sampler2D depth_texture;
 layout(std430, binding = 2) writeonly buffer Results { float results[]; };  // [light * receiver_count + receiver]
 
-// Mirrors ShadowQualityHairPass's push constants (passes/shadow_quality_hair_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 view_projection;
-  uvec2 image_size;
-  uint receiver_count;
-  uint stride;
-  uint light_count;
-} pc;
+#include "shared/passes/shadow_quality_hair.h"
 
 void main() {
   uint receiver = gl_GlobalInvocationID.x;

@@ -4,7 +4,8 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba16f) uniform readonly image2D hdr;
 layout(binding = 1, rgba8) uniform writeonly image2D ldr;
-layout(push_constant) uniform Push { float exposure; } pc;
+#extension GL_GOOGLE_include_directive : require
+#include "shared/passes/tonemap.h"
 
 vec3 filmic(vec3 x) {
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);

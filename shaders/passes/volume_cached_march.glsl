@@ -25,20 +25,8 @@ layout(binding = 0) uniform sampler2D depth_texture;
 layout(binding = 1, rgba16f) uniform writeonly image2D scattering_image;  // rgb in-scattered, a transmittance
 layout(binding = 2, r32f) uniform writeonly image2D distance_image;       // camera distance marched to
 
-// Mirrors VolumeCachedMarchPass's Push (passes/volume_cached_march_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 inverse_view_projection;
-  vec3 camera_position;
-  uint volume_count;
-  uvec2 output_size;  // the depth buffer's
-  uvec2 march_size;
-  uint divisor;
-  float step_voxels;
-  uint flags;
-  uint light_count;
-} pc;
+#include "shared/passes/volume_cached_march.h"
 
-const uint kFlagNoMajorantSkipping = 1u;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -65,7 +53,7 @@ void main() {
     march_volume_count = pc.volume_count;
     march_step_voxels = pc.step_voxels;
     march_light_count = pc.light_count;
-    march_skip_empty = (pc.flags & kFlagNoMajorantSkipping) == 0u;
+    march_skip_empty = (pc.flags & kMarchNoMajorantSkipping) == 0u;
     bool touched;
     state = march_ray(pc.camera_position, direction, t_stop, touched);
   }

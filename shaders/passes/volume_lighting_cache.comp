@@ -27,13 +27,7 @@ layout(binding = 0, rgba16f) uniform writeonly image3D cache_image;
 layout(std430, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 #include "common/scattered_light.glsl"
 
-// Mirrors VolumeLightingCachePass's Push (passes/volume_lighting_cache_pass.cpp).
-layout(push_constant) uniform Push {
-  vec3 camera_position;
-  uint volume_count;
-  uvec3 image_size;
-  uint light_count;
-} pc;
+#include "shared/passes/volume_lighting_cache.h"
 
 // Whether any brick within `reach` (index units per axis) of an index position may hold density.
 bool near_density(GpuVolume volume, vec3 index_position, vec3 reach) {

@@ -21,17 +21,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba16f) uniform image2D color_image;
 layout(binding = 1) uniform sampler2D depth_texture;
 
-// Mirrors VolumePass::Push (passes/volume_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 inverse_view_projection;
-  vec3 camera_position;
-  uint volume_count;
-  uvec2 image_size;
-  uint light_count;
-  uint flags;
-} pc;
+#include "shared/passes/volume_march.h"
 
-const uint kFlagNoMajorantSkipping = 1u;  // debug: march empty bricks too (results must not change)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -46,7 +37,7 @@ void main() {
 
   march_volume_count = pc.volume_count;
   march_light_count = pc.light_count;
-  march_skip_empty = (pc.flags & kFlagNoMajorantSkipping) == 0u;
+  march_skip_empty = (pc.flags & kMarchNoMajorantSkipping) == 0u;
   bool touched;
   MarchState state = march_ray(origin, direction, t_max, touched);
   // Pixels whose ray meets no volume keep their colour bit for bit.

@@ -28,20 +28,8 @@ layout(binding = 1) uniform sampler2D depth_texture;
 layout(binding = 2) uniform sampler2D scattering_texture;
 layout(binding = 3) uniform sampler2D distance_texture;
 
-// Mirrors VolumeUpsamplePass's Push (passes/volume_upsample_pass.cpp).
-layout(push_constant) uniform Push {
-  mat4 inverse_view_projection;
-  vec3 camera_position;
-  uint divisor;
-  uvec2 output_size;
-  uvec2 march_size;
-  uint volume_count;
-  float step_voxels;
-  uint flags;
-  uint light_count;
-} pc;
+#include "shared/passes/volume_upsample.h"
 
-const uint kFlagNoMajorantSkipping = 1u;
 // Relative spread of the march pixels' stop distances below which they are blended.
 const float kSameSurface = 0.05;
 
@@ -81,7 +69,7 @@ void main() {
   march_volume_count = pc.volume_count;
   march_step_voxels = pc.step_voxels;
   march_light_count = pc.light_count;
-  march_skip_empty = (pc.flags & kFlagNoMajorantSkipping) == 0u;
+  march_skip_empty = (pc.flags & kMarchNoMajorantSkipping) == 0u;
   bool touched;
   MarchState state = march_ray_between(pc.camera_position, direction, t_front, t_surface,
                                        MarchState(front.a, front.rgb), touched);

@@ -3,7 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "tests/test_common.glsl"
 layout(local_size_x = 64) in;
-layout(push_constant) uniform Push { float scale; float offset; uint count; } pc;
+#include "tests/fill.h"
 layout(std430, binding = 0) writeonly buffer Values { float values[]; };
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -1,7 +1,8 @@
 #version 460
 // values[i] = a smooth pattern of i; the first pass of the frame-graph GPU test.
 layout(local_size_x = 64) in;
-layout(push_constant) uniform Push { float frequency; float phase; uint count; } pc;
+#extension GL_GOOGLE_include_directive : require
+#include "tests/graph_fill.h"
 layout(std430, binding = 0) writeonly buffer Values { float values[]; };
 void main() {
   uint i = gl_GlobalInvocationID.x;

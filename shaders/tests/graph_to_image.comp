@@ -1,7 +1,8 @@
 #version 460
 // Spreads a buffer over an image, tinted.
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(push_constant) uniform Push { vec4 tint; uint width; uint height; } pc;
+#extension GL_GOOGLE_include_directive : require
+#include "tests/graph_to_image.h"
 layout(std430, binding = 0) readonly buffer Values { float values[]; };
 layout(binding = 1, rgba16f) uniform writeonly image2D target;
 void main() {

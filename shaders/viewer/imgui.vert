@@ -2,10 +2,8 @@
 // Dear ImGui's vertices, pulled from a storage buffer (our pipelines have no vertex
 // input state). ImDrawVert is 20 bytes: pos (2 floats), uv (2 floats), colour (RGBA8).
 layout(std430, binding = 0) readonly buffer Vertices { float vertex_data[]; };
-layout(push_constant) uniform Push {
-  vec2 scale;      // 2 / display size
-  vec2 translate;  // -1 - display position * scale
-} pc;
+#extension GL_GOOGLE_include_directive : require
+#include "shared/viewer/imgui.h"
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_uv;
 

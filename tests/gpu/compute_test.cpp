@@ -24,7 +24,7 @@ TEST_F(GpuTest, ComputeDispatchWritesExpectedValues) {
 
   ctx().submit_and_wait([&](VkCommandBuffer cmd) {
     fill.bind(cmd);
-    gpu::Bindings(ctx(), fill).buffer(0, values.handle()).push(cmd);
+    gpu::Bindings(ctx(), fill).buffer("Values", values).push(cmd);
     fill.push_constants(cmd, FillPush{0.5f, 3.0f, count});
     fill.dispatch_threads(cmd, count);
   });
@@ -36,8 +36,8 @@ TEST_F(GpuTest, ComputeDispatchWritesExpectedValues) {
 TEST_F(GpuTest, BindingTheWrongKindOfResourceIsAClearError) {
   gpu::Pipeline fill = gpu::Pipeline::compute(ctx(), shaders().load("shaders/tests/fill.comp"), "fill");
   gpu::Bindings bindings(ctx(), fill);
-  EXPECT_THROW(bindings.image(0, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL), std::runtime_error);
-  EXPECT_THROW(bindings.buffer(7, VK_NULL_HANDLE), std::runtime_error);
+  EXPECT_THROW(bindings.image("Values", VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL), gpu::InterfaceError);
+  EXPECT_THROW(bindings.buffer("Missing", VK_NULL_HANDLE), gpu::InterfaceError);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "support/gpu_test.h"
+#include "tests/graph_fill.h"
+#include "tests/graph_to_image.h"
 
 namespace avsm {
 namespace {
@@ -19,14 +21,8 @@ using testing::GpuTest;
 
 constexpr uint32_t kSize = 64;
 
-struct FillPush {
-  float frequency, phase;
-  uint32_t count;
-};
-struct ToImagePush {
-  float tint[4];
-  uint32_t width, height;
-};
+using FillPush = shared::GraphFillPush;
+using ToImagePush = shared::GraphToImagePush;
 
 struct Pipelines {
   gpu::Pipeline fill, to_image, combine, triangle;
@@ -70,7 +66,7 @@ rg::Graph build_graph(gpu::Context& ctx, Pipelines& p, rg::TextureHandle& result
         },
         [&ctx, &p, light](const Fill& d, rg::PassContext& c) {
           p.fill.bind(c.cmd());
-          gpu::Bindings(ctx, p.fill).buffer(0, c.buffer(d.values)).push(c.cmd());
+          gpu::Bindings(ctx, p.fill).buffer("Values", c.buffer(d.values)).push(c.cmd());
           p.fill.push_constants(c.cmd(), FillPush{0.05f + 0.02f * light, 1.0f * light, kSize * kSize});
           p.fill.dispatch_threads(c.cmd(), kSize * kSize);
         });
@@ -86,8 +82,8 @@ rg::Graph build_graph(gpu::Context& ctx, Pipelines& p, rg::TextureHandle& result
         [&ctx, &p, light](const ToImage& d, rg::PassContext& c) {
           p.to_image.bind(c.cmd());
           gpu::Bindings(ctx, p.to_image)
-              .buffer(0, c.buffer(d.values))
-              .image(1, c.view(d.image), c.layout(d.image))
+              .buffer("Values", c.buffer(d.values))
+              .image("target", c.view(d.image), c.layout(d.image))
               .push(c.cmd());
           ToImagePush push{{light == 0 ? 1.0f : 0.2f, 0.6f, light == 1 ? 1.0f : 0.3f, 0}, kSize, kSize};
           p.to_image.push_constants(c.cmd(), push);
@@ -126,10 +122,10 @@ rg::Graph build_graph(gpu::Context& ctx, Pipelines& p, rg::TextureHandle& result
       [&ctx, &p](const Combine& d, rg::PassContext& c) {
         p.combine.bind(c.cmd());
         gpu::Bindings(ctx, p.combine)
-            .image(0, c.view(d.a), c.layout(d.a))
-            .image(1, c.view(d.b), c.layout(d.b))
-            .image(2, c.view(d.drawn), c.layout(d.drawn), p.sampler.handle())
-            .image(3, c.view(d.result), c.layout(d.result))
+            .image("a", c.view(d.a), c.layout(d.a))
+            .image("b", c.view(d.b), c.layout(d.b))
+            .image("drawn", c.view(d.drawn), c.layout(d.drawn), p.sampler.handle())
+            .image("result", c.view(d.result), c.layout(d.result))
             .push(c.cmd());
         p.combine.dispatch_threads(c.cmd(), kSize, kSize);
       });

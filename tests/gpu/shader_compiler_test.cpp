@@ -29,12 +29,14 @@ TEST(ShaderCompiler, CompilesAndReflectsAValidShader) {
   gpu::CompiledShader shader = library.compile("shaders/tests/fill.comp");
   ASSERT_FALSE(shader.spirv.empty());
   EXPECT_EQ(shader.spirv[0], 0x07230203u);
-  // The shader and the file it includes are both reported, for hot reload.
-  ASSERT_EQ(shader.files.size(), 2u);
-  EXPECT_EQ(shader.files[1].filename(), "test_common.glsl");
+  // The shader and every file it includes are reported, for hot reload.
+  std::vector<std::string> names;
+  for (const auto& file : shader.files) names.push_back(file.filename().string());
+  EXPECT_EQ(names, (std::vector<std::string>{"fill.comp", "test_common.glsl", "fill.h", "gpu_struct.h"}));
   gpu::ShaderReflection reflection = gpu::reflect_spirv(shader.spirv);
   EXPECT_EQ(reflection.stage, VK_SHADER_STAGE_COMPUTE_BIT);
-  EXPECT_TRUE(reflection.uses_push_constants);
+  ASSERT_TRUE(reflection.push_constants.has_value());
+  EXPECT_EQ(reflection.push_constants->name, "FillPush");
   ASSERT_EQ(reflection.bindings.size(), 1u);
   EXPECT_EQ(reflection.bindings[0].type, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }

@@ -9,16 +9,14 @@
 #include "gpu/rendering.h"
 #include "gpu/resources.h"
 #include "support/gpu_test.h"
+#include "shared/gpu/spin.h"
 
 namespace avsm {
 namespace {
 
 using testing::GpuTest;
 
-struct SpinPush {
-  uint32_t iterations;
-  uint32_t count;
-};
+using shared::SpinPush;
 
 constexpr uint32_t kInvocations = 1u << 14;
 
@@ -29,7 +27,7 @@ uint32_t iterations_for(gpu::Context& ctx, const gpu::Pipeline& spin, const gpu:
     auto start = std::chrono::steady_clock::now();
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       spin.bind(cmd);
-      gpu::Bindings(ctx, spin).buffer(0, values.handle()).push(cmd);
+      gpu::Bindings(ctx, spin).buffer("Values", values).push(cmd);
       spin.push_constants(cmd, SpinPush{iterations, kInvocations});
       spin.dispatch_threads(cmd, kInvocations);
     });
@@ -50,7 +48,7 @@ std::pair<double, double> time_k_and_2k(gpu::Context& ctx, const gpu::Pipeline& 
     for (uint32_t iterations : order) {
       uint32_t scope = timer.begin_scope(cmd, "spin " + std::to_string(iterations));
       spin.bind(cmd);
-      gpu::Bindings(ctx, spin).buffer(0, values.handle()).push(cmd);
+      gpu::Bindings(ctx, spin).buffer("Values", values).push(cmd);
       spin.push_constants(cmd, SpinPush{iterations, kInvocations});
       spin.dispatch_threads(cmd, kInvocations);
       timer.end_scope(cmd, scope);

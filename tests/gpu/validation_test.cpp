@@ -23,7 +23,7 @@ void write_then_copy(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, bool 
   gpu::Pipeline fill = gpu::Pipeline::compute(ctx, shaders.load("shaders/tests/fill.comp"), "fill");
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     fill.bind(cmd);
-    gpu::Bindings(ctx, fill).buffer(0, values.handle()).push(cmd);
+    gpu::Bindings(ctx, fill).buffer("Values", values).push(cmd);
     fill.push_constants(cmd, FillPush{1.0f, 0.0f, count});
     fill.dispatch_threads(cmd, count);
     if (with_barrier) gpu::buffer_barrier(cmd, values.handle(), gpu::kComputeWrite, gpu::kTransferRead);

@@ -57,19 +57,12 @@ constexpr float kCoreTolerance = 1e-5f;
 // Float rounding in the core's interpolation (see the resolve test): a few ulps below 1.
 constexpr float kMonotoneSlack = 1e-6f;
 
-constexpr uint32_t kListEnd = 0xffffffffu;
+using shared::kListEnd;
 constexpr float kNear = 1.0f, kFar = 100.0f;
 
 // ---- Capture lists built on the CPU ----
 
-// Mirrors struct CaptureSegment in shaders/common/capture_lists.glsl.
-struct Segment {
-  float entry;
-  float exit_depth;
-  float exit_trans;
-  uint32_t next;
-};
-static_assert(sizeof(Segment) == passes::kCaptureSegmentBytes);
+using Segment = shared::CaptureSegment;  // shaders/shared/capture.h
 
 struct Lists {
   uint32_t resolution = 0;

@@ -6,15 +6,12 @@
 
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
+#include "tests/fill.h"
 
 namespace avsm::testing {
 
 // Push constants of shaders/tests/fill.comp: values[i] = i * scale + offset.
-struct FillPush {
-  float scale;
-  float offset;
-  uint32_t count;
-};
+using shared::FillPush;
 
 gpu::Context& test_context();
 const gpu::ShaderLibrary& test_shaders();

@@ -2,15 +2,12 @@
 // The host's shading pass: the ground plane y = 0 seen from straight above, one pixel
 // per ground point, lit by light 0 and shadowed by the engine's AVSM map.
 #extension GL_GOOGLE_include_directive : require
-#define AVSM_SHADOW_BINDING 1  // the host binds the maps with ShadowInputs::bind(bindings, 1, context)
+#define AVSM_SHADOW_BINDING 1  // any free binding: the host binds the maps by name (ShadowInputs::bind)
 #include "common/shadow_lookup.glsl"
+#include "ground_shading.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba16f) uniform writeonly image2D ground_image;
-layout(push_constant) uniform Push {
-  vec4 ground;    // xy: world x, z of the image's corner; zw: world size along x, z
-  vec4 to_light;  // xyz: unit vector towards the light
-} pc;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

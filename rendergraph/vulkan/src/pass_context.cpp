@@ -37,9 +37,9 @@ const TextureDesc& PassContext::desc(TextureHandle texture) const {
   return plan_.resources[texture.index].texture;
 }
 
-VkBuffer PassContext::buffer(BufferHandle buffer) const {
+avsm::gpu::BufferRange PassContext::buffer(BufferHandle buffer) const {
   access(ResourceKind::Buffer, buffer.index, buffer.graph_id);
-  return buffers_[buffer.index]->handle();
+  return *buffers_[buffer.index];
 }
 
 uint64_t PassContext::size(BufferHandle buffer) const {

@@ -16,19 +16,20 @@
 //   graph.add_pass<...>("my shading", ...,
 //       [&](rg::PassBuilder& b, ...) { maps.declare_reads(b); ... },
 //       [=](..., rg::PassContext& c) { avsm::gpu::Bindings bindings(context, pipeline);
-//                                      maps.bind(bindings, 4, c); ... });
+//                                      maps.bind(bindings, c); ... });
 //   executor.record(graph, cmd); submit, wait;
 //   shadows.finish_frame();
 //
 // In the shading pass's GLSL (include directory: ShaderLocation::glsl_include_dir()):
-//   #define AVSM_SHADOW_BINDING 4                  // maps.bind(bindings, 4, c)
+//   #define AVSM_SHADOW_BINDING 4                  // any 4 free bindings; maps.bind() binds by name
 //   #include "common/shadow_lookup.glsl"
 //   float t = surface_light_transmittance(light_index, p, normal, to_light);  // surfaces
 //   float t = light_transmittance(light_index, p);                            // volumes, hair
 // The shader is the host's: compile it with compile_glsl() or with glslangValidator and
 // -I <glsl_include_dir>. Bindings go through push descriptors (VK_KHR_push_descriptor,
-// avsm::gpu::Pipeline/Bindings); ShadowInputs' fields hold the raw handles for hosts that
-// write their own descriptor sets.
+// avsm::gpu::Pipeline/Bindings, by the shader's names); its push constants are declared
+// once for GLSL and C++ with GPU_PUSH_CONSTANTS ("shared/gpu_struct.h"). ShadowInputs'
+// fields hold the raw handles for hosts that write their own descriptor sets.
 #include <rendergraph/graph.h>
 
 #include <glm/glm.hpp>

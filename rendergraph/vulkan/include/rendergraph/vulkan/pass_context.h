@@ -7,10 +7,10 @@
 
 #include <vector>
 
+#include "gpu/resources.h"
+
 namespace avsm::gpu {
 class Context;
-class Image;
-class Buffer;
 }  // namespace avsm::gpu
 
 namespace rg {
@@ -33,7 +33,8 @@ class PassContext {
   // The layout the plan put the texture in for this pass.
   VkImageLayout layout(TextureHandle texture) const;
   const TextureDesc& desc(TextureHandle texture) const;
-  VkBuffer buffer(BufferHandle buffer) const;
+  // The whole buffer (its handle and size); converts to VkBuffer.
+  avsm::gpu::BufferRange buffer(BufferHandle buffer) const;
   uint64_t size(BufferHandle buffer) const;
 
  private:

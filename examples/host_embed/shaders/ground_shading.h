@@ -1,0 +1,15 @@
+// The ground shading pass's push constants, declared once for its GLSL and the host's
+// C++ with the engine's shared-struct macros (the engine checks the two agree when it
+// creates the pipeline).
+#ifndef HOST_GROUND_SHADING_H
+#define HOST_GROUND_SHADING_H
+#include "shared/gpu_struct.h"
+GPU_NAMESPACE_BEGIN
+
+#define GPU_GROUND_PUSH(F, A)                                                         \
+  F(vec4, ground)   /* xy: world x, z of the image's corner; zw: world size along x, z */ \
+  F(vec4, to_light) /* xyz: unit vector towards the light */
+GPU_PUSH_CONSTANTS(GroundPush, GPU_GROUND_PUSH)
+
+GPU_NAMESPACE_END
+#endif

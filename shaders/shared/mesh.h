@@ -1,0 +1,21 @@
+// Opaque meshes as the shaders read them: vertices pulled from a storage buffer
+// (world space; the light captures read the positions of the same buffer) and one
+// GpuMaterial per material.
+#ifndef AVSM_SHARED_MESH_H
+#define AVSM_SHARED_MESH_H
+#include "shared/gpu_struct.h"
+GPU_NAMESPACE_BEGIN
+
+#define GPU_CASTER_VERTEX(F, A) A(float, position, 3) A(float, normal, 3) A(float, uv, 2)
+GPU_STRUCT(CasterVertex, GPU_CASTER_VERTEX)
+
+#define GPU_MATERIAL(F, A)                                 \
+  F(vec4, base_color)                                      \
+  F(uint, alpha_mask) /* 1: discard below alpha_cutoff */  \
+  F(float, alpha_cutoff)                                   \
+  F(uint, has_texture)                                     \
+  F(float, pad)
+GPU_STRUCT(GpuMaterial, GPU_MATERIAL)
+
+GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,17 @@
+// Push constants of smoke seen from a light (common/capture_smoke.glsl).
+#ifndef AVSM_SHARED_PASSES_CAPTURE_SMOKE_H
+#define AVSM_SHARED_PASSES_CAPTURE_SMOKE_H
+#include "shared/gpu_struct.h"
+GPU_NAMESPACE_BEGIN
+
+#define GPU_CAPTURE_SMOKE_PUSH(F, A)                                     \
+  F(mat4, world_from_light)      /* light clip -> world */               \
+  F(vec4, depth_plane)           /* light depth(p) = dot(xyz, p) + w */  \
+  F(uint, resolution)                                                    \
+  F(uint, volume_count)                                                  \
+  F(uint, samples_per_segment)                                           \
+  F(float, pad)
+GPU_PUSH_CONSTANTS(CaptureSmokePush, GPU_CAPTURE_SMOKE_PUSH)
+
+GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,16 @@
+// Push constants of per strand vertex lighting and fog (common/hair_lighting.glsl).
+#ifndef AVSM_SHARED_PASSES_HAIR_LIGHTING_H
+#define AVSM_SHARED_PASSES_HAIR_LIGHTING_H
+#include "shared/gpu_struct.h"
+GPU_NAMESPACE_BEGIN
+
+#define GPU_HAIR_LIGHTING_PUSH(F, A)\
+  F(vec4, camera_position)  \
+  F(uint, point_count)      \
+  F(uint, volume_count)     \
+  F(uint, light_count)      \
+  F(float, step_voxels)
+GPU_PUSH_CONSTANTS(HairLightingPush, GPU_HAIR_LIGHTING_PUSH)
+
+GPU_NAMESPACE_END
+#endif
