@@ -40,7 +40,9 @@ set(AVSM_SHADER_PATTERNS PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.vert" PATTERN
 install(DIRECTORY shaders/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/shaders
         FILES_MATCHING ${AVSM_SHADER_PATTERNS} PATTERN "tests" EXCLUDE)
 install(DIRECTORY ${AVSM_SPIRV_DIR}/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/spirv
-        FILES_MATCHING PATTERN "*.spv" PATTERN "tests" EXCLUDE)
+        FILES_MATCHING PATTERN "*.spv" PATTERN "*.glsl" PATTERN "tests" EXCLUDE)
+# The shadow techniques' lookups, as in the source tree (gpu::glsl_include_dirs).
+install(DIRECTORY passes/techniques DESTINATION ${AVSM_INSTALL_DATA_DIR}/passes FILES_MATCHING PATTERN "*.glsl")
 
 # The package. The static libraries' private dependencies are link dependencies of the
 # host, so the config file finds them again (the same Debian packages). OpenVDB ships a

@@ -7,11 +7,17 @@
 # depend on all of them. #include dependencies are tracked through depfiles.
 set(AVSM_SPIRV_DIR "${CMAKE_BINARY_DIR}/spirv" CACHE INTERNAL "Compiled SPIR-V")
 set(AVSM_SHADER_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/shaders" CACHE INTERNAL "GLSL include root")
+# The shadow techniques' lookups ("techniques/<name>/<name>.glsl") and the dispatch over
+# them that cmake/ShadowTechniques.cmake generates.
+set(AVSM_TECHNIQUE_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/passes" CACHE INTERNAL "GLSL include root of the techniques")
+set(AVSM_GENERATED_GLSL_DIR "${AVSM_SPIRV_DIR}/glsl" CACHE INTERNAL "Generated GLSL")
+include(${CMAKE_CURRENT_LIST_DIR}/ShadowTechniques.cmake)
+avsm_generate_technique_dispatch("${CMAKE_SOURCE_DIR}/passes/techniques/registry.h" "${AVSM_GENERATED_GLSL_DIR}")
 
 function(avsm_add_shaders target)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
   set(outputs)
-  set(include_flags -I${AVSM_SHADER_INCLUDE_DIR})
+  set(include_flags -I${AVSM_SHADER_INCLUDE_DIR} -I${AVSM_TECHNIQUE_INCLUDE_DIR} -I${AVSM_GENERATED_GLSL_DIR})
   if(NANOVDB_INCLUDE_DIR)
     list(APPEND include_flags -I${NANOVDB_INCLUDE_DIR})
   endif()

@@ -2,12 +2,10 @@
 // Adaptive volumetric shadow maps for every light of a scene, as frame-graph
 // passes (Salvi et al., EGSR 2010). Per light and frame:
 //   clear lists -> capture opaque -> capture hair -> capture smoke -> [sort lists]
-//   -> avsm resolve -> avsm mips            (technique avsm)
-//   -> osm build                            (opacity shadow maps, K planes)
-//   -> fom build                            (Fourier opacity maps, K terms)
-//   -> dsm clear -> dsm build               (deep shadow maps, error threshold)
-// or the capture lists themselves, read exactly by the camera passes (technique
-// uncompressed, the ground truth). All techniques share the capture. The lists are transient graph resources, so
+//   -> the light's technique's build passes (passes/techniques/: avsm resolve and
+//      mips, osm, fom or dsm builds), or none: the exact reference (uncompressed)
+//      reads the capture lists themselves.
+// All techniques share the capture. The lists are transient graph resources, so
 // lights alias each other's capture memory; the map and the capture counter are
 // persistent and imported.
 //
@@ -21,22 +19,21 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "passes/avsm_map_layout.h"
-#include "passes/avsm_mips_pass.h"
-#include "passes/avsm_resolve_pass.h"
 #include "passes/capture_hair_pass.h"
 #include "passes/capture_opaque_pass.h"
 #include "passes/capture_smoke_pass.h"
 #include "passes/capture_sort_pass.h"
 #include "passes/light_view.h"
-#include "passes/map_build_pass.h"
 #include "passes/shadow_casters.h"
 #include "passes/shadow_inputs.h"
+#include "passes/techniques/technique.h"
 #include "passes/shadow_stats.h"
 #include "passes/view.h"
 #include "scene/scene.h"
@@ -102,18 +99,19 @@ class ShadowMaps {
   const gpu::Buffer& parameters() const { return parameters_; }
   // Light `light`'s AVSM map (layout: map_layout(light)); empty for uncompressed lights.
   const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
-  const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).layout; }
+  const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).map_state.layout; }
+  const ShadowTechnique& technique(uint32_t light) const { return *lights_.at(light).technique; }
   uint32_t light_count() const { return uint32_t(views_.size()); }
   bool has_reference() const { return options_.keep_reference; }
 
  private:
   struct LightState {
     scene::ShadowSettings settings;
-    AvsmMapLayout layout;
+    const ShadowTechnique* technique = nullptr;
+    TechniqueMapState map_state;
     gpu::Buffer map;      // the technique's map (AVSM nodes, all levels; opacity planes; ...)
     gpu::Buffer counter;  // host-readable capture counter
     uint64_t capacity = 0;
-    uint64_t pool_nodes = 0;  // deep shadow map node pool
   };
   void create_map(uint32_t light);
   GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
@@ -123,9 +121,7 @@ class ShadowMaps {
   CaptureHairPass capture_hair_;
   CaptureSmokePass capture_smoke_;
   CaptureSortPass sort_;
-  AvsmResolvePass resolve_;
-  AvsmMipsPass mips_;
-  MapBuildPass osm_build_, fom_build_, dsm_build_;
+  std::vector<std::unique_ptr<TechniqueBuilder>> builders_;  // by technique code - 1
   ShadowOptions options_;
   std::vector<LightView> views_;
   std::vector<LightState> lights_;

@@ -22,7 +22,7 @@ struct DsmPoolStats {
 
 struct LightShadowStats {
   std::string light;
-  scene::ShadowTechnique technique = scene::ShadowTechnique::avsm;
+  std::string technique = "avsm";  // a name of passes/techniques/registry.h
   uint32_t nodes = 0, resolution = 0, mip_levels = 0;
   uint64_t map_bytes = 0;               // persistent map (0 for uncompressed)
   uint64_t capture_capacity = 0;        // segments the node buffer held this frame

@@ -112,6 +112,9 @@ def main():
             [(f"AVSM-{n}", "avsm", n, ()) for n in (4, 8, 12, 16)] +
             [(f"DSM e={e}", "dsm", None, (f"error={e}",)) for e in (0.01, 0.05)] +
             [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))])
+    # Every other registered technique at its defaults, so a new one is measured too.
+    registered = subprocess.run([capture, "--list-techniques"], check=True, capture_output=True, text=True).stdout.split()
+    rows += [(name, name, None, ()) for name in registered if name not in {row[1] for row in rows}]
     print(f"{os.path.basename(args.scene) or 'default scene'}:", file=sys.stderr)
     results = {}
     for label, technique, nodes, params in rows:

@@ -40,7 +40,7 @@ scene::Light to_scene(const Light& light, size_t index) {
   out.position = light.position;
   out.inner_cone_angle = light.outer_cone_radians;
   out.outer_cone_angle = light.outer_cone_radians;
-  out.shadow.technique = scene::ShadowTechnique::avsm;
+  out.shadow.technique = "avsm";
   out.shadow.nodes = int(light.nodes);
   out.shadow.resolution = int(light.resolution);
   out.shadow.filter = to_scene(light.filter);
@@ -100,7 +100,7 @@ ShadowInputs Shadows::unshadowed_inputs() const { return impl_->maps.unshadowed_
 const ShaderLocation& Shadows::shader_location() const { return impl_->location; }
 
 std::vector<std::filesystem::path> Shadows::glsl_include_dirs() const {
-  return {impl_->location.glsl_include_dir(), AVSM_NANOVDB_INCLUDE_DIR};
+  return gpu::glsl_include_dirs({impl_->location.glsl_root, impl_->location.spirv_root});
 }
 
 std::vector<uint32_t> Shadows::compile_glsl(const std::filesystem::path& file) const {

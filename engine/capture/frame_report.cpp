@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "capture/frame_outputs.h"
+#include "passes/techniques/techniques.h"
 
 namespace avsm::capture {
 namespace fs = std::filesystem;
@@ -53,10 +54,16 @@ rg::QueueType queue_from_string(const std::string& name) {
   throw std::runtime_error("unknown queue '" + name + "'");
 }
 
-scene::ShadowTechnique technique_from_json(const json& object) {
+// Only AVSM lights report a node count (quality.json's "nodes").
+bool stores_avsm_nodes(const std::string& technique) {
+  const passes::ShadowTechnique* t = passes::find_shadow_technique(technique);
+  return t && t->stores_avsm_nodes();
+}
+
+std::string technique_from_json(const json& object) {
   const std::string name = value_of<std::string>(object, "technique");
-  if (auto technique = scene::shadow_technique_from_string(name)) return *technique;
-  throw std::runtime_error("unknown technique '" + name + "'");
+  if (!passes::find_shadow_technique(name)) throw std::runtime_error("unknown technique '" + name + "'");
+  return name;
 }
 
 scene::ShadowFilter filter_from_json(const json& object) {
@@ -106,7 +113,7 @@ FrameSample frame_sample_from_json(const json& in) {
 
 json to_json(const passes::LightShadowStats& s) {
   json out = {{"light", s.light},
-              {"technique", scene::to_string(s.technique)},
+              {"technique", s.technique},
               {"nodes", s.nodes},
               {"resolution", s.resolution},
               {"mip_levels", s.mip_levels},
@@ -189,7 +196,7 @@ json to_json(const LightQuality& q, size_t index) {
   return {
       {"light", q.light},
       {"index", index},
-      {"technique", scene::to_string(q.settings.technique)},
+      {"technique", q.settings.technique},
       {"technique_label", technique_label(q.settings)},
       {"filter", scene::to_string(q.settings.filter)},
       {"sort", q.settings.sort},
@@ -202,7 +209,7 @@ json to_json(const LightQuality& q, size_t index) {
       {"smoke", to_json(q.smoke)},
       {"hair", to_json(q.hair)},
       // AVSM keeps N nodes per texel (the other techniques' sizes are in technique_label and parameters).
-      {"nodes", q.settings.technique == scene::ShadowTechnique::avsm ? json(q.settings.nodes) : json(nullptr)},
+      {"nodes", stores_avsm_nodes(q.settings.technique) ? json(q.settings.nodes) : json(nullptr)},
       {"parameters", q.settings.parameters},
       {"mean_abs_error", mean_json(all)},
       {"max_abs_error", max_json(all)},
@@ -229,7 +236,7 @@ LightQuality light_quality_from_json(const json& in) {
 json to_json(const ProbeLight& light) {
   const scene::ShadowSettings& s = light.settings;
   return {{"light", light.light},
-          {"technique", scene::to_string(s.technique)},
+          {"technique", s.technique},
           {"nodes", s.nodes},
           {"filter", scene::to_string(s.filter)},
           {"sort", s.sort},

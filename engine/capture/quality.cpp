@@ -18,6 +18,7 @@
 #include "capture/report.h"
 #include "io/image_io.h"
 #include "passes/shadow_maps.h"
+#include "passes/techniques/techniques.h"
 
 namespace avsm::capture {
 namespace fs = std::filesystem;
@@ -220,27 +221,15 @@ std::string curve_svg(const CurvePlot& plot) {
 }  // namespace
 
 std::string technique_label(const scene::ShadowSettings& s) {
-  auto whole = [](double v) { return std::to_string(static_cast<long long>(v)); };
-  switch (s.technique) {
-    case scene::ShadowTechnique::avsm: return "AVSM-" + std::to_string(s.nodes);
-    case scene::ShadowTechnique::osm: return "OSM-" + whole(s.parameter("slices", 32));
-    case scene::ShadowTechnique::fom: return "FOM-" + whole(s.parameter("terms", 16));
-    case scene::ShadowTechnique::dsm: {
-      char text[64];
-      std::snprintf(text, sizeof(text), "DSM (error %g)", s.parameter("error", 0.01));
-      return text;
-    }
-    case scene::ShadowTechnique::uncompressed: break;
-  }
-  return std::string(scene::to_string(s.technique));
+  return passes::shadow_technique(s.technique).label(s);
 }
 
 // The stored AVSM nodes of a level-0 texel (padding repeats of the last node dropped);
 // none for lights that are not AVSM.
 std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light, uint32_t x,
-                                   uint32_t y, scene::ShadowTechnique technique) {
+                                   uint32_t y) {
   const gpu::Buffer& map = shadows.avsm_map(light);
-  if (!map || technique != scene::ShadowTechnique::avsm) return {};
+  if (!map || !shadows.technique(light).stores_avsm_nodes()) return {};
   const passes::AvsmMapLayout& layout = shadows.map_layout(light);
   const uint32_t groups = layout.nodes / 4;
   const uint64_t base = layout.texel_base(0, x, y);
@@ -417,7 +406,7 @@ std::vector<fs::path> write_texel_curves(const fs::path& out_dir, const std::vec
       curve.technique_values.push_back(r.technique);
       curve.reference_values.push_back(r.reference);
     }
-    curve.nodes = texel_nodes(ctx, shadows, plot.light_index, plot.x, plot.y, settings.technique);
+    curve.nodes = texel_nodes(ctx, shadows, plot.light_index, plot.x, plot.y);
     // The texel's centre ray in world space: light clip z 0 (near depth) to 1 (far depth).
     const float res = float(view.resolution);
     const glm::vec2 ndc((plot.x + 0.5f) / res * 2.0f - 1.0f, (plot.y + 0.5f) / res * 2.0f - 1.0f);

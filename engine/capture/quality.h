@@ -99,7 +99,7 @@ std::vector<passes::TexelSample> texel_curve_samples(const std::vector<TexelPlot
                                                      const std::vector<passes::LightView>& views);
 
 // "AVSM-8", "OSM-32", "DSM (error 0.01)", "uncompressed": what legends and quality.json
-// call a light's technique (defaults as in passes/shadow_maps.cpp).
+// call a light's technique (its ShadowTechnique::label()).
 std::string technique_label(const scene::ShadowSettings& settings);
 
 // One stored node of a texel's AVSM curve.
@@ -108,9 +108,10 @@ struct CurveNode {
 };
 
 // The stored AVSM nodes of light `light`'s level-0 texel (x, y), read back from its
-// map now (padding repeats of the last node dropped); none unless the technique is avsm.
+// map now (padding repeats of the last node dropped); none unless its technique stores
+// AVSM nodes.
 std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light, uint32_t x,
-                                   uint32_t y, scene::ShadowTechnique technique);
+                                   uint32_t y);
 
 // Writes curve_<light>_<x>_<y>.svg per plot from the samples' results (same order as
 // texel_curve_samples()); reads the AVSM nodes of each texel from `shadows` to mark

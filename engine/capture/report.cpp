@@ -322,7 +322,7 @@ void write_memory(std::ostringstream& html, const MemoryReport& memory) {
   for (const passes::LightShadowStats& light : memory.lights) {
     light_total += light.map_bytes + light.capture_bytes;
     html << "<tr class=\"light\"><td>" << escape(light.light) << "</td><td>"
-         << escape(scene::to_string(light.technique)) << "</td>";
+         << escape(light.technique) << "</td>";
     for (uint64_t value : {light.nodes, light.resolution, light.mip_levels})
       html << "<td class=\"num\">" << value << "</td>";
     html << "<td class=\"num\">" << escape(bytes_text(light.map_bytes)) << "</td><td class=\"num\">"
@@ -341,7 +341,7 @@ void write_memory(std::ostringstream& html, const MemoryReport& memory) {
 void write_probes(std::ostringstream& html, const ProbeReport& probes) {
   html << "<section>\n<h2>Probes</h2>\n<table id=\"probes-table\">\n<tr><th>point</th>";
   for (const ProbeLight& light : probes.lights)
-    html << "<th class=\"num\">" << escape(light.light) << " (" << escape(scene::to_string(light.settings.technique))
+    html << "<th class=\"num\">" << escape(light.light) << " (" << escape(light.settings.technique)
          << ")</th>";
   html << "</tr>\n";
   for (size_t p = 0; p < probes.points.size(); ++p) {

@@ -158,6 +158,14 @@ std::vector<uint32_t> read_spirv_file(const fs::path& path) {
   return words;
 }
 
+std::vector<std::filesystem::path> glsl_include_dirs(const ShaderLibrary::Paths& paths) {
+  std::vector<std::filesystem::path> dirs;
+  for (const std::filesystem::path& dir : {paths.source_root / "shaders", paths.source_root / "passes",
+                                           paths.spirv_root / "glsl", std::filesystem::path(AVSM_NANOVDB_INCLUDE_DIR)})
+    if (std::filesystem::is_directory(dir)) dirs.push_back(dir);
+  return dirs;
+}
+
 ShaderLibrary::Paths ShaderLibrary::default_paths() {
   Paths paths{AVSM_DEFAULT_SOURCE_DIR, AVSM_DEFAULT_SPIRV_DIR};
   if (const char* dir = std::getenv("AVSM_SOURCE_DIR")) paths.source_root = dir;
@@ -193,7 +201,7 @@ std::vector<std::filesystem::path> ShaderLibrary::source_files() const {
 
 CompiledShader ShaderLibrary::compile(const std::string& relative_path) const {
   ShaderCompileOptions options;
-  options.include_dirs = {paths_.source_root / "shaders", AVSM_NANOVDB_INCLUDE_DIR};
+  options.include_dirs = glsl_include_dirs(paths_);
   return compile_glsl_file(paths_.source_root / relative_path, options);
 }
 

@@ -83,4 +83,10 @@ class ShaderLibrary {
 
 std::vector<uint32_t> read_spirv_file(const std::filesystem::path& path);
 
+// Where the engine's GLSL includes resolve, for `paths`: shaders/, the shadow
+// techniques' folders (passes/: "techniques/<name>/<name>.glsl"), the GLSL the build
+// generates next to the SPIR-V (<spirv_root>/glsl: the technique dispatch), NanoVDB's
+// headers. Folders that do not exist are left out.
+std::vector<std::filesystem::path> glsl_include_dirs(const ShaderLibrary::Paths& paths);
+
 }  // namespace avsm::gpu

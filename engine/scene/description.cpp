@@ -333,12 +333,9 @@ HairEntry read_hair(ObjectReader& object, const std::filesystem::path& scene_dir
 ShadowSettings read_shadow(const Reader& reader, const json& value, const std::string& path) {
   ObjectReader object(reader, value, path);
   ShadowSettings shadow;
-  shadow.technique = choice<ShadowTechnique>(object, "technique", shadow.technique,
-                                             {{"avsm", ShadowTechnique::avsm},
-                                              {"uncompressed", ShadowTechnique::uncompressed},
-                                              {"dsm", ShadowTechnique::dsm},
-                                              {"osm", ShadowTechnique::osm},
-                                              {"fom", ShadowTechnique::fom}});
+  // A name; which names exist is the renderer's registry's to say (passes/techniques/).
+  shadow.technique = object.string_or("technique", shadow.technique);
+  object.check(!shadow.technique.empty(), "technique", "must name a shadow technique");
   shadow.nodes = object.integer_or("nodes", shadow.nodes);
   object.check(shadow.nodes == 4 || shadow.nodes == 8 || shadow.nodes == 12 || shadow.nodes == 16, "nodes",
                "must be 4, 8, 12 or 16, got " + std::to_string(shadow.nodes));

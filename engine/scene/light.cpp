@@ -6,13 +6,6 @@
 namespace avsm::scene {
 namespace {
 
-constexpr std::array<std::pair<ShadowTechnique, std::string_view>, 5> kTechniques = {{
-    {ShadowTechnique::avsm, "avsm"},
-    {ShadowTechnique::uncompressed, "uncompressed"},
-    {ShadowTechnique::dsm, "dsm"},
-    {ShadowTechnique::osm, "osm"},
-    {ShadowTechnique::fom, "fom"},
-}};
 constexpr std::array<std::pair<ShadowFilter, std::string_view>, 3> kFilters = {{
     {ShadowFilter::point, "point"},
     {ShadowFilter::bilinear, "bilinear"},
@@ -35,12 +28,8 @@ std::optional<Enum> value_of(const Table& table, std::string_view text) {
 
 }  // namespace
 
-std::string_view to_string(ShadowTechnique technique) { return name_of(kTechniques, technique); }
 std::string_view to_string(ShadowFilter filter) { return name_of(kFilters, filter); }
 std::string_view to_string(LightType type) { return type == LightType::directional ? "directional" : "spot"; }
-std::optional<ShadowTechnique> shadow_technique_from_string(std::string_view text) {
-  return value_of<ShadowTechnique>(kTechniques, text);
-}
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
   return value_of<ShadowFilter>(kFilters, text);
 }

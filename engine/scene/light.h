@@ -9,21 +9,20 @@
 
 namespace avsm::scene {
 
-// avsm: adaptive volumetric shadow maps (Salvi et al. 2010); uncompressed: all
-// nodes kept (reference); dsm: deep shadow maps; osm: opacity shadow maps;
-// fom: Fourier opacity maps.
-enum class ShadowTechnique { avsm, uncompressed, dsm, osm, fom };
 enum class ShadowFilter { point, bilinear, trilinear };
 
 struct ShadowSettings {
-  ShadowTechnique technique = ShadowTechnique::avsm;
+  // A shadow technique by name: avsm (adaptive volumetric shadow maps, Salvi et al.
+  // 2010), uncompressed (the exact reference) or another of passes/techniques/. The
+  // scene file only checks it is a name; the renderer checks it is a known one.
+  std::string technique = "avsm";
   int nodes = 8;                 // 4, 8, 12 or 16
   int resolution = 1024;         // shadow map texels per side, 16 to 16384
   ShadowFilter filter = ShadowFilter::bilinear;
   bool sort = true;              // sort fragments before compression
-  // Technique-specific numbers (e.g. depth bias, slab count), passed through
-  // for the technique to read and check; the scene file only checks that they
-  // are finite numbers.
+  // Technique-specific numbers (e.g. depth bias, slab count), which each technique
+  // declares with its defaults and ranges and checks; the scene file only checks
+  // that they are finite numbers.
   std::map<std::string, double> parameters;
 
   double parameter(const std::string& name, double fallback) const {
@@ -35,7 +34,7 @@ struct ShadowSettings {
 // Shadow settings written over a light's own (the capture's flags, the viewer's
 // edits): unset fields keep what the scene file says.
 struct ShadowOverrides {
-  std::optional<ShadowTechnique> technique;
+  std::optional<std::string> technique;
   std::optional<int> nodes;
   std::optional<int> resolution;
   std::optional<ShadowFilter> filter;
@@ -59,10 +58,8 @@ struct Light {
   ShadowSettings shadow;
 };
 
-std::string_view to_string(ShadowTechnique technique);
 std::string_view to_string(ShadowFilter filter);
 std::string_view to_string(LightType type);
-std::optional<ShadowTechnique> shadow_technique_from_string(std::string_view text);
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
 
 }  // namespace avsm::scene

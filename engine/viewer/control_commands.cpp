@@ -1,4 +1,5 @@
 #include "viewer/control_commands.h"
+#include "passes/techniques/techniques.h"
 
 #include <sstream>
 #include <stdexcept>
@@ -74,9 +75,9 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
   LightOverride& o = overrides.light(light);
   const std::string what = "light " + field;
   if (field == "technique") {
-    const std::optional<scene::ShadowTechnique> technique = scene::shadow_technique_from_string(value);
-    if (!technique) throw std::invalid_argument(what + ": unknown technique '" + value + "'");
-    o.technique = *technique;
+    if (!passes::find_shadow_technique(value))
+      throw std::invalid_argument(what + ": unknown technique '" + value + "' (" + passes::shadow_technique_names() + ")");
+    o.technique = value;
   } else if (field == "filter") {
     const std::optional<scene::ShadowFilter> filter = scene::shadow_filter_from_string(value);
     if (!filter) throw std::invalid_argument(what + ": unknown filter '" + value + "'");

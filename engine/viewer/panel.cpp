@@ -8,14 +8,12 @@
 
 #include "capture/frame_outputs.h"
 #include "capture/frame_report.h"
+#include "passes/techniques/techniques.h"
 
 namespace avsm::viewer {
 
 namespace {
 
-constexpr std::array kTechniques{scene::ShadowTechnique::avsm, scene::ShadowTechnique::uncompressed,
-                                 scene::ShadowTechnique::dsm, scene::ShadowTechnique::osm,
-                                 scene::ShadowTechnique::fom};
 constexpr std::array kFilters{scene::ShadowFilter::point, scene::ShadowFilter::bilinear,
                               scene::ShadowFilter::trilinear};
 constexpr std::array kNodeCounts{4, 8, 12, 16};
@@ -35,8 +33,8 @@ std::string bytes_text(uint64_t bytes) {
 }
 
 // A combo over `options`, labelled by `name`; returns the newly chosen one.
-template <class T, size_t N, class Name>
-std::optional<T> choose(const char* label, const T& current, const std::array<T, N>& options, Name name) {
+template <class T, class Options, class Name>
+std::optional<T> choose(const char* label, const T& current, const Options& options, Name name) {
   std::optional<T> chosen;
   const std::string preview = name(current);
   if (ImGui::BeginCombo(label, preview.c_str())) {
@@ -49,7 +47,17 @@ std::optional<T> choose(const char* label, const T& current, const std::array<T,
   return chosen;
 }
 
-std::string technique_name(scene::ShadowTechnique t) { return std::string(scene::to_string(t)); }
+std::string technique_name(const std::string& t) { return t; }
+
+// Every registered technique's name, in registry order.
+const std::vector<std::string>& technique_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const passes::ShadowTechnique* t : passes::shadow_techniques()) out.emplace_back(t->name());
+    return out;
+  }();
+  return names;
+}
 std::string filter_name(scene::ShadowFilter f) { return std::string(scene::to_string(f)); }
 std::string number_name(int n) { return std::to_string(n); }
 
@@ -166,7 +174,7 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
       ImGui::SameLine();
       bool sort = shadow.sort;
       if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
-      if (auto t = choose("technique", shadow.technique, kTechniques, technique_name))
+      if (auto t = choose("technique", shadow.technique, technique_names(), technique_name))
         o.technique = *t, requests.scene_edited = true;
       if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;
       if (auto r = choose("map resolution", shadow.resolution, kResolutions, number_name))
@@ -286,7 +294,7 @@ void Panel::draw_memory(const PanelView& view) {
               bytes_text(memory.transient_bytes_aliased).c_str(), (unsigned long long)memory.heap_count,
               bytes_text(memory.transient_bytes_unaliased).c_str());
   for (const passes::LightShadowStats& light : memory.lights) {
-    ImGui::Text("%s: %s %ux%u, map %s, capture %s", light.light.c_str(), std::string(scene::to_string(light.technique)).c_str(),
+    ImGui::Text("%s: %s %ux%u, map %s, capture %s", light.light.c_str(), light.technique.c_str(),
                 light.resolution, light.resolution, bytes_text(light.map_bytes).c_str(), bytes_text(light.capture_bytes).c_str());
     ImGui::Text("  segments %llu of %llu%s", (unsigned long long)light.capture_requested,
                 (unsigned long long)light.capture_capacity, light.overflowed ? " (overflowed: buffer grows)" : "");

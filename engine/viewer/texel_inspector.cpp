@@ -110,8 +110,7 @@ void TexelInspector::read_results(const std::vector<passes::TexelSampleResult>& 
       curve.reference_values.push_back(results[next].reference);
     }
     if (curve.light < shadows.light_count() && curve.light < scene.lights.size())
-      curve.nodes = capture::texel_nodes(ctx, shadows, curve.light, curve.texel.x, curve.texel.y,
-                                         scene.lights[curve.light].shadow.technique);
+      curve.nodes = capture::texel_nodes(ctx, shadows, curve.light, curve.texel.x, curve.texel.y);
   }
 }
 

@@ -13,7 +13,6 @@
 
 #extension GL_GOOGLE_include_directive : require
 #include "avsm/avsm_core.glsl"
-#include "techniques/opacity_maps.glsl"
 
 #include "shared/capture.h"
 #include "shared/map_layouts.h"
@@ -57,115 +56,13 @@ float shadow_light_depth(GpuShadow s, vec3 p) { return dot(s.depth_plane.xyz, p)
 
 float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.texel_camera.y * depth; }
 
-// First vec4 of a texel's curve in its light's map.
-uint avsm_texel_base(GpuShadow s, uint level, ivec2 texel) {
-  return avsm_map_texel_base(s.resolution, s.node_count, level, uint(texel.x), uint(texel.y));
-}
+// Below this a curve counts as opaque (opaque segments end at exactly 0).
+const float kShadowOpaque = 1e-4;
 
-// One texel's stored curve at depth d; the same answer as avsm_evaluate_linear on
-// the curve the resolve built (the padding nodes are never "the first node behind d").
-float avsm_texel_transmittance(GpuShadow s, uint base, float d) {
-  uint slot = s.slot;
-  uint groups = s.node_count / 4u;
-  vec4 depths = vec4(0.0);
-  uint g = 0u;
-  for (; g < 4u; ++g) {  // constant bounds in the lookups: see avsm_core.glsl
-    if (g >= groups) break;
-    depths = shadow_map_texel(slot, base + g);
-    if (d < depths.w) break;
-  }
-  if (g == groups) return shadow_map_texel(slot, base + 2u * groups - 1u).w;  // behind every node
-  uint k = d < depths.x ? 0u : (d < depths.y ? 1u : (d < depths.z ? 2u : 3u));
-  uint i = 4u * g + k;
-  if (i == 0u) return 1.0;  // in front of the first node
-  float d1 = depths[k];
-  float d0 = k > 0u ? depths[k - 1u] : shadow_map_texel(slot, base + g - 1u).w;
-  vec4 transmittances = shadow_map_texel(slot, base + groups + g);
-  float t1 = transmittances[k];
-  float t0 = k > 0u ? transmittances[k - 1u] : shadow_map_texel(slot, base + groups + g - 1u).w;
-  float f = d1 > d0 ? (d - d0) / (d1 - d0) : 1.0;
-  return avsm_interpolate(t0, t1, f, s.exponential != 0u);
-}
-
-// The exact curve of one texel's capture list: the product of its segments.
-float list_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
-  uint slot = s.slot;
-  uint node = shadow_list_head(slot, texel);
-  float t = 1.0;
-  uint previous = 0xffffffffu;
-  while (node < previous) {  // indices fall along a list; kListEnd ends it
-    CaptureSegment n = shadow_list_node(slot, node);
-    t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
-    previous = node;
-    node = n.next;
-  }
-  return t;
-}
-
-// Opacity shadow map texel: the optical depth at the planes around d, interpolated.
-float osm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
-  int planes = int(s.node_count);
-  uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(planes / 4);
-  float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
-  int plane = int(floor(z * float(planes)));  // the plane in front of d (0: the near plane, no depth)
-  float before = plane == 0 ? 0.0 : shadow_map_texel(s.slot, base + uint(plane - 1) / 4u)[(plane - 1) % 4];
-  int next = min(plane, planes - 1);
-  float after = shadow_map_texel(s.slot, base + uint(next) / 4u)[next % 4];
-  return osm_transmittance(before, after, z, planes);
-}
-
-// Fourier opacity map texel: the series' optical depth in front of d.
-float fom_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
-  int terms = int(s.node_count);
-  uint base = (uint(texel.y) * s.resolution + uint(texel.x)) * uint(terms / 2);
-  float z = clamp((d - s.depth_range.z - s.depth_range.x) / max(s.depth_range.y - s.depth_range.x, 1e-20), 0.0, 1.0);
-  float optical_depth = 0.0;
-  for (int k = 0; k < 32; k += 2) {
-    if (k >= terms) break;
-    vec4 pair = shadow_map_texel(s.slot, base + uint(k / 2));
-    optical_depth +=
-        fom_term_optical_depth(pair.x, pair.y, k, terms, z) + fom_term_optical_depth(pair.z, pair.w, k + 1, terms, z);
-  }
-  return fom_transmittance(optical_depth);
-}
-
-// Deep shadow map texel (layout: shared/map_layouts.h): its own count of
-// nodes in the shared pool, searched front to back.
-uint dsm_word(uint slot, uint word) { return floatBitsToUint(shadow_map_texel(slot, word >> 2u)[word & 3u]); }
-
-float dsm_texel_transmittance(GpuShadow s, ivec2 texel, float d) {
-  uint index = uint(texel.y) * s.resolution + uint(texel.x);
-  uint first = dsm_word(s.slot, dsm_first_node_word(index)), count = dsm_word(s.slot, dsm_node_count_word(index));
-  // A texel the full pool could not take (counted and reported; the pool grows for the next frame).
-  if (count == 0u || count == kDsmLost) return 1.0;
-  uint pool = dsm_pool_base(s.resolution);
-  float previous_depth = 0.0, previous_trans = 1.0;
-  for (uint k = 0u; k < uint(AVSM_CURVE_CAPACITY); ++k) {  // at most the build's curve capacity
-    if (k >= count) break;
-    // A node is two words at an even word of a pool that starts on a vec4: one vec4 half.
-    uint word = pool + 2u * (first + k);
-    vec4 pair = shadow_map_texel(s.slot, word >> 2u);
-    vec2 node = uintBitsToFloat(floatBitsToUint((word & 2u) == 0u ? pair.xy : pair.zw));
-    float depth = node.x, trans = node.y;
-    if (d < depth) {
-      if (k == 0u) return 1.0;
-      float f = depth > previous_depth ? (d - previous_depth) / (depth - previous_depth) : 1.0;
-      // Lokovic-Veach nodes may lie up to the error outside [0, 1].
-      return clamp(avsm_interpolate(previous_trans, trans, f, s.exponential != 0u), 0.0, 1.0);
-    }
-    previous_depth = depth;
-    previous_trans = trans;
-  }
-  return clamp(previous_trans, 0.0, 1.0);
-}
-
-float shadow_texel_transmittance(GpuShadow s, uint level, ivec2 texel, float d) {
-  if (s.technique == kShadowDsm) return dsm_texel_transmittance(s, texel, d);
-  if (s.technique == kShadowUncompressed) return list_texel_transmittance(s, texel, d);
-  if (s.technique == kShadowOsm) return osm_texel_transmittance(s, texel, d);
-  if (s.technique == kShadowFom) return fom_texel_transmittance(s, texel, d);
-  return avsm_texel_transmittance(s, avsm_texel_base(s, level, texel), d);
-}
+// shadow_texel_transmittance(s, level, texel, d): the light's technique's texel
+// lookup, dispatched over the registry (passes/techniques/registry.h) by the code the
+// build generates (cmake/ShadowTechniques.cmake).
+#include "techniques_lookup.glsl"
 
 // Transmittance from the light `s` describes to world point p. Point: the nearest
 // texel of level 0. Bilinear: the four nearest curves evaluated at the point's
@@ -185,7 +82,7 @@ float shadow_transmittance(GpuShadow s, vec3 p) {
   uint level = 0u;
   int levels = 1;
   float level_blend = 0.0;
-  if (s.filter_mode == kFilterTrilinear && s.technique == kShadowAvsm && s.mip_count > 1u) {
+  if (s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
     // Level of detail: a camera pixel's footprint at p over a light texel's size there.
     float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
     float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,

@@ -11,13 +11,9 @@ GPU_NAMESPACE_BEGIN
 #define AVSM_MAX_SHADOWED_LIGHTS 4
 GPU_CONST(uint, kMaxShadowedLights, AVSM_MAX_SHADOWED_LIGHTS)
 
-// GpuShadow::technique
+// GpuShadow::technique: a light without shadows; the techniques' codes follow their
+// registry order from 1 (passes/techniques/registry.h).
 GPU_CONST(uint, kShadowNone, 0u)
-GPU_CONST(uint, kShadowAvsm, 1u)
-GPU_CONST(uint, kShadowUncompressed, 2u)
-GPU_CONST(uint, kShadowOsm, 3u)  // opacity shadow maps
-GPU_CONST(uint, kShadowFom, 4u)  // Fourier opacity maps
-GPU_CONST(uint, kShadowDsm, 5u)  // deep shadow maps
 // GpuShadow::filter_mode
 GPU_CONST(uint, kFilterPoint, 0u)
 GPU_CONST(uint, kFilterBilinear, 1u)
@@ -33,7 +29,8 @@ GPU_CONST(uint, kNoReference, 0xffffffffu)
   F(vec4, camera_position)  /* xyz; w: receivers' normal offset in texels */                                   \
   F(vec4, depth_range)      /* x, y: the light's caster depth range (osm and fom normalise over it);           \
                                z: osm/fom lookup bias (depth units), against self-shadowing inside a slice */  \
-  F(uint, technique)        /* kShadow* */                                                                     \
+  F(vec4, technique_data)   /* the technique's own lookup numbers (constant: x, its transmittance) */          \
+  F(uint, technique)        /* kShadowNone, or the technique's registry code */                                \
   F(uint, node_count)       /* avsm: N nodes (a multiple of 4); osm: K planes; fom: K terms */                 \
   F(uint, resolution)       /* level-0 texels per side */                                                      \
   F(uint, mip_count)                                                                                           \

@@ -34,7 +34,7 @@ TimingReport sample_timings() {
   return t;
 }
 
-passes::LightShadowStats sample_light(const std::string& name, scene::ShadowTechnique technique) {
+passes::LightShadowStats sample_light(const std::string& name, const std::string& technique) {
   passes::LightShadowStats s;
   s.light = name;
   s.technique = technique;
@@ -46,7 +46,7 @@ passes::LightShadowStats sample_light(const std::string& name, scene::ShadowTech
   s.capture_requested = 123457;
   s.capture_bytes = 8650752;
   s.next_capture_capacity = 524288;
-  if (technique == scene::ShadowTechnique::dsm) s.dsm_pool = passes::DsmPoolStats{70000, 65536, true};
+  if (technique == "dsm") s.dsm_pool = passes::DsmPoolStats{70000, 65536, true};
   return s;
 }
 
@@ -55,7 +55,7 @@ MemoryReport sample_memory() {
   m.transient_bytes_aliased = 1000000;
   m.transient_bytes_unaliased = 4000000;
   m.heap_count = 2;
-  m.lights = {sample_light("sun_7", scene::ShadowTechnique::avsm), sample_light("key_spot_42", scene::ShadowTechnique::dsm)};
+  m.lights = {sample_light("sun_7", "avsm"), sample_light("key_spot_42", "dsm")};
   m.scene_bounds.min = {-1.5f, 0.0f, -2.25f};
   m.scene_bounds.max = {1.5f, 3.0f, 2.25f};
   m.frames_with_capture_overflow = 1;
@@ -71,7 +71,7 @@ MemoryReport sample_memory() {
 QualityReport sample_quality() {
   LightQuality light;
   light.light = "sun_7";
-  light.settings.technique = scene::ShadowTechnique::osm;
+  light.settings.technique = "osm";
   light.settings.filter = scene::ShadowFilter::point;
   light.settings.resolution = 64;
   light.settings.parameters = {{"slices", 32.0}};
@@ -83,7 +83,7 @@ QualityReport sample_quality() {
 ProbeReport sample_probes() {
   ProbeLight light;
   light.light = "sun_7";
-  light.settings.technique = scene::ShadowTechnique::uncompressed;
+  light.settings.technique = "uncompressed";
   light.settings.resolution = 48;
   light.transmittance = {1.0f, 0.5f};
   return {{{0.0f, 1.0f, 2.0f}, {0.25f, -0.5f, 3.0f}}, {light}};
@@ -145,7 +145,7 @@ TEST(FrameReport, QualityRoundTrip) {
   EXPECT_TRUE(json["lights"][0]["hair"]["mean_abs_error"].is_null());  // no hair receivers
   EXPECT_EQ(json["lights"][0]["error_image"], "light0_error.png");
   const QualityReport back = quality_report_from_json(json);
-  EXPECT_EQ(back.lights.at(0).settings.technique, scene::ShadowTechnique::osm);
+  EXPECT_EQ(back.lights.at(0).settings.technique, "osm");
   EXPECT_EQ(to_json(back), json);
 }
 

@@ -436,7 +436,7 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIgnoresAppendOrder) {
 scene::Scene default_scene(int nodes, int resolution) {
   scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
   for (scene::Light& light : scene.lights) {
-    light.shadow.technique = scene::ShadowTechnique::avsm;
+    light.shadow.technique = "avsm";
     light.shadow.nodes = nodes;
     light.shadow.resolution = resolution;
     light.shadow.sort = true;
@@ -527,7 +527,7 @@ double density_path_above(double y) {
 // One way of looking shadows up, and how far from exp(-sigma L) it may be.
 struct BoxSetup {
   const char* name;
-  scene::ShadowTechnique technique;
+  const char* technique;
   scene::ShadowFilter filter;
   int nodes;
   float tolerance;
@@ -605,10 +605,10 @@ void expect_box_probes_match_beer_lambert(gpu::Context& ctx, const gpu::ShaderLi
 // entry/exit depths are merged by compression; 0.05 allows for it.
 TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
   expect_box_probes_match_beer_lambert(ctx(), shaders(), {
-      {"uncompressed point", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::point, 8, 2e-2f},
-      {"uncompressed bilinear", scene::ShadowTechnique::uncompressed, scene::ShadowFilter::bilinear, 8, 2e-2f},
-      {"avsm16 point", scene::ShadowTechnique::avsm, scene::ShadowFilter::point, 16, 5e-2f},
-      {"avsm16 bilinear", scene::ShadowTechnique::avsm, scene::ShadowFilter::bilinear, 16, 5e-2f},
+      {"uncompressed point", "uncompressed", scene::ShadowFilter::point, 8, 2e-2f},
+      {"uncompressed bilinear", "uncompressed", scene::ShadowFilter::bilinear, 8, 2e-2f},
+      {"avsm16 point", "avsm", scene::ShadowFilter::point, 16, 5e-2f},
+      {"avsm16 bilinear", "avsm", scene::ShadowFilter::bilinear, 16, 5e-2f},
   });
 }
 
@@ -623,11 +623,32 @@ TEST_F(AvsmShadowTest, AvsmUncompressedLookupMatchesBeerLambertThroughABox) {
 //   and the windowed series smooths the box's edges over about that width: 0.2.
 TEST_F(AvsmShadowTest, AvsmComparisonTechniquesMatchBeerLambertThroughABox) {
   expect_box_probes_match_beer_lambert(ctx(), shaders(), {
-      {"dsm error 0.01", scene::ShadowTechnique::dsm, scene::ShadowFilter::bilinear, 8, 3e-2f, {{"error", 0.01}}},
-      {"dsm error 0.05", scene::ShadowTechnique::dsm, scene::ShadowFilter::bilinear, 8, 7e-2f, {{"error", 0.05}}},
-      {"osm 32", scene::ShadowTechnique::osm, scene::ShadowFilter::bilinear, 8, 0.11f, {{"slices", 32}}},
-      {"fom 16", scene::ShadowTechnique::fom, scene::ShadowFilter::bilinear, 8, 0.2f, {{"terms", 16}}},
+      {"dsm error 0.01", "dsm", scene::ShadowFilter::bilinear, 8, 3e-2f, {{"error", 0.01}}},
+      {"dsm error 0.05", "dsm", scene::ShadowFilter::bilinear, 8, 7e-2f, {{"error", 0.05}}},
+      {"osm 32", "osm", scene::ShadowFilter::bilinear, 8, 0.11f, {{"slices", 32}}},
+      {"fom 16", "fom", scene::ShadowFilter::bilinear, 8, 0.2f, {{"terms", 16}}},
   });
+}
+
+// The constant debug technique (passes/techniques/constant/): no map, and every lookup
+// inside the light's map returns its transmittance parameter, whatever casts there.
+TEST_F(AvsmShadowTest, ConstantTechniqueReturnsItsTransmittanceEverywhere) {
+  scene::Scene scene = default_scene(8, 64);
+  scene.lights.resize(1);  // the sun: its map covers the whole scene
+  scene.lights[0].shadow.technique = "constant";
+  scene.lights[0].shadow.parameters["transmittance"] = 0.25;
+  const glm::vec3 centre = scene.bounds.center(), extent = scene.bounds.max - scene.bounds.min;
+  std::vector<glm::vec3> probes;
+  for (float f : {-0.25f, 0.0f, 0.25f}) probes.push_back(centre + f * extent);
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer.set_probes(probes);
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
+  render_frame(ctx(), renderer, executor, passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight));
+  EXPECT_FALSE(renderer.shadows().avsm_map(0));  // it keeps no map
+  EXPECT_EQ(renderer.shadows().frame_stats().at(0).map_bytes, 0u);
+  const std::vector<std::vector<float>> results = renderer.probe_results();
+  ASSERT_EQ(results.size(), 1u);
+  for (size_t i = 0; i < probes.size(); ++i) EXPECT_EQ(results[0][i], 0.25f) << "probe " << i;
 }
 
 // ---- 6. Capture overflow ----

@@ -138,7 +138,7 @@ TEST(SceneOverrides, OnlyTouchedFieldsChange) {
   scene.hair.push_back(hair);
 
   SceneOverrides overrides;
-  overrides.light(0).technique = scene::ShadowTechnique::uncompressed;
+  overrides.light(0).technique = "uncompressed";
   overrides.light(0).enabled = false;
   overrides.light(0).direction = glm::vec3(0.0f, -2.0f, 0.0f);
   overrides.light(5).nodes = 4;  // a light the scene does not have: ignored
@@ -146,7 +146,7 @@ TEST(SceneOverrides, OnlyTouchedFieldsChange) {
   overrides.hair_width_scale = 0.5f;
   overrides.apply(scene);
 
-  EXPECT_EQ(scene.lights[0].shadow.technique, scene::ShadowTechnique::uncompressed);
+  EXPECT_EQ(scene.lights[0].shadow.technique, "uncompressed");
   EXPECT_EQ(scene.lights[0].intensity, 0.0f);
   EXPECT_EQ(scene.lights[0].direction, glm::vec3(0.0f, -1.0f, 0.0f));
   EXPECT_EQ(scene.lights[1].shadow.nodes, 16);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "capture/capture.h"
+#include "passes/techniques/techniques.h"
 
 namespace {
 
@@ -35,13 +36,12 @@ const char* kUsage =
     "                   error of this shading against the reference, both paths' pass ms),\n"
     "                   volume_error.png (error x10), frame_reference.exr\n"
     "shadow overrides, for every light (default: the scene file's settings):\n"
-    "  --technique T    avsm | uncompressed (the exact reference) | dsm | osm | fom\n"
+    "  --technique T    one of the shadow techniques listed at the end"" (default avsm)\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
     "  --sort on|off    sort each texel's segments before the resolve\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
     "  --shadow-res R   transmittance map texels per side\n"
-    "  --shadow-param NAME=NUMBER   (repeatable) technique parameter: dsm error,\n"
-    "                   osm slices, fom terms, osm/fom depth_bias\n"
+    "  --shadow-param NAME=NUMBER   (repeatable) a technique parameter (listed at the end)\n"
     "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
     "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
     "                   transmittance at every point\n"
@@ -51,10 +51,17 @@ const char* kUsage =
     "  --plot-texel LIGHT:X,Y      (repeatable) LIGHT: index or name; X,Y: level-0 texel\n"
     "                   (y = 0 at the bottom of light<i>_transmittance.png): writes\n"
     "                   curve_<light index>_<x>_<y>.svg, the technique's curve over the exact one\n"
+    "  --list-techniques   the shadow techniques' names, one per line\n"
     "  --help           this text\n";
 
+// The options, then every registered shadow technique with its parameters.
+std::string usage() {
+  return std::string(kUsage) + "shadow techniques (--technique) and their parameters (--shadow-param):\n" +
+         avsm::passes::shadow_technique_help(2);
+}
+
 [[noreturn]] void usage_error(const std::string& message) {
-  std::fprintf(stderr, "avsm-capture: %s\n%s", message.c_str(), kUsage);
+  std::fprintf(stderr, "avsm-capture: %s\n%s", message.c_str(), usage().c_str());
   std::exit(2);
 }
 
@@ -86,7 +93,11 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--help" || arg == "-h") {
-      std::printf("%s", kUsage);
+      std::printf("%s", usage().c_str());
+      return 0;
+    } else if (arg == "--list-techniques") {  // for scripts: one registered technique name per line
+      for (const avsm::passes::ShadowTechnique* t : avsm::passes::shadow_techniques())
+        std::printf("%.*s\n", int(t->name().size()), t->name().data());
       return 0;
     } else if (arg == "--scene") {
       options.scene = value();
@@ -132,9 +143,9 @@ int main(int argc, char** argv) {
       options.compare_volume_shading = true;
     } else if (arg == "--technique") {
       const std::string name = value();
-      options.shadow.technique = avsm::scene::shadow_technique_from_string(name);
-      if (!options.shadow.technique)
-        usage_error("--technique expects avsm, uncompressed, dsm, osm or fom, got '" + name + "'");
+      if (!avsm::passes::find_shadow_technique(name))
+        usage_error("--technique expects one of " + avsm::passes::shadow_technique_names() + ", got '" + name + "'");
+      options.shadow.technique = name;
     } else if (arg == "--nodes") {
       const uint32_t n = parse_count(arg, value());
       if (n != 4 && n != 8 && n != 12 && n != 16) usage_error("--nodes expects 4, 8, 12 or 16");

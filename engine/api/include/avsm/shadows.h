@@ -71,7 +71,8 @@ struct ShaderLocation {
   std::filesystem::path spirv_root;
   bool compile_from_source = false;  // compile the GLSL at run time instead of loading the SPIR-V
 
-  // The include directory for a host shader's #include "common/shadow_lookup.glsl".
+  // The include directory for a host shader's #include "common/shadow_lookup.glsl"
+  // (Shadows::glsl_include_dirs() lists every folder the lookup's own includes need).
   std::filesystem::path glsl_include_dir() const { return glsl_root / "shaders"; }
 
   // The shaders of the package this code was built against: the installed package
