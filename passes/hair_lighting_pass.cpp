@@ -20,15 +20,15 @@ HairLightingPass::HairLightingPass(gpu::Context& ctx, const gpu::ShaderLibrary& 
       reference_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/hair_lighting_reference.comp"),
                                         "hair lighting reference")) {}
 
-rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass& hair, const View& view,
-                                                const VolumeFrameInputs& inputs) {
+rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass& hair, const FrameInputs& inputs) {
+  const View& view = inputs.view;
   if (hair.point_count() == 0) return {};
   struct Output {
     rg::BufferHandle lights;
   };
   const Output& output = graph.add_pass<Output>("hair lighting", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Output& d) {
-        inputs.declare_reads(b);
+        inputs.declare_volume_reads(b);
         d.lights = b.write(b.create_buffer("hair vertex lights", {uint64_t(hair.point_count()) * sizeof(HairVertexLight)}),
                            rg::Usage::StorageWrite);
       },

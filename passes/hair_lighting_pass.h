@@ -12,7 +12,7 @@
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "passes/view.h"
-#include "passes/volume_frame_inputs.h"
+#include "passes/frame_inputs.h"
 #include "shared/hair.h"
 
 namespace avsm::passes {
@@ -28,8 +28,7 @@ class HairLightingPass {
   // One HairVertexLight per strand vertex of `hair`. The fog comes through the frame's
   // lighting cache when `inputs` has one, else from the reference march; the strands
   // see no smoke when it is hidden. Returns an invalid handle when the scene has no hair.
-  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const View& view,
-                                const VolumeFrameInputs& inputs);
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

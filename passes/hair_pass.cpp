@@ -10,6 +10,7 @@
 #include "passes/opaque_pass.h"
 #include "passes/shadow_maps.h"
 #include "shared/passes/hair.h"
+#include "passes/frame_inputs.h"
 
 namespace avsm::passes {
 
@@ -71,8 +72,12 @@ void HairPass::set_scene(const scene::Scene& scene) {
 }
 
 rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                         const View& view, rg::BufferHandle vertex_lights, bool light_per_fragment,
-                                         const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows) {
+                                         rg::BufferHandle vertex_lights, bool light_per_fragment,
+                                         const FrameInputs& frame) {
+  const View& view = frame.view;
+  const gpu::Buffer& lights = *frame.lights;
+  const uint32_t light_count = frame.light_count;
+  const ShadowInputs& shadows = frame.shadows;
   if (segment_count_ == 0) return color;
   struct Targets {
     rg::TextureHandle color, depth;

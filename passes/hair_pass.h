@@ -22,6 +22,8 @@
 
 namespace avsm::passes {
 
+struct FrameInputs;  // passes/frame_inputs.h
+
 class HairPass {
  public:
   HairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
@@ -38,9 +40,8 @@ class HairPass {
   // Draws onto `color` (loaded), testing against `depth`; returns the new colour version.
   // `vertex_lights`: this frame's HairLightingPass output. `light_per_fragment`: the
   // reference shading, with shadow lookups per fragment.
-  rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-                                 rg::BufferHandle vertex_lights, bool light_per_fragment, const gpu::Buffer& lights,
-                                 uint32_t light_count, const ShadowInputs& shadows);
+  rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                                 rg::BufferHandle vertex_lights, bool light_per_fragment, const FrameInputs& frame);
 
  private:
   gpu::Context& ctx_;

@@ -7,6 +7,7 @@
 #include "gpu/transfer.h"
 #include "passes/shadow_maps.h"
 #include "shared/passes/opaque.h"
+#include "passes/frame_inputs.h"
 
 namespace avsm::passes {
 
@@ -89,9 +90,11 @@ VkImageView OpaquePass::texture_view(int texture) const {
   return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
 }
 
-OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view,
-                                             const gpu::Buffer& lights, uint32_t light_count,
-                                             const ShadowInputs& shadows) {
+OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame) {
+  const View& view = frame.view;
+  const gpu::Buffer& lights = *frame.lights;
+  const uint32_t light_count = frame.light_count;
+  const ShadowInputs& shadows = frame.shadows;
   const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Outputs& d) {
         d.color = b.write(color, rg::Usage::ColorAttachment);

@@ -17,6 +17,8 @@
 
 namespace avsm::passes {
 
+struct FrameInputs;  // passes/frame_inputs.h
+
 class OpaquePass {
  public:
   static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -34,8 +36,7 @@ class OpaquePass {
 
   // Clears `color` to the sky colour and a new transient depth buffer to far,
   // then draws every mesh.
-  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const View& view, const gpu::Buffer& lights,
-                       uint32_t light_count, const ShadowInputs& shadows);
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame);
 
  private:
   struct Draw {

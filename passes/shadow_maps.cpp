@@ -192,6 +192,7 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
       GpuShadow& reference = parameters[light_count() + i];
       reference = parameters[i];
       reference.technique = shadow_technique_code("uncompressed");
+      reference.mip_count = 1;  // the lists have no mips: the exact curve at every level of detail
       reference.reference = kNoReference;
     }
     LightState& light = lights_[i];

@@ -24,8 +24,9 @@ VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::Shade
       depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                            false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "march depth"}) {}
 
-VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
-                                                     const VolumeFrameInputs& inputs) {
+VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth,
+                                                     const FrameInputs& inputs) {
+  const View& view = inputs.view;
   const uint32_t divisor = uint32_t(inputs.shading.resolution_divisor);
   if (divisor != 1 && divisor != 2 && divisor != 4)
     throw std::invalid_argument("VolumeCachedMarchPass: the resolution divisor must be 1, 2 or 4, got " +
@@ -37,7 +38,7 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
   const Targets& targets = graph.add_pass<Targets>("volume march", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
-        inputs.declare_reads(b);
+        inputs.declare_volume_reads(b);
         d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat}),
                                rg::Usage::StorageWrite);
         d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat}),
@@ -50,7 +51,7 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
         b.image("depth_texture", c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
             .image("scattering_image", c.view(d.scattering), c.layout(d.scattering))
             .image("distance_image", c.view(d.distance), c.layout(d.distance));
-        inputs.bind(b, c);
+        inputs.bind_volumes(b, c);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position,

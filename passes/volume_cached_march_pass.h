@@ -10,7 +10,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/view.h"
-#include "passes/volume_frame_inputs.h"
+#include "passes/frame_inputs.h"
 #include "passes/volume_pass.h"
 
 namespace avsm::passes {
@@ -29,8 +29,7 @@ class VolumeCachedMarchPass {
   VolumeCachedMarchPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // `depth`: the opaque depth (D32_SFLOAT, output size, Sampled).
-  VolumeMarchImage add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const View& view,
-                                const VolumeFrameInputs& inputs);
+  VolumeMarchImage add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

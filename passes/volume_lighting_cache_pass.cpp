@@ -100,8 +100,9 @@ VolumeLightingCachePass::VolumeLightingCachePass(gpu::Context& ctx, const gpu::S
       sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
                      VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "volume lighting cache"}) {}
 
-void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, const View& view, const std::vector<LightView>& light_views,
-                                           VolumeFrameInputs& inputs) {
+void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, FrameInputs& inputs) {
+  const View& view = inputs.view;
+  const std::vector<LightView>& light_views = *inputs.light_views;
   const std::vector<VolumeBox>& boxes = inputs.volumes->boxes();
   std::vector<GpuCacheLayout> layouts = plan(boxes, view, uint32_t(inputs.shading.resolution_divisor),
                                              ctx_.info().max_image_dimension_3d, finest_light_texels(boxes, light_views));

@@ -25,7 +25,7 @@
 #include "passes/light_view.h"
 #include "passes/shadow_maps_fwd.h"
 #include "passes/view.h"
-#include "passes/volume_frame_inputs.h"
+#include "passes/frame_inputs.h"
 #include "passes/volume_pass.h"
 #include "shared/volume.h"
 
@@ -51,9 +51,8 @@ class VolumeLightingCachePass {
                                                 const std::vector<LightView>& lights);
 
   // Adds the layout upload and the cache pass and sets `inputs.cache`; the inputs'
-  // volume pass must have volumes. `light_views`: the lights' maps (for the cell size).
-  void add_to_graph(rg::Graph& graph, const View& view, const std::vector<LightView>& light_views,
-                    VolumeFrameInputs& inputs);
+  // volume pass must have volumes (the lights' map views give the cell size).
+  void add_to_graph(rg::Graph& graph, FrameInputs& inputs);
 
   // Cells the last frame's cache held (every volume), for the frame report.
   uint64_t cell_count() const { return cell_count_; }

@@ -1,5 +1,7 @@
 #include "passes/volume_pass.h"
 
+#include "passes/frame_inputs.h"
+
 #include <nanovdb/NanoVDB.h>
 #include <rendergraph/vulkan/pass_context.h>
 
@@ -161,8 +163,11 @@ VolumeCasters VolumePass::casters() const {
 }
 
 rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                           const View& view, const gpu::Buffer& lights, uint32_t light_count,
-                                           const ShadowInputs& shadows) {
+                                           const FrameInputs& frame) {
+  const View& view = frame.view;
+  const gpu::Buffer& lights = *frame.lights;
+  const uint32_t light_count = frame.light_count;
+  const ShadowInputs& shadows = frame.shadows;
   if (volume_count_ == 0) return color;
   check_targets(graph, color, depth);
   const VkDeviceSize light_bytes = VkDeviceSize(std::max(light_count, 1u)) * sizeof(GpuLight);

@@ -39,6 +39,8 @@
 
 namespace avsm::passes {
 
+struct FrameInputs;  // passes/frame_inputs.h
+
 using shared::GpuVolume;  // shaders/shared/volume.h
 
 using scene::VolumeShading;
@@ -82,8 +84,7 @@ class VolumePass {
   // `color` itself when there are no volumes (no pass is added). `lights` must hold at
   // least max(light_count, 1) GpuLight entries (passes/lights.h) and outlive the frame.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color /*R16G16B16A16_SFLOAT, StorageReadWrite*/,
-                                 rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, const View& view,
-                                 const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows);
+                                 rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, const FrameInputs& frame);
 
   // Debug switch: march through empty bricks too. The image must not change; it only
   // exists so tests can check that skipping never drops density.

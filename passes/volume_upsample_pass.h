@@ -18,8 +18,8 @@ class VolumeUpsamplePass {
   VolumeUpsamplePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // `color`: R16G16B16A16_SFLOAT, read and written; `depth`: D32_SFLOAT. Returns the new colour.
-  rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-                                 const VolumeMarchImage& march, const VolumeFrameInputs& inputs);
+  rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                                 const VolumeMarchImage& march, const FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

@@ -103,17 +103,25 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   executor.bind(hdr, hdr_);
   executor.bind(ldr, ldr_);
 
-  const passes::ShadowInputs shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
-  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, view, lights_, light_count_, shadows);
-  passes::VolumeFrameInputs volume_inputs{&volumes_, volume_shading_, &lights_, light_count_, shadows};
-  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, view, volume_inputs);
+  // What every camera pass reads this frame, published once.
+  passes::FrameInputs frame;
+  frame.view = view;
+  frame.volumes = &volumes_;
+  frame.shading = volume_shading_;
+  frame.lights = &lights_;
+  frame.light_count = light_count_;
+  frame.shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
+  frame.light_views = &shadows_.light_views();
+  const passes::ShadowInputs& shadows = frame.shadows;
+
+  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, frame);
+  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, frame);
   // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
   // Hidden volumes keep the reference shading of everything else (it is the
   // reference's smoke-free twin in comparisons).
   const bool per_fragment = hair_per_fragment_.value_or(volume_shading_.mode != scene::VolumeShading::Mode::fast);
-  const rg::BufferHandle hair_lights = hair_lighting_.add_to_graph(graph, hair_, view, volume_inputs);
-  color = hair_.add_to_graph(graph, color, opaque.depth, view, hair_lights, per_fragment, lights_,
-                             light_count_, shadows);
+  const rg::BufferHandle hair_lights = hair_lighting_.add_to_graph(graph, hair_, frame);
+  color = hair_.add_to_graph(graph, color, opaque.depth, hair_lights, per_fragment, frame);
 
   tonemap_.add_to_graph(graph, color, ldr, exposure_);
   if (quality_)
@@ -126,13 +134,13 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 }
 
 rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                             const passes::View& view, passes::VolumeFrameInputs& inputs) {
-  if (volumes_.volume_count() == 0 || !inputs.smoke_visible()) return color;
+                                             passes::FrameInputs& frame) {
+  if (volumes_.volume_count() == 0 || !frame.smoke_visible()) return color;
   if (volume_shading_.mode == scene::VolumeShading::Mode::reference)
-    return volumes_.add_to_graph(graph, color, depth, view, lights_, light_count_, inputs.shadows);
-  cache_.add_to_graph(graph, view, shadows_.light_views(), inputs);
-  const passes::VolumeMarchImage march = cached_march_.add_to_graph(graph, depth, view, inputs);
-  return upsample_.add_to_graph(graph, color, depth, view, march, inputs);
+    return volumes_.add_to_graph(graph, color, depth, frame);
+  cache_.add_to_graph(graph, frame);
+  const passes::VolumeMarchImage march = cached_march_.add_to_graph(graph, depth, frame);
+  return upsample_.add_to_graph(graph, color, depth, march, frame);
 }
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {

@@ -108,7 +108,7 @@ class SceneRenderer {
   // Adds the volume passes of the fast or the reference path; returns the new colour.
   // The fast path's lighting cache lands in `inputs.cache`.
   rg::TextureHandle add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                const passes::View& view, passes::VolumeFrameInputs& inputs);
+                                passes::FrameInputs& frame);
   // Why the shadow maps cannot evaluate `sample` (empty when they can).
   std::string texel_sample_problem(const passes::TexelSample& sample) const;
 

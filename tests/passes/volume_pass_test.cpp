@@ -29,6 +29,7 @@
 #include "scene/volume.h"
 #include "support/gpu_test.h"
 #include "support/test_volumes.h"
+#include "passes/frame_inputs.h"
 
 namespace avsm {
 namespace {
@@ -190,8 +191,13 @@ gpu::ImageRGBA32F render(gpu::Context& ctx, passes::VolumePass& pass, const pass
       graph.import_texture("depth", {kWidth, kHeight, 1, 1, 1, passes::VolumePass::kDepthFormat},
                            uploaded(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), rg::ImportState::none());
   const passes::UnshadowedInputs unshadowed(ctx);
-  pass.add_to_graph(graph, color_handle, depth_handle, view, light_buffer, uint32_t(lights.lights.size()),
-                    unshadowed.inputs());
+  passes::FrameInputs frame;
+  frame.view = view;
+  frame.volumes = &pass;
+  frame.lights = &light_buffer;
+  frame.light_count = uint32_t(lights.lights.size());
+  frame.shadows = unshadowed.inputs();
+  pass.add_to_graph(graph, color_handle, depth_handle, frame);
 
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
   executor.bind(color_handle, color);

@@ -1,4 +1,4 @@
-#include "passes/volume_frame_inputs.h"
+#include "passes/frame_inputs.h"
 
 #include <rendergraph/vulkan/pass_context.h>
 
@@ -16,13 +16,13 @@ void VolumeLightingCache::bind(gpu::Bindings& bindings, const rg::PassContext& c
       .image("lighting_cache", context.view(image), context.layout(image), sampler);
 }
 
-void VolumeFrameInputs::declare_reads(rg::PassBuilder& builder) const {
+void FrameInputs::declare_volume_reads(rg::PassBuilder& builder) const {
   if (cache) cache->declare_reads(builder);
   shadows.declare_reads(builder);
 }
 
-void VolumeFrameInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
-  bind_volumes(bindings, volumes->casters(), /*with_atlas=*/true);
+void FrameInputs::bind_volumes(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  passes::bind_volumes(bindings, volumes->casters(), /*with_atlas=*/true);
   cache.value().bind(bindings, context);
   if (!map_lookups()) return;
   bindings.buffer("Lights", *lights);
