@@ -11,8 +11,6 @@ set(AVSM_SHADER_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/shaders" CACHE INTERNAL "GLSL i
 # them that cmake/ShadowTechniques.cmake generates.
 set(AVSM_TECHNIQUE_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/passes" CACHE INTERNAL "GLSL include root of the techniques")
 set(AVSM_GENERATED_GLSL_DIR "${AVSM_SPIRV_DIR}/glsl" CACHE INTERNAL "Generated GLSL")
-include(${CMAKE_CURRENT_LIST_DIR}/ShadowTechniques.cmake)
-avsm_generate_technique_dispatch("${CMAKE_SOURCE_DIR}/passes/techniques/registry.h" "${AVSM_GENERATED_GLSL_DIR}")
 
 function(avsm_add_shaders target)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
