@@ -269,7 +269,7 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
     if (light.settings.technique == scene::ShadowTechnique::uncompressed) continue;
     const std::string technique(scene::to_string(light.settings.technique));
     rg::BufferHandle map = graph.import_buffer(prefix + " " + technique + " map", {light.map.size()},
-                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::StorageRead));
+                                               rg::ImportState::none(), map_state_after_frame());
     executor.bind(map, light.map);
     const MapBuildParameters build{view.resolution, technique_count(light.settings), view.near_depth, view.far_depth,
                                    float(light.settings.parameter("error", 0.01))};

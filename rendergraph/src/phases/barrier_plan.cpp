@@ -95,8 +95,8 @@ class ResourceSync {
     for (size_t i = 1; i < segments_.size(); ++i) {
       if (segments_[i].state == segments_[kept].state) {
         segments_[kept].end = segments_[i].end;
-      } else {
-        segments_[++kept] = std::move(segments_[i]);
+      } else if (++kept != i) {
+        segments_[kept] = std::move(segments_[i]);  // (never onto itself: that empties `visible`)
       }
     }
     segments_.resize(kept + 1);
