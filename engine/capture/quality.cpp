@@ -7,9 +7,9 @@
 #include <cstring>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <rendergraph/vulkan/executor.h>
 #include <rendergraph/vulkan/pass_context.h>
+#include <sstream>
 #include <stdexcept>
 
 #include "gpu/context.h"
