@@ -2,13 +2,27 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
-#include "gpu/barriers.h"
+#include <algorithm>
+
+#include "gpu/context.h"
 #include "shared/passes/avsm_mips.h"
 
 namespace avsm::passes {
 namespace {
 
 using Push = shared::AvsmMipsPush;  // shaders/shared/passes/avsm_mips.h
+
+constexpr uint64_t kVec4Bytes = 16;
+
+// The bytes level `level`'s pass binds: level - 1 (read) and level (written), adjacent in
+// the buffer, from the last offset at or before level - 1 that a storage buffer can be
+// bound at. This is also what the pass declares to the graph: Vulkan (and synchronisation
+// validation) sees a descriptor's whole range as accessed, not which bytes a shader reads.
+rg::BufferRange level_window(const AvsmMapLayout& layout, uint32_t level, uint64_t offset_alignment) {
+  const uint64_t alignment = std::max<uint64_t>(offset_alignment, 1);
+  const uint64_t begin = layout.level_offset(level - 1) * kVec4Bytes / alignment * alignment;
+  return {begin, layout.level_offset(level + 1) * kVec4Bytes - begin};
+}
 
 }  // namespace
 
@@ -17,28 +31,30 @@ AvsmMipsPass::AvsmMipsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
 
 rg::BufferHandle AvsmMipsPass::add_to_graph(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
                                             const AvsmMapLayout& layout) const {
-  if (layout.levels <= 1) return map;
+  for (uint32_t level = 1; level < layout.levels; ++level) map = add_level(graph, prefix, map, layout, level);
+  return map;
+}
+
+// One pass per level, building it from the level above inside its window of the buffer;
+// the graph orders each window after the previous level's (a barrier on those bytes).
+rg::BufferHandle AvsmMipsPass::add_level(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
+                                         const AvsmMapLayout& layout, uint32_t level) const {
   struct Data {
     rg::BufferHandle map;
   };
-  const Data& data = graph.add_pass<Data>(prefix + " avsm mips", rg::QueueType::Compute,
-      [&](rg::PassBuilder& b, Data& d) { d.map = b.read_write(map, rg::Usage::StorageReadWrite); },
-      [this, layout](const Data& d, rg::PassContext& c) {
+  const rg::BufferRange window = level_window(layout, level, ctx_.info().min_storage_buffer_offset_alignment);
+  const uint32_t window_vec4 = uint32_t(window.offset / kVec4Bytes);  // offsets below count from the window
+  const Data& data = graph.add_pass<Data>(prefix + " avsm mips level " + std::to_string(level), rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& d) { d.map = b.read_write(map, rg::Usage::StorageReadWrite, window); },
+      [this, layout, level, window, window_vec4](const Data& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         pipeline_.bind(cmd);
-        gpu::Bindings(ctx_, pipeline_).buffer("AvsmMap", c.buffer(d.map)).push(cmd);
-        for (uint32_t level = 1; level < layout.levels; ++level) {
-          if (level > 1) {
-            // The level just written is the next dispatch's source (same buffer, inside this pass).
-            gpu::buffer_barrier(cmd, c.buffer(d.map), gpu::kComputeWrite,
-                                {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
-          }
-          pipeline_.push_constants(cmd, Push{uint32_t(layout.level_offset(level - 1)), layout.level_size(level - 1),
-                                             uint32_t(layout.level_offset(level)), layout.level_size(level),
-                                             layout.nodes});
-          pipeline_.dispatch_threads(cmd, layout.level_size(level), layout.level_size(level));
-        }
+        gpu::Bindings(ctx_, pipeline_).buffer("AvsmMap", {c.buffer(d.map).buffer, window.size, window.offset}).push(cmd);
+        pipeline_.push_constants(cmd, Push{uint32_t(layout.level_offset(level - 1)) - window_vec4,
+                                           layout.level_size(level - 1),
+                                           uint32_t(layout.level_offset(level)) - window_vec4, layout.level_size(level),
+                                           layout.nodes});
+        pipeline_.dispatch_threads(cmd, layout.level_size(level), layout.level_size(level));
       });
   return data.map;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // AVSM mip chain: each level from the one above by merging the curves of 2x2
 // texels (their mean transmittance at every child node depth) and re-compressing
-// to N nodes. One pass per light, one dispatch per level with a barrier between.
-// Shader: shaders/passes/avsm_mips.comp.
+// to N nodes. One pass per light and level ("<prefix> avsm mips level L"), declaring
+// (and binding) only the bytes of levels L-1 and L of the map buffer: the frame graph
+// plans the barrier between levels. Shader: shaders/passes/avsm_mips.comp.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
@@ -14,11 +15,14 @@ namespace avsm::passes {
 class AvsmMipsPass {
  public:
   AvsmMipsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds "<prefix> avsm mips" when layout.levels > 1; returns the map's new version.
+  // Adds a pass per level above 0; returns the map's new version.
   rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
                                 const AvsmMapLayout& layout) const;
 
  private:
+  rg::BufferHandle add_level(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
+                             const AvsmMapLayout& layout, uint32_t level) const;
+
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
 };

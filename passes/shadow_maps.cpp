@@ -214,7 +214,7 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
     }
     if (!light.technique->has_map()) continue;
     rg::BufferHandle map = graph.import_buffer(prefix + " " + light.settings.technique + " map", {light.map.size()},
-                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::StorageRead));
+                                               rg::ImportState::none(), map_state_after_frame());
     executor.bind(map, light.map);
     const TechniqueBuild build{graph, prefix, lists, map, view, light.settings, light.map_state};
     inputs.maps[i] = builders_[light.technique->code() - 1]->add_to_graph(build, lists);

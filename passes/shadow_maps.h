@@ -99,6 +99,9 @@ class ShadowMaps {
   const gpu::Buffer& parameters() const { return parameters_; }
   // Light `light`'s AVSM map (layout: map_layout(light)); empty for uncompressed lights.
   const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
+  // The state every frame leaves the maps in (read by the camera passes' shaders): what a
+  // later graph reading a map back imports it in.
+  static rg::ImportState map_state_after_frame() { return rg::ImportState::of(rg::Usage::StorageRead); }
   const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).map_state.layout; }
   const ShadowTechnique& technique(uint32_t light) const { return *lights_.at(light).technique; }
   uint32_t light_count() const { return uint32_t(views_.size()); }

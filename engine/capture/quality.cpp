@@ -7,10 +7,11 @@
 #include <cstring>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <rendergraph/vulkan/executor.h>
+#include <rendergraph/vulkan/pass_context.h>
 #include <sstream>
 #include <stdexcept>
 
-#include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "capture/files.h"
@@ -92,19 +93,29 @@ double nice_step(double range, int count) {
 }
 
 
-// `count` vec4s from vec4 `first` on of a device buffer (TRANSFER_SRC), through a small staging buffer.
-std::vector<glm::vec4> read_vec4s(gpu::Context& ctx, const gpu::Buffer& src, uint64_t first, uint64_t count) {
+// `count` vec4s from vec4 `first` on of a light's map, through a small staging buffer. The
+// copy is a graph pass: the map comes in the state the frames left it in, the staging
+// buffer leaves in host-read state, and the graph plans the barriers in between.
+std::vector<glm::vec4> read_map_vec4s(gpu::Context& ctx, const gpu::Buffer& map, uint64_t first, uint64_t count) {
   const VkDeviceSize bytes = count * sizeof(glm::vec4);
   gpu::Buffer stage = gpu::Buffer::create(
       ctx, {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryLocation::HostReadback, "texel nodes readback"});
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    const gpu::Access any_prior{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
-    gpu::buffer_barrier(cmd, src.handle(), any_prior, gpu::kTransferRead);
-    VkBufferCopy region{first * sizeof(glm::vec4), 0, bytes};
-    vkCmdCopyBuffer(cmd, src.handle(), stage.handle(), 1, &region);
-    gpu::buffer_barrier(cmd, stage.handle(), gpu::kTransferWrite, gpu::kHostRead);
-  });
+  rg::Graph graph;
+  const rg::ImportState after_frame = passes::ShadowMaps::map_state_after_frame();
+  const rg::BufferHandle source = graph.import_buffer("shadow map", {map.size()}, after_frame, after_frame);
+  const rg::BufferHandle target = graph.import_buffer("texel nodes readback", {bytes}, rg::ImportState::none(),
+                                                      rg::ImportState::of(rg::Usage::HostRead));
+  const VkBufferCopy region{first * sizeof(glm::vec4), 0, bytes};
+  graph.add_pass("read texel nodes", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b) {
+        b.read(source, rg::Usage::TransferSrc, {region.srcOffset, bytes});
+        b.write(target, rg::Usage::TransferDst);
+      },
+      [&](rg::PassContext& c) { vkCmdCopyBuffer(c.cmd(), c.buffer(source), c.buffer(target), 1, &region); });
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact, /*max_passes=*/1);
+  executor.bind(source, map);
+  executor.bind(target, stage);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
   std::vector<glm::vec4> out(count);
   std::memcpy(out.data(), stage.mapped(), bytes);
   return out;
@@ -233,7 +244,7 @@ std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& 
   const passes::AvsmMapLayout& layout = shadows.map_layout(light);
   const uint32_t groups = layout.nodes / 4;
   const uint64_t base = layout.texel_base(0, x, y);
-  const std::vector<glm::vec4> curve = read_vec4s(ctx, map, base, layout.vec4s_per_texel());
+  const std::vector<glm::vec4> curve = read_map_vec4s(ctx, map, base, layout.vec4s_per_texel());
   std::vector<CurveNode> nodes;
   for (uint32_t i = 0; i < layout.nodes; ++i) {
     const CurveNode n{curve[i / 4][i % 4], curve[groups + i / 4][i % 4]};

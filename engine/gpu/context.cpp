@@ -235,6 +235,7 @@ void Context::read_device_info() {
   info_.api_version = props2.properties.apiVersion;
   info_.timestamp_period_ns = limits.timestampPeriod;
   info_.max_storage_buffer_range = limits.maxStorageBufferRange;
+  info_.min_storage_buffer_offset_alignment = limits.minStorageBufferOffsetAlignment;
   info_.max_image_dimension_3d = limits.maxImageDimension3D;
   info_.buffer_image_granularity = limits.bufferImageGranularity;
   info_.non_coherent_atom_size = limits.nonCoherentAtomSize;

@@ -94,6 +94,7 @@ struct DeviceInfo {
   float timestamp_period_ns = 1.0f;
   uint32_t timestamp_valid_bits = 0;
   VkDeviceSize max_storage_buffer_range = 0;
+  VkDeviceSize min_storage_buffer_offset_alignment = 1;
   uint32_t max_image_dimension_3d = 256;  // texels per side of a 3D image
   VkDeviceSize buffer_image_granularity = 1;
   VkDeviceSize non_coherent_atom_size = 1;

@@ -265,7 +265,7 @@ void Image::create_view() {
   mip_views_.assign(desc_.mip_levels, VK_NULL_HANDLE);
 }
 
-VkImageView Image::mip_view(uint32_t level) {
+VkImageView Image::mip_view(uint32_t level) const {
   if (level >= desc_.mip_levels) throw std::runtime_error("image '" + desc_.name + "': mip level out of range");
   if (!mip_views_[level]) {
     VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -302,6 +302,17 @@ Image Image::create_placed(const Context& ctx, const ImageDesc& desc, const Memo
   return img;
 }
 
+Image Image::borrow(const Context& ctx, VkImage image, VkImageView view, const ImageDesc& desc) {
+  Image img;
+  img.ctx_ = &ctx;
+  img.desc_ = desc;
+  img.image_ = image;
+  img.view_ = view;
+  img.borrowed_ = true;
+  img.mip_views_.assign(desc.mip_levels, VK_NULL_HANDLE);
+  return img;
+}
+
 Image::~Image() { release(); }
 Image::Image(Image&& other) noexcept { *this = std::move(other); }
 
@@ -313,6 +324,7 @@ Image& Image::operator=(Image&& other) noexcept {
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
     mip_views_ = std::move(other.mip_views_);
     own_memory_ = std::exchange(other.own_memory_, VK_NULL_HANDLE);
+    borrowed_ = std::exchange(other.borrowed_, false);
     desc_ = std::move(other.desc_);
   }
   return *this;
@@ -323,8 +335,8 @@ void Image::release() {
   for (VkImageView v : mip_views_)
     if (v) vkDestroyImageView(ctx_->device(), v, nullptr);
   mip_views_.clear();
-  if (view_) vkDestroyImageView(ctx_->device(), view_, nullptr);
-  if (image_) vkDestroyImage(ctx_->device(), image_, nullptr);
+  if (view_ && !borrowed_) vkDestroyImageView(ctx_->device(), view_, nullptr);
+  if (image_ && !borrowed_) vkDestroyImage(ctx_->device(), image_, nullptr);
   if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;

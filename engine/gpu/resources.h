@@ -125,6 +125,9 @@ class Image {
   static Image create(const Context& ctx, const ImageDesc& desc);
   static Image create_placed(const Context& ctx, const ImageDesc& desc, const MemoryHeap& heap,
                              VkDeviceSize offset);
+  // An image and view owned elsewhere (a swapchain's), so that it can be bound like any
+  // other; destroying the Image destroys only the mip views it created.
+  static Image borrow(const Context& ctx, VkImage image, VkImageView view, const ImageDesc& desc);
   ~Image();
   Image(Image&& other) noexcept;
   Image& operator=(Image&& other) noexcept;
@@ -132,7 +135,7 @@ class Image {
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_; }  // all mips and layers
   // A view of one mip level (all layers), created on first use.
-  VkImageView mip_view(uint32_t level);
+  VkImageView mip_view(uint32_t level) const;
   const ImageDesc& desc() const { return desc_; }
   VkImageAspectFlags aspect() const;
   VkImageSubresourceRange full_range() const;
@@ -145,8 +148,9 @@ class Image {
   const Context* ctx_ = nullptr;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
-  std::vector<VkImageView> mip_views_;
+  mutable std::vector<VkImageView> mip_views_;  // a cache: filled by the const mip_view()
   VkDeviceMemory own_memory_ = VK_NULL_HANDLE;
+  bool borrowed_ = false;  // image_ and view_ belong to someone else
   ImageDesc desc_;
 };
 

@@ -69,6 +69,7 @@ void Swapchain::recreate(VkExtent2D wanted) {
 }
 
 void Swapchain::destroy_chain() {
+  targets_.clear();
   for (VkImageView view : views_) vkDestroyImageView(ctx_.device(), view, nullptr);
   for (VkSemaphore semaphore : rendered_) vkDestroySemaphore(ctx_.device(), semaphore, nullptr);
   views_.clear();
@@ -127,6 +128,12 @@ void Swapchain::create(VkExtent2D wanted) {
     views_.push_back(handle);
     rendered_.push_back(create_semaphore(ctx_.device()));
     ctx_.set_name(images_[i], VK_OBJECT_TYPE_IMAGE, "swapchain image " + std::to_string(i));
+    gpu::ImageDesc desc;
+    desc.width = extent_.width;
+    desc.height = extent_.height;
+    desc.format = format_;
+    desc.name = "swapchain image " + std::to_string(i);
+    targets_.push_back(gpu::Image::borrow(ctx_, images_[i], handle, desc));
   }
 }
 
@@ -142,7 +149,7 @@ std::optional<uint32_t> Swapchain::acquire() {
 }
 
 bool Swapchain::submit_and_present(VkCommandBuffer cmd, uint32_t image) {
-  const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkPipelineStageFlags wait_stage = VkPipelineStageFlags(kAcquireWaitStages);
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.waitSemaphoreCount = 1;
   submit.pWaitSemaphores = &acquired_;

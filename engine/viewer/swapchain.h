@@ -34,12 +34,17 @@ class Swapchain {
   // The image to draw this frame into, in UNDEFINED layout; nullopt when the chain
   // is out of date (recreate it and try again).
   std::optional<uint32_t> acquire();
+  // Where the submit waits for the acquired image: the first use of the image must wait
+  // for these stages (they equal the sync1 TRANSFER | COLOR_ATTACHMENT_OUTPUT bits).
+  static constexpr VkPipelineStageFlags2 kAcquireWaitStages =
+      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+
   // Submits `cmd` (which must leave the image in PRESENT_SRC_KHR), presents it and
   // waits for the frame to finish. Returns false when the chain should be recreated.
   bool submit_and_present(VkCommandBuffer cmd, uint32_t image);
 
-  VkImage image(uint32_t index) const { return images_[index]; }
-  VkImageView view(uint32_t index) const { return views_[index]; }
+  // Image `index` as a (borrowed) gpu::Image, for binding into a frame graph.
+  const gpu::Image& target(uint32_t index) const { return targets_[index]; }
   VkFormat format() const { return format_; }
   VkExtent2D extent() const { return extent_; }
   bool can_read_back() const { return readable_; }
@@ -62,6 +67,7 @@ class Swapchain {
   bool readable_ = false;
   std::vector<VkImage> images_;
   std::vector<VkImageView> views_;
+  std::vector<gpu::Image> targets_;  // images_ and views_, borrowed
   // One per image: a semaphore may only be signalled again once its present is done,
   // which is known when that image is acquired again.
   std::vector<VkSemaphore> rendered_;

@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <rendergraph/vulkan/executor.h>
+#include <rendergraph/vulkan/pass_context.h>
 
 #include <chrono>
 #include <cstdio>
@@ -12,7 +13,6 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/frame_outputs.h"
-#include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/shader_compiler.h"
@@ -71,6 +71,10 @@ void write_rgba_png(const fs::path& path, const std::vector<uint8_t>& rgba, VkEx
 
 VkImageSubresourceRange colour_range() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}; }
 
+rg::TextureDesc texture_desc(const gpu::Image& image) {
+  return {image.desc().width, image.desc().height, 1, 1, 1, image.desc().format};
+}
+
 class ViewerApp {
  public:
   explicit ViewerApp(const ViewerOptions& options);
@@ -90,6 +94,11 @@ class ViewerApp {
   void render_scene_frame();
   void present(const ImDrawData& draw_data);
   void record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back);
+  // The window graph's passes; each returns the swapchain image's new version.
+  rg::TextureHandle add_scene_blit(rg::Graph& graph, rg::TextureHandle target);
+  rg::TextureHandle add_grey_clear(rg::Graph& graph, rg::TextureHandle target);
+  rg::TextureHandle add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data);
+  void add_window_readback(rg::Graph& graph, rg::TextureHandle target, uint32_t image);
   void write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba);
 
   void inspect_pixel(glm::vec2 pixel);
@@ -110,7 +119,8 @@ class ViewerApp {
   ImGuiRenderer imgui_renderer_;
   ViewerSettings settings_;
   std::unique_ptr<live::LiveRenderer> live_;
-  rg::vulkan::Executor executor_;
+  rg::vulkan::Executor executor_;         // the scene frame
+  rg::vulkan::Executor window_executor_;  // the window composite (record_window)
   CameraController camera_;
   Panel panel_;
   TexelInspector inspector_;
@@ -158,9 +168,10 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
       live_(std::make_unique<live::LiveRenderer>(
           ctx_, live_options(options, swapchain_.extent(), settings_.shadow_options))),
       executor_(ctx_, calibration_.mode),
+      window_executor_(ctx_, calibration_.mode),
       camera_(live_->scene().cameras.front()),
       panel_(options.scene.string()),
-      light_maps_(ctx_),
+      light_maps_(ctx_, calibration_.mode),
       scene_file_(options.scene) {
   scene_cmd_ = ctx_.allocate_command_buffer("scene frame");
   window_cmd_ = ctx_.allocate_command_buffer("window frame");
@@ -507,53 +518,85 @@ void ViewerApp::present(const ImDrawData& draw_data) {
   }
 }
 
-// The frame into the swapchain image: the scene (blitted), then the panel, then
-// (for a screenshot) a copy into the readback buffer.
+// The frame into the swapchain image, as a small frame graph of its own: the scene
+// (blitted) or a grey clear, then the panel, then (for a screenshot) a copy into the
+// readback buffer. The graph plans every layout transition, from the acquired image
+// (contents undefined; the submit waits for it at Swapchain::kAcquireWaitStages) to
+// PRESENT_SRC_KHR, and the readback buffer's host-read state.
 void ViewerApp::record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back) {
-  const VkImage target = swapchain_.image(image);
-  const VkExtent2D extent = swapchain_.extent();
-  // The acquire semaphore's wait covers the transfer and colour-output stages.
-  const gpu::Access acquired{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT |
-                                 VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_NONE};
-  const gpu::Access blit_write{VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                               VK_ACCESS_2_TRANSFER_WRITE_BIT};
-  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     acquired, blit_write);
-  const renderer::SceneRenderer& renderer = live_->renderer();
-  if (ldr_valid_) {
-    // The tonemapped image holds display values: copied, not converted. Same size
-    // except right after a resize, when it is stretched until the next frame.
-    VkImageBlit region{};
-    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[1] = {int32_t(renderer.width()), int32_t(renderer.height()), 1};
-    region.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
-    vkCmdBlitImage(cmd, renderer.ldr().handle(), renderer::SceneRenderer::kOutputLayout, target,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
-  } else {
-    const VkClearColorValue grey{{0.1f, 0.1f, 0.12f, 1.0f}};
-    const VkImageSubresourceRange range = colour_range();
-    vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &range);
-  }
-  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, blit_write,
-                     {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT});
-  imgui_renderer_.record(cmd, draw_data, swapchain_.view(image), extent);
+  rg::Graph graph;
+  const gpu::Image& swapchain_image = swapchain_.target(image);
+  const rg::ImportState acquired{Swapchain::kAcquireWaitStages, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
+  rg::TextureHandle target = graph.import_texture("swapchain image", texture_desc(swapchain_image), acquired,
+                                                  rg::ImportState::of(rg::Usage::Present));
+  window_executor_.bind(target, swapchain_image);
+  target = ldr_valid_ ? add_scene_blit(graph, target) : add_grey_clear(graph, target);
+  target = add_panel(graph, target, draw_data);
+  if (read_back) add_window_readback(graph, target, image);
+  window_executor_.record(graph, cmd);
+}
 
-  const gpu::Access drawn{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  // Presentation needs no destination stage: the present waits on the semaphore.
-  const gpu::Access presented{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE};
-  if (!read_back) {
-    gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                       VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, drawn, presented);
-    return;
-  }
-  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, drawn, gpu::kTransferRead);
-  swapchain_.record_readback(cmd, image, window_readback_);
-  gpu::buffer_barrier(cmd, window_readback_.handle(), gpu::kTransferWrite, gpu::kHostRead);
-  gpu::image_barrier(cmd, target, colour_range(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                     gpu::kTransferRead, presented);
+// The tonemapped image holds display values: copied, not converted. Same size except
+// right after a resize, when it is stretched until the next frame.
+rg::TextureHandle ViewerApp::add_scene_blit(rg::Graph& graph, rg::TextureHandle target) {
+  const gpu::Image& ldr = live_->renderer().ldr();
+  // The state the scene graph leaves it in (its final state), which it keeps.
+  static_assert(renderer::SceneRenderer::kOutputLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  const rg::ImportState scene_output = rg::ImportState::of(rg::Usage::TransferSrc);
+  const rg::TextureHandle source = graph.import_texture("tonemapped", texture_desc(ldr), scene_output, scene_output);
+  window_executor_.bind(source, ldr);
+  graph.add_pass("blit scene", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b) {
+        b.read(source, rg::Usage::TransferSrc);
+        target = b.write(target, rg::Usage::TransferDst);
+      },
+      [source, target](rg::PassContext& c) {
+        const rg::TextureDesc &from = c.desc(source), &to = c.desc(target);
+        VkImageBlit region{};
+        region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.srcOffsets[1] = {int32_t(from.width), int32_t(from.height), 1};
+        region.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
+        vkCmdBlitImage(c.cmd(), c.image(source), c.layout(source), c.image(target), c.layout(target), 1, &region,
+                       VK_FILTER_NEAREST);
+      });
+  return target;
+}
+
+// Before the first scene frame of the current size.
+rg::TextureHandle ViewerApp::add_grey_clear(rg::Graph& graph, rg::TextureHandle target) {
+  graph.add_pass("clear window", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b) { target = b.write(target, rg::Usage::TransferDst); },
+      [target](rg::PassContext& c) {
+        const VkClearColorValue grey{{0.1f, 0.1f, 0.12f, 1.0f}};
+        const VkImageSubresourceRange range = colour_range();
+        vkCmdClearColorImage(c.cmd(), c.image(target), c.layout(target), &grey, 1, &range);
+      });
+  return target;
+}
+
+// The panel draws over the scene (load op LOAD). The textures it samples (font, light
+// maps) are not graph resources: they stay in SHADER_READ_ONLY_OPTIMAL, and whoever
+// last wrote them left them visible to fragment shaders.
+rg::TextureHandle ViewerApp::add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data) {
+  graph.add_pass("panel", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b) { target = b.read_write(target, rg::Usage::ColorAttachment); },
+      [this, target, &draw_data](rg::PassContext& c) {
+        const rg::TextureDesc& size = c.desc(target);
+        imgui_renderer_.record(c.cmd(), draw_data, c.view(target), {size.width, size.height});
+      });
+  return target;
+}
+
+void ViewerApp::add_window_readback(rg::Graph& graph, rg::TextureHandle target, uint32_t image) {
+  const rg::BufferHandle readback = graph.import_buffer("window readback", {window_readback_.size()},
+                                                        rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  window_executor_.bind(readback, window_readback_);
+  graph.add_pass("read back window", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b) {
+        b.read(target, rg::Usage::TransferSrc);
+        b.write(readback, rg::Usage::TransferDst);
+      },
+      [this, image](rg::PassContext& c) { swapchain_.record_readback(c.cmd(), image, window_readback_); });
 }
 
 void ViewerApp::write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba) {

@@ -124,29 +124,58 @@ uint32_t PassBuilder::create(std::string name, ResourceKind kind, const TextureD
 TextureHandle PassBuilder::read(TextureHandle t, Usage u) {
   return {t.index, access(ResourceKind::Texture, t.index, t.version, t.graph_id, u, true, false), t.graph_id};
 }
-BufferHandle PassBuilder::read(BufferHandle b, Usage u) {
-  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, true, false), b.graph_id};
+BufferHandle PassBuilder::read(BufferHandle b, Usage u, BufferRange range) {
+  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, true, false, range), b.graph_id};
 }
 TextureHandle PassBuilder::write(TextureHandle t, Usage u) {
   return {t.index, access(ResourceKind::Texture, t.index, t.version, t.graph_id, u, false, true), t.graph_id};
 }
-BufferHandle PassBuilder::write(BufferHandle b, Usage u) {
-  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, false, true), b.graph_id};
+BufferHandle PassBuilder::write(BufferHandle b, Usage u, BufferRange range) {
+  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, false, true, range), b.graph_id};
 }
 TextureHandle PassBuilder::read_write(TextureHandle t, Usage u) {
   return {t.index, access(ResourceKind::Texture, t.index, t.version, t.graph_id, u, true, true), t.graph_id};
 }
-BufferHandle PassBuilder::read_write(BufferHandle b, Usage u) {
-  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, true, true), b.graph_id};
+BufferHandle PassBuilder::read_write(BufferHandle b, Usage u, BufferRange range) {
+  return {b.index, access(ResourceKind::Buffer, b.index, b.version, b.graph_id, u, true, true, range), b.graph_id};
 }
 
 void PassBuilder::side_effect() { graph_.passes_[pass_].side_effect = true; }
 
+BufferRange PassBuilder::checked_range(const ResourceDecl& resource, BufferRange range) const {
+  if (range.whole()) return range;  // the buffer's own size is checked by the validate phase
+  const uint64_t size = resource.buffer.size;
+  if (range.size == kWholeSize && range.offset < size) range.size = size - range.offset;
+  if (range.size == 0 || range.offset >= size || range.size > size - range.offset)
+    throw GraphError(graph_.who(pass_) + ": range at " + std::to_string(range.offset) + " of " +
+                     (range.size == kWholeSize ? std::string("all remaining") : std::to_string(range.size)) +
+                     " bytes is empty or leaves buffer '" + resource.name + "' (" + std::to_string(size) +
+                     " bytes)");
+  return range.offset == 0 && range.size == size ? BufferRange{} : range;
+}
+
+uint32_t PassBuilder::access_slot(const ResourceDecl& resource, uint32_t index, BufferRange range) {
+  PassDecl& pass = graph_.passes_[pass_];
+  if (graph_.last_access_[index].pass == pass_) {
+    const uint64_t size = resource.buffer.size;
+    for (uint32_t slot = 0; slot < pass.accesses.size(); ++slot) {
+      const AccessDecl& other = pass.accesses[slot];
+      if (other.resource != index) continue;
+      if (other.range == range) return slot;
+      if (range.offset < other.range.end(size) && other.range.offset < range.end(size))
+        throw GraphError(graph_.who(pass_) + ": uses overlapping ranges of '" + resource.name +
+                         "'; one pass sees each byte in one state");
+    }
+  }
+  pass.accesses.push_back(AccessDecl{index, range, {}, false, false, 0, 0});
+  return static_cast<uint32_t>(pass.accesses.size() - 1);
+}
+
 // Records one read/write call and returns the handle's version afterwards. Repeated calls
-// for the same resource in one pass merge into one AccessDecl; a second write, or any use
-// after the write, is refused (the pass would see its own output mid-pass).
+// for the same resource (range) in one pass merge into one AccessDecl; a second write, or
+// any use after the write, is refused (the pass would see its own output mid-pass).
 uint32_t PassBuilder::access(ResourceKind kind, uint32_t index, uint32_t version, uint32_t graph_id, Usage usage,
-                             bool reads, bool writes) {
+                             bool reads, bool writes, BufferRange range) {
   const ResourceDecl& checked = graph_.resolve(pass_, kind, index, graph_id);
   PassDecl& pass = graph_.passes_[pass_];
   Graph::LastAccess& last = graph_.last_access_[index];
@@ -164,10 +193,8 @@ uint32_t PassBuilder::access(ResourceKind kind, uint32_t index, uint32_t version
     throw GraphError(graph_.who(pass_) + ": write of '" + checked.name + "' with usage " + to_string(usage) +
                      ", which only reads; use read()");
 
-  if (!seen_in_this_pass) {
-    last = Graph::LastAccess{pass_, static_cast<uint32_t>(pass.accesses.size())};
-    pass.accesses.push_back(AccessDecl{index, {}, false, false, 0, 0});
-  }
+  if (kind == ResourceKind::Buffer) range = checked_range(checked, range);
+  last = Graph::LastAccess{pass_, access_slot(checked, index, range)};
   AccessDecl& decl = pass.accesses[last.slot];
   decl.usages.insert(usage);
   if (reads) {

@@ -30,9 +30,15 @@ std::string json_string(const std::string& text) {
 
 std::string index_or_null(uint32_t index) { return index == kInvalidIndex ? "null" : std::to_string(index); }
 
+// null for a whole resource, else {"offset":..,"size":..}.
+std::string range_json(const BufferRange& range) {
+  if (range.whole()) return "null";
+  return "{\"offset\":" + std::to_string(range.offset) + ",\"size\":" + std::to_string(range.size) + "}";
+}
+
 std::string barrier_json(const Barrier& b) {
   std::ostringstream out;
-  out << "{\"resource\":" << index_or_null(b.resource) << ",\"src_stages\":" << json_string(stage_names(b.src_stages))
+  out << "{\"resource\":" << index_or_null(b.resource) << ",\"range\":" << range_json(b.range) << ",\"src_stages\":" << json_string(stage_names(b.src_stages))
       << ",\"src_access\":" << json_string(access_names(b.src_access))
       << ",\"dst_stages\":" << json_string(stage_names(b.dst_stages))
       << ",\"dst_access\":" << json_string(access_names(b.dst_access))
@@ -45,7 +51,7 @@ std::string barrier_json(const Barrier& b) {
 
 std::string access_json(const PlannedAccess& a) {
   std::ostringstream out;
-  out << "{\"resource\":" << a.resource << ",\"usages\":" << json_string(detail::usage_names(a.usages))
+  out << "{\"resource\":" << a.resource << ",\"range\":" << range_json(a.range) << ",\"usages\":" << json_string(detail::usage_names(a.usages))
       << ",\"reads\":" << (a.reads ? "true" : "false") << ",\"writes\":" << (a.writes ? "true" : "false")
       << ",\"read_version\":" << a.read_version << ",\"written_version\":" << a.written_version
       << ",\"stages\":" << json_string(stage_names(a.stages)) << ",\"access\":" << json_string(access_names(a.access))

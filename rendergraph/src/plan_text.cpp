@@ -9,9 +9,16 @@ namespace {
 
 std::string quoted(const CompiledPlan& plan, uint32_t resource) { return detail::cat("'", plan.resources[resource].name, "'"); }
 
+// Buffer ranges as " [offset, end)"; nothing for whole resources (the common case).
+std::string range_text(const BufferRange& range) {
+  if (range.whole()) return "";
+  return detail::cat(" [", std::to_string(range.offset), ", ", std::to_string(range.offset + range.size), ")");
+}
+
 std::string barrier_line(const CompiledPlan& plan, const Barrier& b) {
   std::string line = "barrier ";
   line += b.is_global() ? "(global)" : quoted(plan, b.resource);
+  line += range_text(b.range);
   if (!b.is_global() && plan.resources[b.resource].kind == ResourceKind::Texture) {
     line += detail::cat(" layout ", layout_name(b.old_layout));
     if (b.new_layout != b.old_layout) line += detail::cat(" -> ", layout_name(b.new_layout));
@@ -26,6 +33,7 @@ std::string barrier_line(const CompiledPlan& plan, const Barrier& b) {
 std::string access_line(const CompiledPlan& plan, const PlannedAccess& a) {
   std::string line = a.reads && a.writes ? "read_write " : a.writes ? "write " : "read ";
   line += quoted(plan, a.resource);
+  line += range_text(a.range);
   if (a.reads) line += detail::cat(" @", std::to_string(a.read_version));
   if (a.writes) line += detail::cat(" ->@", std::to_string(a.written_version));
   line += detail::cat(" ", detail::usage_names(a.usages));

@@ -37,6 +37,8 @@ uint64_t Graph::shape_hash(const CompileOptions& options) const {
     hash.add(pass.accesses.size());
     for (const AccessDecl& access : pass.accesses) {
       hash.add(access.resource);
+      hash.add(access.range.offset);
+      hash.add(access.range.size);
       hash.add(access.usages.bits());
       hash.add(uint64_t{access.reads} | uint64_t{access.writes} << 1);
       hash.add(access.read_version);

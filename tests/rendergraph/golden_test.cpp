@@ -34,6 +34,8 @@ TEST(GoldenPlan, MultiLightChainAliasesPerLightTransients) {
 
 TEST(GoldenPlan, BufferReadAfterWrite) { expect_golden("buffer_raw", buffer_raw_graph(), MockMemoryModel()); }
 
+TEST(GoldenPlan, MipChainInBufferRanges) { expect_golden("mip_chain", mip_chain_graph(), MockMemoryModel()); }
+
 TEST(GoldenPlan, ImportedAndHistoryResources) { expect_golden("history", history_graph(), MockMemoryModel()); }
 
 // Render targets in their own memory class and a coarse bufferImageGranularity (4 KiB,

@@ -207,7 +207,11 @@ class Verifier {
   std::vector<uint32_t> first_, last_;
   std::vector<std::vector<TimedBarrier>> barriers_;  // per resource
   std::vector<TimedBarrier> global_barriers_;
-  std::vector<OpenAccesses> open_at_end_;
+  std::vector<std::vector<Event>> open_at_end_;  // per resource, all bytes
+  // While simulating one byte interval of a resource: its barriers, and its name in
+  // messages (the resource's, plus the interval when accesses split it).
+  const std::vector<TimedBarrier>* interval_barriers_ = nullptr;
+  std::string subject_;
   std::vector<Range> ranges_;  // memory of placed transients (images rounded out to pages)
 
   void problem(std::string text) { problems_.push_back(std::move(text)); }
@@ -315,8 +319,11 @@ class Verifier {
       for (uint32_t p = 0; p < passes.size(); ++p) {
         if (!needed[p]) continue;
         for (const rg::AccessDecl& a : passes[p].accesses) {
-          if (!a.reads) continue;
-          const uint32_t producer = res(a.resource).writers[a.read_version];
+          // A write of a buffer range keeps the other bytes: it needs the version it replaces.
+          const bool partial_write = a.writes && !a.range.whole();
+          if (!a.reads && !partial_write) continue;
+          const uint32_t version = a.reads ? a.read_version : a.written_version - 1;
+          const uint32_t producer = res(a.resource).writers[version];
           if (producer != kInvalidIndex && !needed[producer]) needed[producer] = changed = true;
         }
       }
@@ -447,13 +454,14 @@ class Verifier {
       return tb.pos > earlier.pos && tb.pos < later.pos && src_covers(b, earlier) &&
              stages_cover(b.dst_stages, later.stages) && (!needs_visibility || access_covers(b.dst_access, later.access));
     };
-    return std::any_of(barriers_[r].begin(), barriers_[r].end(), covers) ||
+    (void)r;
+    return std::any_of(interval_barriers_->begin(), interval_barriers_->end(), covers) ||
            std::any_of(global_barriers_.begin(), global_barriers_.end(), covers);
   }
 
   void require_ordered(const Event& earlier, const Event& later, uint32_t r, const char* hazard) {
     if (!ordered(earlier, later, r))
-      problem(std::string(hazard) + " hazard on " + name(r) + ": " + later.what + " is not ordered after " +
+      problem(std::string(hazard) + " hazard on " + subject_ + ": " + later.what + " is not ordered after " +
               earlier.what);
   }
 
@@ -478,28 +486,69 @@ class Verifier {
     for (uint32_t r : order) simulate(r);
   }
 
+  // The bytes a buffer range covers; a texture is one unit (whole-resource barriers).
+  static Range bytes_of(const rg::ResourceDecl& resource, const rg::BufferRange& range) {
+    if (resource.kind == rg::ResourceKind::Texture || range.whole())
+      return {0, resource.kind == rg::ResourceKind::Texture ? 1 : resource.buffer.size};
+    return {range.offset, range.offset + range.size};
+  }
+
+  // Cuts the resource into the intervals that every access and barrier either covers
+  // completely or misses, and checks each interval like a resource of its own.
   void simulate(uint32_t r) {
+    const Range all = bytes_of(res(r), {});
+    std::vector<uint64_t> cuts = {all.begin, all.end};
+    auto cut = [&](Range range) {
+      cuts.push_back(range.begin);
+      cuts.push_back(range.end);
+    };
+    for (const Use& use : uses_[r]) cut(bytes_of(res(r), use.access->range));
+    for (const TimedBarrier& tb : barriers_[r]) {
+      const Range range = bytes_of(res(r), tb.barrier->range);
+      if (range.end > all.end || range.begin >= range.end) problem("a barrier on " + name(r) + " leaves the buffer");
+      cut(range);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    for (size_t i = 0; i + 1 < cuts.size() && cuts[i + 1] <= all.end; ++i)
+      simulate_interval(r, Range{cuts[i], cuts[i + 1]}, cuts.size() > 2);
+  }
+
+  void simulate_interval(uint32_t r, Range bytes, bool split) {
     const rg::ResourceDecl& resource = res(r);
     const bool texture = resource.kind == rg::ResourceKind::Texture;
+    auto touches = [&](const rg::BufferRange& range) {
+      const Range touched = bytes_of(resource, range);
+      return touched.begin < bytes.end && bytes.begin < touched.end;
+    };
+    std::vector<TimedBarrier> barriers;
+    for (const TimedBarrier& tb : barriers_[r])
+      if (touches(tb.barrier->range)) barriers.push_back(tb);
+    std::stable_sort(barriers.begin(), barriers.end(),
+                     [](const TimedBarrier& a, const TimedBarrier& b) { return a.pos < b.pos; });
+    interval_barriers_ = &barriers;
+    subject_ = name(r);
+    if (split) subject_ += " bytes [" + std::to_string(bytes.begin) + ", " + std::to_string(bytes.end) + ")";
+
     Track track;
     if (resource.imported) start_imported(track, resource);
-
     // Walk barriers and accesses in timeline order (barriers of a pass precede its access).
     size_t next_barrier = 0;
     auto barriers_until = [&](int64_t pos) {
-      for (; next_barrier < barriers_[r].size() && barriers_[r][next_barrier].pos <= pos; ++next_barrier)
-        apply_barrier(r, track, barriers_[r][next_barrier]);
+      for (; next_barrier < barriers.size() && barriers[next_barrier].pos <= pos; ++next_barrier)
+        apply_barrier(r, track, barriers[next_barrier]);
     };
-    std::stable_sort(barriers_[r].begin(), barriers_[r].end(),
-                     [](const TimedBarrier& a, const TimedBarrier& b) { return a.pos < b.pos; });
     for (const Use& use : uses_[r]) {
+      if (!touches(use.access->range)) continue;
       const int64_t pos = 2 * int64_t{use.position} + 1;
       barriers_until(pos);
       access(r, track, use, pos, texture);
     }
     barriers_until(end_pos());
     if (resource.imported) finish_imported(r, track, resource);
-    open_at_end_[r] = track.open;
+    std::vector<Event>& open = open_at_end_[r];
+    open.insert(open.end(), track.open.reads.begin(), track.open.reads.end());
+    if (track.open.last_write) open.push_back(*track.open.last_write);
   }
 
   static void start_imported(Track& track, const rg::ResourceDecl& resource) {
@@ -520,7 +569,7 @@ class Verifier {
     const rg::Barrier& b = *tb.barrier;
     if (res(r).kind == rg::ResourceKind::Buffer) {
       if (b.old_layout != VK_IMAGE_LAYOUT_UNDEFINED || b.new_layout != VK_IMAGE_LAYOUT_UNDEFINED)
-        problem("buffer " + name(r) + " has a barrier with image layouts");
+        problem("buffer " + subject_ + " has a barrier with image layouts");
       return;
     }
     // old_layout must be the current layout; UNDEFINED (discard) only before a transient's
@@ -536,11 +585,8 @@ class Verifier {
     std::vector<Event> open = track.open.reads;
     if (track.open.last_write) open.push_back(*track.open.last_write);
     if (first_use) {
-      for (uint32_t previous : previous_occupants(r)) {
-        const OpenAccesses& prev = open_at_end_[previous];
-        open.insert(open.end(), prev.reads.begin(), prev.reads.end());
-        if (prev.last_write) open.push_back(*prev.last_write);
-      }
+      for (uint32_t previous : previous_occupants(r))
+        open.insert(open.end(), open_at_end_[previous].begin(), open_at_end_[previous].end());
       track.first_use_transition_checked = true;
     }
     for (const Event& earlier : open)
@@ -569,13 +615,10 @@ class Verifier {
     later.what = "pass '" + *use.pass_name + "' (" + usage_names + ")";
 
     if (!track.accessed && !res(r).imported) {
-      if (!later.write) problem(later.what + " reads " + name(r) + " before anything wrote it");
+      if (!later.write) problem(later.what + " reads " + subject_ + " before anything wrote it");
       if (!track.first_use_transition_checked)
-        for (uint32_t previous : previous_occupants(r)) {
-          const OpenAccesses& prev = open_at_end_[previous];
-          if (prev.last_write) require_ordered(*prev.last_write, later, r, "aliasing");
-          for (const Event& read : prev.reads) require_ordered(read, later, r, "aliasing");
-        }
+        for (uint32_t previous : previous_occupants(r))
+          for (const Event& earlier : open_at_end_[previous]) require_ordered(earlier, later, r, "aliasing");
     }
     track.accessed = true;
     settle(r, track, later);

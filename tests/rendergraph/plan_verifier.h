@@ -10,7 +10,9 @@
 //              inside the heap; no two placements in one heap overlap (images rounded out
 //              to bufferImageGranularity pages) while their lifetimes overlap, or at all
 //              with aliasing off
-//   hazards    per resource, in execution order: every RAW/WAW is covered by a barrier
+//   hazards    per resource (per byte interval of a buffer: the resource is cut wherever an
+//              access or barrier range starts or ends, and each interval is checked against
+//              the accesses and barriers covering it), in execution order: every RAW/WAW is covered by a barrier
 //              after the earlier access whose src covers its stages and write accesses and
 //              whose dst covers the later stages and accesses; every WAR by one whose src
 //              covers the reader's stages; layout transitions count as writes; a

@@ -77,7 +77,9 @@ rg::ImportState random_state(Rng& rng, rg::ResourceKind kind, bool initial) {
   return rng.pick(states);
 }
 
-void add_random_pass(rg::Graph& graph, Rng& rng, std::vector<Slot>& slots, uint32_t index) {
+// `ranges` decides the buffer ranges on its own stream, so the graphs' structure (and the
+// heap bounds measured below) are those of the generator without ranges.
+void add_random_pass(rg::Graph& graph, Rng& rng, Rng& ranges, std::vector<Slot>& slots, uint32_t index) {
   static const std::vector<QueueType> queues = {QueueType::Graphics, QueueType::Graphics, QueueType::Compute,
                                                 QueueType::Compute, QueueType::Transfer};
   const QueueType queue = rng.pick(queues);
@@ -95,14 +97,25 @@ void add_random_pass(rg::Graph& graph, Rng& rng, std::vector<Slot>& slots, uint3
       if (usages.empty()) continue;
       const Usage usage = rng.pick(usages);
       const bool texture = slot.kind == rg::ResourceKind::Texture;
+      // Buffers with contents: often a range of quarters, sometimes after a read of the
+      // quarters before it (a mip chain's shape).
+      rg::BufferRange range;
+      if (!texture && slot.readable && ranges.chance(40)) {
+        const uint64_t quarter = graph.resources()[slot.buffer.index].buffer.size / 4;
+        const uint32_t first = ranges.below(4);
+        range = {first * quarter, (1 + ranges.below(4 - first)) * quarter};
+        const auto reads = usages_for(queue, slot.kind, false);
+        if (first > 0 && !reads.empty() && ranges.chance(30))
+          b.read(slot.buffer, ranges.pick(reads), {0, first * quarter});
+      }
       if (op <= 1) {
-        texture ? (void)b.read(slot.texture, usage) : (void)b.read(slot.buffer, usage);
+        texture ? (void)b.read(slot.texture, usage) : (void)b.read(slot.buffer, usage, range);
       } else if (op == 2) {
         if (texture) slot.texture = b.read_write(slot.texture, usage);
-        else slot.buffer = b.read_write(slot.buffer, usage);
+        else slot.buffer = b.read_write(slot.buffer, usage, range);
       } else {
         if (texture) slot.texture = b.write(slot.texture, usage);
-        else slot.buffer = b.write(slot.buffer, usage);
+        else slot.buffer = b.write(slot.buffer, usage, range);
         slot.readable = true;
       }
     }
@@ -127,7 +140,7 @@ void add_random_pass(rg::Graph& graph, Rng& rng, std::vector<Slot>& slots, uint3
 }
 
 rg::Graph random_graph(uint64_t seed) {
-  Rng rng(seed);
+  Rng rng(seed), ranges(seed ^ 0x9e3779b97f4a7c15ull);
   rg::Graph graph;
   std::vector<Slot> slots;
   for (uint32_t i = rng.below(4); i > 0; --i) {
@@ -144,7 +157,7 @@ rg::Graph random_graph(uint64_t seed) {
     slots.push_back(slot);
   }
   const uint32_t pass_count = 3 + rng.below(28);
-  for (uint32_t p = 0; p < pass_count; ++p) add_random_pass(graph, rng, slots, p);
+  for (uint32_t p = 0; p < pass_count; ++p) add_random_pass(graph, rng, ranges, slots, p);
   for (const Slot& slot : slots) {
     if (!slot.readable || !rng.chance(10)) continue;
     if (slot.kind == rg::ResourceKind::Texture) graph.mark_output(slot.texture);

@@ -195,4 +195,26 @@ rg::Graph history_graph() {
   return graph;
 }
 
+// A map of 3 levels in one persistent buffer (level 0: 1024 bytes, level 1: 256, level 2:
+// 64, then unused padding): resolved whole, each level built from the one above by reading
+// its range and writing the next, then shaded from the whole buffer.
+rg::Graph mip_chain_graph() {
+  rg::Graph graph;
+  const rg::BufferRange levels[3] = {{0, 1024}, {1024, 256}, {1280, 64}};
+  auto map = graph.import_buffer("map", {1536}, rg::ImportState::none(), rg::ImportState::of(Usage::StorageRead));
+  graph.add_pass("resolve", QueueType::Compute, [&](PassBuilder& b) {
+    map = b.write(map, Usage::StorageWrite);
+  }, no_execute);
+  for (int level = 1; level < 3; ++level)
+    graph.add_pass("mip " + std::to_string(level), QueueType::Compute, [&](PassBuilder& b) {
+      b.read(map, Usage::StorageRead, levels[level - 1]);
+      map = b.write(map, Usage::StorageWrite, levels[level]);
+    }, no_execute);
+  graph.add_pass("shade", QueueType::Graphics, [&](PassBuilder& b) {
+    b.read(map, Usage::StorageRead);
+    b.side_effect();
+  }, no_execute);
+  return graph;
+}
+
 }  // namespace rg_test

@@ -14,5 +14,6 @@ rg::Graph culled_branch_graph();  // a debug branch nobody reads is culled; outp
 rg::Graph multi_light_graph(int lights = 3);  // per-light capture/sort/resolve, transients alias
 rg::Graph buffer_raw_graph();     // upload -> GPU culling -> indirect draw -> stats readback
 rg::Graph history_graph();        // TAA history read from last frame and written for the next
+rg::Graph mip_chain_graph();      // a map's levels in ranges of one buffer, each built from the one above
 
 }  // namespace rg_test

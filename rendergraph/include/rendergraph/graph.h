@@ -23,10 +23,13 @@ namespace rg {
 
 class Graph;
 
-// One pass's use of one resource. A pass accesses each resource through one AccessDecl;
-// several read usages (or a read and a write with the same layout) are merged into it.
+// One pass's use of one resource (or of one range of a buffer). A pass accesses each
+// resource through one AccessDecl per range; several read usages (or a read and a write
+// with the same layout) of the same range are merged into it. Ranges of one buffer used
+// by one pass are disjoint.
 struct AccessDecl {
   uint32_t resource = kInvalidIndex;
+  BufferRange range;  // buffers: whole() or a proper sub-range with an explicit size
   UsageSet usages;
   bool reads = false;   // depends on the previous contents (read / read_write)
   bool writes = false;  // produces a new version (write / read_write)
@@ -71,14 +74,19 @@ class PassBuilder {
 
   // Read the current contents; `usage` must not write. Returns the same handle.
   TextureHandle read(TextureHandle texture, Usage usage);
-  BufferHandle read(BufferHandle buffer, Usage usage);
+  BufferHandle read(BufferHandle buffer, Usage usage, BufferRange range = {});
   // Overwrite without reading the previous contents; returns the new version.
   TextureHandle write(TextureHandle texture, Usage usage);
-  BufferHandle write(BufferHandle buffer, Usage usage);
+  BufferHandle write(BufferHandle buffer, Usage usage, BufferRange range = {});
   // Read and modify in place (atomics, blending onto existing contents, load-op LOAD);
   // returns the new version.
   TextureHandle read_write(TextureHandle texture, Usage usage);
-  BufferHandle read_write(BufferHandle buffer, Usage usage);
+  BufferHandle read_write(BufferHandle buffer, Usage usage, BufferRange range = {});
+  //
+  // Buffer ranges: the barrier planner tracks each range on its own, so passes touching
+  // disjoint ranges of one buffer need no barrier between them. A write of a range keeps
+  // the rest of the buffer (the new version depends on the previous one). One pass may
+  // use several disjoint ranges of a buffer, reads before its one write.
 
   // The pass has effects outside the graph (readback, debug output): never cull it.
   void side_effect();
@@ -88,7 +96,13 @@ class PassBuilder {
   PassBuilder(Graph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
 
   uint32_t access(ResourceKind kind, uint32_t index, uint32_t version, uint32_t graph_id, Usage usage,
-                  bool reads, bool writes);
+                  bool reads, bool writes, BufferRange range = {});
+  // The declared range in canonical form (whole(), or explicit size); throws when it
+  // leaves the buffer or is empty.
+  BufferRange checked_range(const ResourceDecl& resource, BufferRange range) const;
+  // The slot of this pass's access to `range` of `resource` (merging identical ranges),
+  // or a new one; throws when it overlaps another range of the resource in this pass.
+  uint32_t access_slot(const ResourceDecl& resource, uint32_t index, BufferRange range);
   uint32_t create(std::string name, ResourceKind kind, const TextureDesc& texture, const BufferDesc& buffer);
 
   Graph& graph_;

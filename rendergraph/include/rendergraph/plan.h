@@ -22,10 +22,12 @@ struct CompileOptions {
   bool operator==(const CompileOptions&) const = default;
 };
 
-// A sync2-shaped barrier over a whole resource (all mips/layers, or the whole buffer).
-// resource == kInvalidIndex means a global VkMemoryBarrier2 (serial mode only).
+// A sync2-shaped barrier over a whole resource (all mips/layers, or the whole buffer) or a
+// range of a buffer. resource == kInvalidIndex means a global VkMemoryBarrier2 (serial
+// mode only).
 struct Barrier {
   uint32_t resource = kInvalidIndex;  // index into CompiledPlan::resources
+  BufferRange range;                  // buffers: the bytes it covers (offset/size as in Vulkan)
   VkPipelineStageFlags2 src_stages = VK_PIPELINE_STAGE_2_NONE;
   VkAccessFlags2 src_access = VK_ACCESS_2_NONE;
   VkPipelineStageFlags2 dst_stages = VK_PIPELINE_STAGE_2_NONE;
@@ -44,6 +46,7 @@ struct Barrier {
 // attachment layouts and pipeline stages for the executor).
 struct PlannedAccess {
   uint32_t resource = kInvalidIndex;
+  BufferRange range;  // buffers: the bytes this access touches
   UsageSet usages;
   bool reads = false;   // consumes the previous version
   bool writes = false;  // produces a new version

@@ -46,6 +46,21 @@ struct BufferDesc {
   bool operator==(const BufferDesc&) const = default;
 };
 
+// A byte range [offset, offset + size) of a buffer that passes access with its own
+// synchronisation state (e.g. one mip level of a map stored in one buffer). The default
+// is the whole buffer; kWholeSize reaches to its end, like VK_WHOLE_SIZE.
+inline constexpr uint64_t kWholeSize = ~uint64_t{0};
+
+struct BufferRange {
+  uint64_t offset = 0;
+  uint64_t size = kWholeSize;
+
+  bool whole() const { return offset == 0 && size == kWholeSize; }
+  // One past the last byte, for a buffer of `buffer_size` bytes.
+  uint64_t end(uint64_t buffer_size) const { return size == kWholeSize ? buffer_size : offset + size; }
+  bool operator==(const BufferRange&) const = default;
+};
+
 std::size_t hash_value(const TextureDesc& desc);
 std::size_t hash_value(const BufferDesc& desc);
 

@@ -9,6 +9,9 @@
 //                       other stages wait for the transition
 //   aliasing            a transient's first use waits for the last accesses of the
 //                       resources that occupied its memory before, starting from UNDEFINED
+//   buffer ranges       each byte range of a buffer has its own state: an access waits
+//                       only for earlier accesses of the bytes it touches, with one barrier
+//                       per range of bytes in the same state (adjacent equal ones merged)
 //
 // Every barrier names the earlier accesses directly in its src scope (not only through
 // chains of barriers): plans are easy to read and to check.
@@ -25,6 +28,8 @@ namespace {
 struct Scope {
   VkPipelineStageFlags2 stages;
   VkAccessFlags2 access;
+
+  bool operator==(const Scope&) const = default;
 };
 
 struct SyncState {
@@ -36,6 +41,68 @@ struct SyncState {
   VkPipelineStageFlags2 read_stages = VK_PIPELINE_STAGE_2_NONE;
   // Scopes the last write is already visible to: reads inside one need no barrier.
   std::vector<Scope> visible;
+
+  bool operator==(const SyncState&) const = default;
+};
+
+// The state of one resource per byte range. Textures, and buffers only used whole, keep
+// one segment; accesses to buffer ranges split it at their edges. Segments are sorted,
+// contiguous and cover [0, extent); equal neighbours are merged again after each access.
+class ResourceSync {
+ public:
+  struct Segment {
+    uint64_t begin, end;
+    SyncState state;
+  };
+
+  void reset(uint64_t extent, SyncState state) { segments_.assign(1, Segment{0, extent, std::move(state)}); }
+
+  // Calls fn(segment) for each segment inside [begin, end), after splitting at the edges.
+  template <class Fn>
+  void update(uint64_t begin, uint64_t end, Fn&& fn) {
+    split_at(begin);
+    split_at(end);
+    for (Segment& segment : segments_)
+      if (segment.begin >= begin && segment.end <= end) fn(segment);
+    merge_equal_neighbours();
+  }
+
+  // Everything pending on any byte, as one state (what memory reusing it must wait for).
+  SyncState pending() const {
+    SyncState all;
+    for (const Segment& segment : segments_) {
+      all.write_stages |= segment.state.write_stages;
+      all.write_access |= segment.state.write_access;
+      all.read_stages |= segment.state.read_stages;
+    }
+    return all;
+  }
+
+ private:
+  void split_at(uint64_t at) {
+    for (size_t i = 0; i < segments_.size(); ++i) {
+      Segment& segment = segments_[i];
+      if (segment.begin >= at || segment.end <= at) continue;
+      Segment tail{at, segment.end, segment.state};
+      segment.end = at;
+      segments_.insert(segments_.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(tail));
+      return;
+    }
+  }
+
+  void merge_equal_neighbours() {
+    size_t kept = 0;
+    for (size_t i = 1; i < segments_.size(); ++i) {
+      if (segments_[i].state == segments_[kept].state) {
+        segments_[kept].end = segments_[i].end;
+      } else if (++kept != i) {
+        segments_[kept] = std::move(segments_[i]);  // (never onto itself: that empties `visible`)
+      }
+    }
+    segments_.resize(kept + 1);
+  }
+
+  std::vector<Segment> segments_;
 };
 
 bool is_visible(const SyncState& state, const AccessNeeds& need) {
@@ -62,12 +129,13 @@ SyncState imported_state(const ImportState& initial, bool is_texture) {
 
 // A transient's first use after others used its memory: wait for all of their last
 // accesses; contents are discarded (layout UNDEFINED).
-SyncState state_after_occupants(const std::vector<uint32_t>& occupants, const std::vector<SyncState>& sync) {
+SyncState state_after_occupants(const std::vector<uint32_t>& occupants, const std::vector<ResourceSync>& sync) {
   SyncState state;
   for (uint32_t previous : occupants) {
-    state.write_stages |= sync[previous].write_stages;
-    state.write_access |= sync[previous].write_access;
-    state.read_stages |= sync[previous].read_stages;
+    const SyncState pending = sync[previous].pending();
+    state.write_stages |= pending.write_stages;
+    state.write_access |= pending.write_access;
+    state.read_stages |= pending.read_stages;
   }
   return state;
 }
@@ -169,16 +237,65 @@ class HeapOccupancy {
   std::map<uint64_t, Segment> segments_;  // begin -> segment, non-overlapping
 };
 
+// The bytes of a resource the segments of ResourceSync count: a buffer's size; a texture
+// is one unit (its barriers cover all mips and layers).
+uint64_t extent(const ResourceDecl& resource) {
+  return resource.kind == ResourceKind::Buffer ? resource.buffer.size : 1;
+}
+
+bool same_but_range(Barrier a, const Barrier& b) {
+  a.range = b.range;
+  return a == b;
+}
+
+// Appends `barrier` for bytes [begin, end) of its resource, extending the previous barrier
+// (from index `first` on) instead when that one ends at `begin` and is otherwise the same.
+void add_range_barrier(std::vector<Barrier>& barriers, size_t first, Barrier barrier, uint64_t begin, uint64_t end) {
+  if (barriers.size() > first) {
+    Barrier& previous = barriers.back();
+    if (previous.range.offset + previous.range.size == begin && same_but_range(previous, barrier)) {
+      previous.range.size = end - previous.range.offset;
+      return;
+    }
+  }
+  barrier.range = {begin, end - begin};
+  barriers.push_back(std::move(barrier));
+}
+
+// Barriers over the whole resource say so (as before ranges existed, and as the executor's
+// whole-resource Vulkan barriers do).
+void mark_whole_ranges(std::vector<Barrier>& barriers, size_t first, uint64_t resource_extent) {
+  for (size_t i = first; i < barriers.size(); ++i)
+    if (barriers[i].range.offset == 0 && barriers[i].range.size == resource_extent) barriers[i].range = {};
+}
+
+// Synchronises every segment that `range` touches with `sync_one`, appending one barrier
+// per run of bytes that needs the same one.
+template <class SyncOne>
+void synchronise_range(ResourceSync& sync, const ResourceDecl& resource, BufferRange range, const Barrier& proto,
+                       std::vector<Barrier>& barriers, SyncOne&& sync_one) {
+  const uint64_t size = extent(resource);
+  const uint64_t begin = resource.kind == ResourceKind::Buffer ? range.offset : 0;
+  const uint64_t end = resource.kind == ResourceKind::Buffer ? range.end(size) : size;
+  const size_t first = barriers.size();
+  sync.update(begin, end, [&](ResourceSync::Segment& segment) {
+    Barrier barrier = proto;
+    if (sync_one(segment.state, barrier)) add_range_barrier(barriers, first, std::move(barrier), segment.begin, segment.end);
+  });
+  mark_whole_ranges(barriers, first, size);
+}
+
 }  // namespace
 
 void plan_barriers(CompileState& state) {
   const auto& passes = state.graph.passes();
   const auto& resources = state.graph.resources();
 
-  std::vector<SyncState> sync(resources.size());
+  std::vector<ResourceSync> sync(resources.size());
   for (uint32_t r = 0; r < resources.size(); ++r)
-    if (resources[r].imported)
-      sync[r] = imported_state(resources[r].initial, resources[r].kind == ResourceKind::Texture);
+    sync[r].reset(extent(resources[r]), resources[r].imported ? imported_state(resources[r].initial,
+                                                                              resources[r].kind == ResourceKind::Texture)
+                                                              : SyncState{});
   std::vector<HeapOccupancy> occupancy(state.heaps.size());
 
   state.barriers.assign(state.order.size(), {});
@@ -192,13 +309,15 @@ void plan_barriers(CompileState& state) {
       const bool is_texture = resources[r].kind == ResourceKind::Texture;
       Barrier barrier;
       barrier.resource = r;
+      // (A transient's first pass accesses it once: reading version 0 is refused.)
       if (!resources[r].imported && state.lifetimes[r].first == position) {
         const Placement& placement = state.placements[r];
         barrier.aliased = occupancy[placement.heap].occupy(placement.offset, placement.offset + placement.footprint, r);
-        sync[r] = state_after_occupants(barrier.aliased, sync);
+        sync[r].reset(extent(resources[r]), state_after_occupants(barrier.aliased, sync));
       }
-      if (synchronise(sync[r], access_needs(access, pass.queue, resources[r].kind), is_texture, barrier))
-        barriers.push_back(std::move(barrier));
+      const AccessNeeds need = access_needs(access, pass.queue, resources[r].kind);
+      synchronise_range(sync[r], resources[r], access.range, barrier, barriers,
+                        [&](SyncState& bytes, Barrier& b) { return synchronise(bytes, need, is_texture, b); });
     }
   }
 
@@ -207,8 +326,9 @@ void plan_barriers(CompileState& state) {
     if (!resources[r].imported) continue;
     Barrier barrier;
     barrier.resource = r;
-    if (finish(sync[r], resources[r].final_state, resources[r].kind == ResourceKind::Texture, barrier))
-      state.final_barriers.push_back(std::move(barrier));
+    const bool is_texture = resources[r].kind == ResourceKind::Texture;
+    synchronise_range(sync[r], resources[r], BufferRange{}, barrier, state.final_barriers,
+                      [&](SyncState& bytes, Barrier& b) { return finish(bytes, resources[r].final_state, is_texture, b); });
   }
 }
 

@@ -14,7 +14,7 @@ PlannedPass planned_pass(const Graph& graph, uint32_t pass_index) {
   pass.accesses.reserve(decl.accesses.size());
   for (const AccessDecl& access : decl.accesses) {
     const AccessNeeds needs = access_needs(access, decl.queue, graph.resources()[access.resource].kind);
-    pass.accesses.push_back(PlannedAccess{access.resource, access.usages, access.reads, access.writes,
+    pass.accesses.push_back(PlannedAccess{access.resource, access.range, access.usages, access.reads, access.writes,
                                           access.read_version, access.written_version, needs.stages,
                                           needs.access, needs.layout});
   }

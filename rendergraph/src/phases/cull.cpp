@@ -1,7 +1,8 @@
 // Phase 2: cull. A pass is kept when something observable depends on it: it has a side
 // effect, it writes an imported resource (visible after the graph), it produced a version
 // marked as output, or a kept pass reads a version it produced. Reverse reachability
-// from those anchors, O(passes + accesses).
+// from those anchors, O(passes + accesses). A write of a buffer range keeps the rest of the
+// buffer, so its pass depends on the producer of the version it replaced.
 #include "phases.h"
 
 namespace rg::detail {
@@ -29,8 +30,11 @@ void cull(CompileState& state) {
   while (!pending.empty()) {
     const uint32_t pass = pending.back();
     pending.pop_back();
-    for (const AccessDecl& access : passes[pass].accesses)
-      if (access.reads) keep(resources[access.resource].writers[access.read_version]);
+    for (const AccessDecl& access : passes[pass].accesses) {
+      const std::vector<uint32_t>& writers = resources[access.resource].writers;
+      if (access.reads) keep(writers[access.read_version]);
+      if (access.writes && !access.range.whole()) keep(writers[access.written_version - 1]);
+    }
   }
 }
 

@@ -5,6 +5,8 @@
 #include "gpu/barriers.h"
 #include "gpu/context.h"
 
+static_assert(rg::kWholeSize == VK_WHOLE_SIZE);
+
 namespace rg::vulkan {
 
 using avsm::gpu::Buffer;
@@ -56,14 +58,14 @@ void Executor::start_binding(uint32_t graph_id) {
   bound_graph_id_ = graph_id;
 }
 
-void Executor::bind(TextureHandle texture, Image& image) {
+void Executor::bind(TextureHandle texture, const Image& image) {
   if (!texture.valid()) throw GraphError("bind: invalid texture handle");
   start_binding(texture.graph_id);
   if (imported_images_.size() <= texture.index) imported_images_.resize(texture.index + 1, nullptr);
   imported_images_[texture.index] = &image;
 }
 
-void Executor::bind(BufferHandle buffer, Buffer& buffer_object) {
+void Executor::bind(BufferHandle buffer, const Buffer& buffer_object) {
   if (!buffer.valid()) throw GraphError("bind: invalid buffer handle");
   start_binding(buffer.graph_id);
   if (imported_buffers_.size() <= buffer.index) imported_buffers_.resize(buffer.index + 1, nullptr);
@@ -125,7 +127,10 @@ void Executor::record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& 
       images.push_back(avsm::gpu::make_image_barrier(images_[b.resource]->handle(), range, b.old_layout,
                                                      b.new_layout, src, dst));
     } else {
-      buffers.push_back(avsm::gpu::make_buffer_barrier(buffers_[b.resource]->handle(), src, dst));
+      VkBufferMemoryBarrier2 barrier = avsm::gpu::make_buffer_barrier(buffers_[b.resource]->handle(), src, dst);
+      barrier.offset = b.range.offset;
+      barrier.size = b.range.size;  // kWholeSize is VK_WHOLE_SIZE
+      buffers.push_back(barrier);
     }
   }
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};

@@ -45,8 +45,8 @@ class Executor {
   ~Executor();
 
   // Physical resources behind the imported handles of the graph about to run.
-  void bind(TextureHandle texture, avsm::gpu::Image& image);
-  void bind(BufferHandle buffer, avsm::gpu::Buffer& buffer_object);
+  void bind(TextureHandle texture, const avsm::gpu::Image& image);
+  void bind(BufferHandle buffer, const avsm::gpu::Buffer& buffer_object);
 
   // Compiles the graph (or reuses the last plan), then records the whole frame.
   void record(const Graph& graph, VkCommandBuffer cmd, const CompileOptions& options = {});
@@ -78,12 +78,12 @@ class Executor {
   std::vector<avsm::gpu::MemoryHeap> heaps_;
   std::vector<std::unique_ptr<avsm::gpu::Image>> transient_images_;    // by resource index
   std::vector<std::unique_ptr<avsm::gpu::Buffer>> transient_buffers_;  // by resource index
-  std::vector<avsm::gpu::Image*> images_;                              // by resource index
-  std::vector<avsm::gpu::Buffer*> buffers_;                            // by resource index
+  std::vector<const avsm::gpu::Image*> images_;                        // by resource index
+  std::vector<const avsm::gpu::Buffer*> buffers_;                      // by resource index
   // Imports bound for the graph with id bound_graph_id_, by resource index.
   uint32_t bound_graph_id_ = 0;
-  std::vector<avsm::gpu::Image*> imported_images_;
-  std::vector<avsm::gpu::Buffer*> imported_buffers_;
+  std::vector<const avsm::gpu::Image*> imported_images_;
+  std::vector<const avsm::gpu::Buffer*> imported_buffers_;
   std::vector<double> cpu_record_ms_;
 };
 

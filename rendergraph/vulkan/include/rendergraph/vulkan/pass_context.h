@@ -40,8 +40,8 @@ class PassContext {
  private:
   friend class vulkan::Executor;
   PassContext(const avsm::gpu::Context& gpu, VkCommandBuffer cmd, const PlannedPass& pass,
-              const CompiledPlan& plan, const std::vector<avsm::gpu::Image*>& images,
-              const std::vector<avsm::gpu::Buffer*>& buffers)
+              const CompiledPlan& plan, const std::vector<const avsm::gpu::Image*>& images,
+              const std::vector<const avsm::gpu::Buffer*>& buffers)
       : gpu_(gpu), cmd_(cmd), pass_(&pass), plan_(plan), images_(images), buffers_(buffers) {}
 
   const PlannedAccess& access(ResourceKind kind, uint32_t index, uint32_t graph_id) const;
@@ -50,8 +50,8 @@ class PassContext {
   VkCommandBuffer cmd_;
   const PlannedPass* pass_;
   const CompiledPlan& plan_;
-  const std::vector<avsm::gpu::Image*>& images_;    // by resource index
-  const std::vector<avsm::gpu::Buffer*>& buffers_;  // by resource index
+  const std::vector<const avsm::gpu::Image*>& images_;    // by resource index
+  const std::vector<const avsm::gpu::Buffer*>& buffers_;  // by resource index
 };
 
 }  // namespace rg
