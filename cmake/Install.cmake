@@ -20,7 +20,7 @@ install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes a
         EXPORT avsmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# Headers, laid out as the engine includes them. The CPU mirrors of the shader math
+# Headers, laid out as the engine includes them. The C++ builds of the shader math
 # (avsm_core.h, deep_shadow.h, opacity_maps.h) include GLSL from the source tree and
 # serve the tests only, so they stay out.
 install(DIRECTORY engine/gpu engine/io engine/scene DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}

@@ -23,14 +23,12 @@ void ShadowDebugPass::set_lights(const ShadowMaps& shadows) {
   }
 }
 
-void ShadowDebugPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& inputs) {
+void ShadowDebugPass::add_to_graph(rg::Graph& graph, const ShadowInputs& inputs) {
   for (uint32_t light = 0; light < images_.size(); ++light) {
     gpu::Image& image = images_[light];
     const std::string name = "light " + std::to_string(light) + " debug image";
     rg::TextureHandle handle =
-        graph.import_texture(name, {image.desc().width, image.desc().height, 1, 1, 1, kFormat},
-                             rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
-    executor.bind(handle, image);
+        rg::vulkan::import(graph, name, image, rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
     struct Data {
       rg::TextureHandle image;
     };

@@ -25,7 +25,7 @@ class ShadowDebugPass {
   // One image per light of `shadows`, at its map resolution.
   void set_lights(const ShadowMaps& shadows);
   // Adds "light <i> debug image" for every light; images in kOutputLayout after the frame.
-  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& inputs);
+  void add_to_graph(rg::Graph& graph, const ShadowInputs& inputs);
   const std::vector<gpu::Image>& images() const { return images_; }
 
  private:

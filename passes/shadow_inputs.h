@@ -29,6 +29,9 @@ using shared::kNoReference;
 // What a camera pass reads to look shadows up (shaders/common/shadow_lookup.glsl).
 struct ShadowInputs {
   VkBuffer parameters = VK_NULL_HANDLE;  // one GpuShadow per scene light
+  // The same buffer as a graph resource when the frame writes it (ShadowMaps uploads the
+  // records in a "shadow parameters" pass); invalid for static parameters.
+  rg::BufferHandle records;
   std::array<rg::BufferHandle, kMaxShadowedLights> maps{};
   std::array<rg::TextureHandle, kMaxShadowedLights> heads{};
   std::array<rg::BufferHandle, kMaxShadowedLights> nodes{};

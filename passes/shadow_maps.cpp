@@ -40,6 +40,7 @@ uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple 
 }  // namespace
 
 void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
+  if (records.valid()) builder.read(records, rg::Usage::StorageRead);
   for (uint32_t slot = 0; slot < kMaxShadowedLights; ++slot) {
     if (maps[slot].valid()) builder.read(maps[slot], rg::Usage::StorageRead);
     if (heads[slot].valid()) builder.read(heads[slot], rg::Usage::StorageRead);
@@ -57,7 +58,7 @@ void ShadowInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context)
     head_views[slot] = heads[slot].valid() ? context.view(heads[slot]) : unused_heads;
     head_layouts[slot] = heads[slot].valid() ? context.layout(heads[slot]) : VK_IMAGE_LAYOUT_GENERAL;
   }
-  bindings.buffer("ShadowParameters", parameters)
+  bindings.buffer("ShadowParameters", records.valid() ? context.buffer(records) : gpu::BufferRange(parameters))
       .buffer_array("AvsmMap", map_buffers)
       .image_array("shadow_list_heads", head_views, head_layouts)
       .buffer_array("ShadowListNodes", node_buffers);
@@ -141,8 +142,8 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   }
   const uint64_t entries = lights_.size() * (options_.keep_reference ? 2 : 1);
   parameters_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
-                                           "shadow parameters"});
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           gpu::MemoryLocation::DeviceLocal, "shadow parameters"});
 }
 
 void ShadowMaps::create_map(uint32_t light) {
@@ -180,28 +181,48 @@ GpuShadow ShadowMaps::gpu_shadow(uint32_t light, const View& camera) const {
   return g;
 }
 
-ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
-                                      const ShadowCasters& casters) {
-  ShadowInputs inputs = unshadowed_inputs();
-  if (lights_.empty()) return inputs;
-  inputs.parameters = parameters_.handle();
-  auto* parameters = static_cast<GpuShadow*>(parameters_.mapped());
+// "shadow parameters": the frame's GpuShadow records, written by the GPU in the frame
+// (not through a mapped pointer while it is declared), so the camera passes' reads are
+// ordered after the write like any other graph access.
+rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& camera) const {
+  std::vector<GpuShadow> records(parameters_.size() / sizeof(GpuShadow));
   for (uint32_t i = 0; i < lights_.size(); ++i) {
-    parameters[i] = gpu_shadow(i, camera);
+    records[i] = gpu_shadow(i, camera);
     if (options_.keep_reference) {
-      GpuShadow& reference = parameters[light_count() + i];
-      reference = parameters[i];
+      GpuShadow& reference = records[light_count() + i];
+      reference = records[i];
       reference.technique = shadow_technique_code("uncompressed");
       reference.mip_count = 1;  // the lists have no mips: the exact curve at every level of detail
       reference.reference = kNoReference;
     }
+  }
+  rg::BufferHandle buffer = rg::vulkan::import(graph, "shadow parameters", parameters_, rg::ImportState::none(),
+                                               rg::ImportState::of(rg::Usage::StorageRead));
+  struct Data {
+    rg::BufferHandle records;
+  };
+  return graph.add_pass<Data>("shadow parameters", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& d) { d.records = b.write(buffer, rg::Usage::TransferDst); },
+      [records = std::move(records)](const Data& d, rg::PassContext& c) {
+        // vkCmdUpdateBuffer takes at most 64 KiB: kMaxShadowedLights * 2 records are far less.
+        vkCmdUpdateBuffer(c.cmd(), c.buffer(d.records), 0, records.size() * sizeof(GpuShadow), records.data());
+      })
+      .records;
+}
+
+ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera,
+                                      const ShadowCasters& casters) {
+  ShadowInputs inputs = unshadowed_inputs();
+  if (lights_.empty()) return inputs;
+  inputs.parameters = parameters_.handle();
+  inputs.records = add_parameter_upload(graph, camera);
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
     LightState& light = lights_[i];
     const LightView& view = views_[i];
     const std::string prefix = "light " + std::to_string(i);
 
-    rg::BufferHandle counter = graph.import_buffer(prefix + " capture counter", {light.counter.size()},
-                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-    executor.bind(counter, light.counter);
+    rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", light.counter,
+                                                  rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
     CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, light.capacity, counter);
     lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
     lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
@@ -213,9 +234,8 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& ex
       inputs.nodes[i] = lists.nodes;
     }
     if (!light.technique->has_map()) continue;
-    rg::BufferHandle map = graph.import_buffer(prefix + " " + light.settings.technique + " map", {light.map.size()},
-                                               rg::ImportState::none(), map_state_after_frame());
-    executor.bind(map, light.map);
+    rg::BufferHandle map = rg::vulkan::import(graph, prefix + " " + light.settings.technique + " map", light.map,
+                                              rg::ImportState::none(), map_state_after_frame());
     const TechniqueBuild build{graph, prefix, lists, map, view, light.settings, light.map_state};
     inputs.maps[i] = builders_[light.technique->code() - 1]->add_to_graph(build, lists);
   }

@@ -81,12 +81,11 @@ class ShadowMaps {
   void set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
                   const ShadowOptions& options = {});
 
-  // Declares this frame's shadow passes for every light and binds their persistent
-  // resources to `executor`. `casters` are captured by value: their buffers must stay
-  // alive and unchanged until the frame completes. Returns what the camera passes
-  // need to read the maps.
-  ShadowInputs add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const View& camera,
-                            const ShadowCasters& casters);
+  // Declares this frame's shadow passes for every light; their persistent resources
+  // (maps, capture counters) are imported with the graph (rg::vulkan::import). `casters`
+  // are captured by value: their buffers must stay alive and unchanged until the frame
+  // completes. Returns what the camera passes need to read the maps.
+  ShadowInputs add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters);
 
   // Inputs that leave every light unshadowed (for camera passes used without maps).
   ShadowInputs unshadowed_inputs() const { return unshadowed_.inputs(); }
@@ -118,6 +117,7 @@ class ShadowMaps {
   };
   void create_map(uint32_t light);
   GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
+  rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera) const;
 
   gpu::Context& ctx_;
   CaptureOpaquePass capture_opaque_;
@@ -129,7 +129,7 @@ class ShadowMaps {
   std::vector<LightView> views_;
   std::vector<LightState> lights_;
   std::vector<LightShadowStats> stats_;
-  gpu::Buffer parameters_;  // HostUpload, GpuShadow per light
+  gpu::Buffer parameters_;  // GpuShadow per light (and per exact reference), written in the frame
   UnshadowedInputs unshadowed_;
 };
 

@@ -46,17 +46,15 @@ void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples)
                                         "texel sample results"});
 }
 
-void ShadowProbePass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& shadows) {
+void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows) {
   if (point_count_ == 0 || light_count_ == 0) return;
   struct Data {
     rg::BufferHandle results;
   };
   const bool texels = mode_ == Mode::texel_curves;
   const std::string name = texels ? "shadow texel curves" : "shadow probes";
-  rg::BufferHandle results =
-      graph.import_buffer(texels ? "texel sample results" : "probe results", {results_.size()},
-                          rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  executor.bind(results, results_);
+  rg::BufferHandle results = rg::vulkan::import(graph, texels ? "texel sample results" : "probe results", results_,
+                                                rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
   graph.add_pass<Data>(name, rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) {
         d.results = b.write(results, rg::Usage::StorageWrite);

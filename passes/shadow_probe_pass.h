@@ -45,7 +45,7 @@ class ShadowProbePass {
   void set_texel_samples(const std::vector<TexelSample>& samples);
   // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
   // are ready after the frame.
-  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const ShadowInputs& shadows);
+  void add_to_graph(rg::Graph& graph, const ShadowInputs& shadows);
   // results()[light][point], after the frame completed (points mode).
   std::vector<std::vector<float>> results() const;
   // One result per texel sample, in set_texel_samples() order (texel-curve mode).

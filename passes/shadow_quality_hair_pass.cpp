@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "passes/frame_inputs.h"
 #include "shared/passes/shadow_quality_hair.h"
 
 namespace avsm::passes {
@@ -33,12 +34,12 @@ void ShadowQualityHairPass::set_hair(const HairPass& hair, uint32_t light_count)
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "shadow quality hair errors"});
 }
 
-void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth,
-                                         const View& view, const ShadowInputs& shadows) {
+void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {
+  const View& view = frame.view;
+  const ShadowInputs& shadows = frame.shadows;
   if (receiver_count_ == 0 || light_count_ == 0) return;
-  rg::BufferHandle results = graph.import_buffer("shadow quality hair errors", {results_.size()},
-                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  executor.bind(results, results_);
+  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality hair errors", results_, rg::ImportState::none(),
+                                                rg::ImportState::of(rg::Usage::HostRead));
   struct Data {
     rg::TextureHandle depth;
     rg::BufferHandle results;

@@ -19,6 +19,8 @@
 
 namespace avsm::passes {
 
+struct FrameInputs;  // passes/frame_inputs.h
+
 class ShadowQualityHairPass {
  public:
   static constexpr uint32_t kMaxReceivers = 1u << 16;
@@ -28,8 +30,7 @@ class ShadowQualityHairPass {
   // Sizes the results for `hair`'s vertices and `light_count` lights.
   void set_hair(const HairPass& hair, uint32_t light_count);
   // Adds "shadow quality hair" reading `depth` (the opaque depth buffer) and the shadows.
-  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth, const View& view,
-                    const ShadowInputs& shadows);
+  void add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame);
   // After the frame: [light * receiver_count() + receiver], -1 where not a receiver.
   std::vector<float> results() const;
   uint32_t receiver_count() const { return receiver_count_; }

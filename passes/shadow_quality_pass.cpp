@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "passes/frame_inputs.h"
 #include "shared/passes/shadow_quality.h"
 
 namespace avsm::passes {
@@ -34,9 +35,12 @@ void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light
                                         gpu::MemoryLocation::HostReadback, "shadow quality errors"});
 }
 
-void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth,
-                                     const View& view, const gpu::Buffer& lights, uint32_t light_count,
-                                     const VolumePass& volumes, const ShadowInputs& shadows) {
+void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {
+  const View& view = frame.view;
+  const gpu::Buffer& lights = *frame.lights;
+  const uint32_t light_count = frame.light_count;
+  const VolumePass& volumes = *frame.volumes;
+  const ShadowInputs& shadows = frame.shadows;
   if (light_count_ == 0 || width_ == 0 || height_ == 0) return;
   if (light_count != light_count_)
     throw std::invalid_argument("ShadowQualityPass: sized for " + std::to_string(light_count_) + " lights, got " +
@@ -45,9 +49,8 @@ void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& exe
   if (d.width != width_ || d.height != height_ || d.format != VolumePass::kDepthFormat)
     throw std::invalid_argument("ShadowQualityPass: depth must be D32_SFLOAT " + std::to_string(width_) + "x" +
                                 std::to_string(height_));
-  rg::BufferHandle results = graph.import_buffer("shadow quality errors", {results_.size()}, rg::ImportState::none(),
-                                                 rg::ImportState::of(rg::Usage::HostRead));
-  executor.bind(results, results_);
+  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality errors", results_, rg::ImportState::none(),
+                                                rg::ImportState::of(rg::Usage::HostRead));
   struct Data {
     rg::TextureHandle depth;
     rg::BufferHandle results;

@@ -23,6 +23,8 @@
 
 namespace avsm::passes {
 
+struct FrameInputs;  // passes/frame_inputs.h
+
 using shared::PixelShadowError;  // shaders/shared/passes/shadow_quality.h
 
 class ShadowQualityPass {
@@ -37,12 +39,10 @@ class ShadowQualityPass {
   void set_size(uint32_t width, uint32_t height, uint32_t light_count);
 
   // Adds "shadow quality" after the camera passes: reads `depth` (the opaque depth
-  // buffer, D32_SFLOAT, width x height), the volumes and the shadows. `shadows`
+  // buffer, D32_SFLOAT, width x height), the frame's volumes and shadows. The shadows
   // should come from ShadowMaps with keep_reference on (without it the reference is
-  // the technique itself and every error is 0). `lights` must outlive the frame.
-  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, rg::TextureHandle depth, const View& view,
-                    const gpu::Buffer& lights, uint32_t light_count, const VolumePass& volumes,
-                    const ShadowInputs& shadows);
+  // the technique itself and every error is 0).
+  void add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame);
 
   // After the frame completed: [light * width * height + y * width + x], row 0 at the top.
   std::vector<PixelShadowError> results() const;

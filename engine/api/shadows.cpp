@@ -81,9 +81,8 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
   impl_->maps.set_lights(scene_lights, casters_bounds);
 }
 
-ShadowInputs Shadows::add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const Camera& camera,
-                                   const ShadowCasters& casters) {
-  return impl_->maps.add_to_graph(graph, executor, to_view(camera), casters);
+ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters) {
+  return impl_->maps.add_to_graph(graph, to_view(camera), casters);
 }
 
 std::vector<LightStats> Shadows::finish_frame() {

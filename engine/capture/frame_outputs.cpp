@@ -48,7 +48,7 @@ FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& render
                               const std::function<void(VkCommandBuffer)>& also_record) {
   FrameClock clock;
   clock.start = std::chrono::steady_clock::now();
-  rg::Graph graph = renderer.build_frame(executor, view);
+  rg::Graph graph = renderer.build_frame(view);
   clock.built = std::chrono::steady_clock::now();
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

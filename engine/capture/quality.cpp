@@ -102,9 +102,9 @@ std::vector<glm::vec4> read_map_vec4s(gpu::Context& ctx, const gpu::Buffer& map,
       ctx, {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryLocation::HostReadback, "texel nodes readback"});
   rg::Graph graph;
   const rg::ImportState after_frame = passes::ShadowMaps::map_state_after_frame();
-  const rg::BufferHandle source = graph.import_buffer("shadow map", {map.size()}, after_frame, after_frame);
-  const rg::BufferHandle target = graph.import_buffer("texel nodes readback", {bytes}, rg::ImportState::none(),
-                                                      rg::ImportState::of(rg::Usage::HostRead));
+  const rg::BufferHandle source = rg::vulkan::import(graph, "shadow map", map, after_frame, after_frame);
+  const rg::BufferHandle target =
+      rg::vulkan::import(graph, "texel nodes readback", stage, rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
   const VkBufferCopy region{first * sizeof(glm::vec4), 0, bytes};
   graph.add_pass("read texel nodes", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b) {
@@ -113,8 +113,6 @@ std::vector<glm::vec4> read_map_vec4s(gpu::Context& ctx, const gpu::Buffer& map,
       },
       [&](rg::PassContext& c) { vkCmdCopyBuffer(c.cmd(), c.buffer(source), c.buffer(target), 1, &region); });
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact, /*max_passes=*/1);
-  executor.bind(source, map);
-  executor.bind(target, stage);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
   std::vector<glm::vec4> out(count);
   std::memcpy(out.data(), stage.mapped(), bytes);

@@ -93,15 +93,12 @@ void SceneRenderer::create_outputs() {
                       "tonemapped");
 }
 
-rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passes::View& view) {
+rg::Graph SceneRenderer::build_frame(const passes::View& view) {
   rg::Graph graph;
   // Both outputs are read back after the frame, hence TransferSrc as their final state.
-  rg::TextureHandle hdr = graph.import_texture("hdr color", {width_, height_, 1, 1, 1, passes::OpaquePass::kColorFormat},
-                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
-  rg::TextureHandle ldr = graph.import_texture("tonemapped", {width_, height_, 1, 1, 1, passes::TonemapPass::kOutputFormat},
-                                               rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
-  executor.bind(hdr, hdr_);
-  executor.bind(ldr, ldr_);
+  const rg::ImportState read_back = rg::ImportState::of(rg::Usage::TransferSrc);
+  rg::TextureHandle hdr = rg::vulkan::import(graph, "hdr color", hdr_, rg::ImportState::none(), read_back);
+  rg::TextureHandle ldr = rg::vulkan::import(graph, "tonemapped", ldr_, rg::ImportState::none(), read_back);
 
   // What every camera pass reads this frame, published once.
   passes::FrameInputs frame;
@@ -110,7 +107,7 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
   frame.shading = volume_shading_;
   frame.lights = &lights_;
   frame.light_count = light_count_;
-  frame.shadows = shadows_.add_to_graph(graph, executor, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
+  frame.shadows = shadows_.add_to_graph(graph, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
   frame.light_views = &shadows_.light_views();
   const passes::ShadowInputs& shadows = frame.shadows;
 
@@ -125,11 +122,11 @@ rg::Graph SceneRenderer::build_frame(rg::vulkan::Executor& executor, const passe
 
   tonemap_.add_to_graph(graph, color, ldr, exposure_);
   if (quality_)
-    quality_->add_to_graph(graph, executor, opaque.depth, view, lights_, light_count_, volumes_, shadows);
-  if (hair_quality_) hair_quality_->add_to_graph(graph, executor, opaque.depth, view, shadows);
-  if (probes_) probes_->add_to_graph(graph, executor, shadows);
-  if (texel_curves_) texel_curves_->add_to_graph(graph, executor, shadows);
-  if (light_images_) light_images_->add_to_graph(graph, executor, shadows);
+    quality_->add_to_graph(graph, opaque.depth, frame);
+  if (hair_quality_) hair_quality_->add_to_graph(graph, opaque.depth, frame);
+  if (probes_) probes_->add_to_graph(graph, shadows);
+  if (texel_curves_) texel_curves_->add_to_graph(graph, shadows);
+  if (light_images_) light_images_->add_to_graph(graph, shadows);
   return graph;
 }
 

@@ -63,8 +63,8 @@ class SceneRenderer {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
-  // Declares this frame's passes and binds the output images to `executor`.
-  rg::Graph build_frame(rg::vulkan::Executor& executor, const passes::View& view);
+  // Declares this frame's passes (the output images come imported with the graph).
+  rg::Graph build_frame(const passes::View& view);
 
   // Probes every light's transmittance at these points in each frame (after the
   // camera passes); results in probe_results() once the frame completed.

@@ -291,11 +291,10 @@ class GroundShading {
 
   // The pass reads the maps (declare_reads) and writes the ground image, which ends the
   // frame ready to be copied out.
-  void add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const avsm::ShadowInputs& shadows) {
+  void add_to_graph(rg::Graph& graph, const avsm::ShadowInputs& shadows) {
     const uint32_t size = image_.desc().width;
-    rg::TextureHandle image = graph.import_texture("host ground image", {size, size, 1, 1, 1, kFormat},
-                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
-    executor.bind(image, image_);
+    rg::TextureHandle image = rg::vulkan::import(graph, "host ground image", image_, rg::ImportState::none(),
+                                                 rg::ImportState::of(rg::Usage::TransferSrc));
     struct Data {
       rg::TextureHandle image;
     };
@@ -480,9 +479,9 @@ int run(const Options& options) {
     // Two frames: the second reuses the compiled plan (and a grown capture buffer, had the first overflowed).
     for (int frame = 0; frame < 2; ++frame) {
       rg::Graph graph;
-      const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, executor, camera, casters.views)
+      const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, camera, casters.views)
                                                       : shadows.unshadowed_inputs();
-      ground.add_to_graph(graph, executor, maps);
+      ground.add_to_graph(graph, maps);
       submit_frame(host, cmd, graph, executor);
       for (const avsm::LightStats& s : shadows.finish_frame())
         std::printf("frame %d light '%s': %u nodes, %ux%u, %llu segments captured (capacity %llu)%s\n", frame,

@@ -27,14 +27,16 @@ void Graph::add_pass(std::string name, QueueType queue, std::function<void(PassB
 }
 
 TextureHandle Graph::import_texture(std::string name, const TextureDesc& desc, ImportState initial,
-                                    ImportState final_state) {
+                                    ImportState final_state, std::any physical) {
   uint32_t index = import_resource(std::move(name), ResourceKind::Texture, desc, {}, initial, final_state);
+  resources_[index].physical = std::move(physical);
   return TextureHandle{index, 0, id_};
 }
 
 BufferHandle Graph::import_buffer(std::string name, const BufferDesc& desc, ImportState initial,
-                                  ImportState final_state) {
+                                  ImportState final_state, std::any physical) {
   uint32_t index = import_resource(std::move(name), ResourceKind::Buffer, {}, desc, initial, final_state);
+  resources_[index].physical = std::move(physical);
   return BufferHandle{index, 0, id_};
 }
 

@@ -79,6 +79,9 @@ class LiveRendererTest : public testing::GpuTest {
     fs::remove_all(root_);
     fs::create_directories(root_ / "content");
     fs::copy(fs::path(AVSM_SOURCE_ROOT) / "shaders", root_ / "shaders", fs::copy_options::recursive);
+    // The shadow techniques' lookups, which the shaders include (passes/techniques/<name>/<name>.glsl).
+    fs::create_directories(root_ / "passes");
+    fs::copy(fs::path(AVSM_SOURCE_ROOT) / "passes/techniques", root_ / "passes/techniques", fs::copy_options::recursive);
     const fs::path stage_dir = fs::path(AVSM_DEFAULT_SCENE).parent_path();
     fs::copy_file(stage_dir / "stage.gltf", root_ / "content/stage.gltf");
     fs::copy_file(stage_dir / "stage.bin", root_ / "content/stage.bin");
@@ -98,7 +101,8 @@ class LiveRendererTest : public testing::GpuTest {
     options.scene_file = scene_file();
     options.width = 48;
     options.height = 32;
-    options.shader_paths = {root_, root_};
+    // Sources from the private copy; the build's generated GLSL (the technique dispatch).
+    options.shader_paths = {root_, gpu::ShaderLibrary::default_paths().spirv_root};
     live_ = std::make_unique<LiveRenderer>(ctx(), options);
     return *live_;
   }
@@ -108,7 +112,7 @@ class LiveRendererTest : public testing::GpuTest {
     renderer::SceneRenderer& frame = live_->renderer();
     rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
     const passes::View view = passes::make_view(live_->scene().cameras.front(), frame.width(), frame.height());
-    rg::Graph graph = frame.build_frame(executor, view);
+    rg::Graph graph = frame.build_frame(view);
     ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
     frame.finish_frame();
     return gpu::read_image(ctx(), frame.ldr(), renderer::SceneRenderer::kOutputLayout).pixels;

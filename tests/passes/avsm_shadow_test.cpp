@@ -449,7 +449,7 @@ constexpr uint32_t kFrameWidth = 64, kFrameHeight = 36;
 // One frame: declare, record, submit, wait, read the capture counters.
 void render_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
                   const passes::View& view) {
-  rg::Graph graph = renderer.build_frame(executor, view);
+  rg::Graph graph = renderer.build_frame(view);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
   renderer.finish_frame();
 }

@@ -47,7 +47,7 @@ class VolumeShadingTest : public testing::GpuTest {
     rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
     const passes::View view = passes::make_view(scene.cameras.front(), kWidth, kHeight);
     for (int frame = 0; frame < 2; ++frame) {  // the second frame has capture buffers that fit
-      rg::Graph graph = renderer.build_frame(executor, view);
+      rg::Graph graph = renderer.build_frame(view);
       ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
       renderer.finish_frame();
     }

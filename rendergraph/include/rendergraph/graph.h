@@ -13,6 +13,7 @@
 // declaration order is always a valid execution order and the graph cannot have cycles.
 #include <rendergraph/plan.h>
 
+#include <any>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -53,6 +54,10 @@ struct ResourceDecl {
   bool imported = false;
   ImportState initial;
   ImportState final_state;
+  // Imported only: the physical resource behind it, as the executor knows it (for the
+  // Vulkan executor a const avsm::gpu::Image* or const avsm::gpu::Buffer*). The graph
+  // only carries it, so declaring a frame needs no executor (rg::vulkan::import).
+  std::any physical;
   uint32_t created_by = kInvalidIndex;  // pass whose setup created it; kInvalidIndex if imported
   std::vector<uint32_t> writers;        // writers[v] = pass that produced version v (v0: none)
 
@@ -138,10 +143,11 @@ class Graph {
   // External/persistent resources (swapchain image, maps kept across frames, history).
   // `initial` is their state before the graph; the plan leaves them in `final_state`.
   // Writes to imported resources are visible outside the graph, so they anchor culling.
+  // `physical` is the resource itself, for the executor (see ResourceDecl::physical).
   TextureHandle import_texture(std::string name, const TextureDesc& desc, ImportState initial,
-                               ImportState final_state);
+                               ImportState final_state, std::any physical = {});
   BufferHandle import_buffer(std::string name, const BufferDesc& desc, ImportState initial,
-                             ImportState final_state);
+                             ImportState final_state, std::any physical = {});
 
   // Keep the producer of this version (and what it depends on) even if no pass reads it,
   // and keep a transient's memory intact until the end of the graph.

@@ -72,16 +72,42 @@ void Executor::bind(BufferHandle buffer, const Buffer& buffer_object) {
   imported_buffers_[buffer.index] = &buffer_object;
 }
 
-void Executor::check_imports_bound(const Graph& graph) const {
+namespace {
+
+template <class T>
+const T* carried(const ResourceDecl& resource) {
+  const T* const* physical = std::any_cast<const T*>(&resource.physical);
+  return physical ? *physical : nullptr;
+}
+
+}  // namespace
+
+TextureHandle import(Graph& graph, std::string name, const Image& image, ImportState initial, ImportState final_state) {
+  const avsm::gpu::ImageDesc& d = image.desc();
+  return graph.import_texture(std::move(name), {d.width, d.height, d.depth, d.mip_levels, d.array_layers, d.format},
+                              initial, final_state, &image);
+}
+
+BufferHandle import(Graph& graph, std::string name, const Buffer& buffer, ImportState initial, ImportState final_state) {
+  return graph.import_buffer(std::move(name), {buffer.size()}, initial, final_state, &buffer);
+}
+
+// The physical resources of the graph's imports: bound, else carried by the import.
+void Executor::resolve_imports(const Graph& graph) {
+  if (bound_graph_id_ != graph.id()) start_binding(graph.id());
   const std::vector<ResourceDecl>& resources = graph.resources();
+  imported_images_.resize(resources.size(), nullptr);
+  imported_buffers_.resize(resources.size(), nullptr);
   for (uint32_t i = 0; i < resources.size(); ++i) {
-    if (!resources[i].imported || !plan_.resources[i].used) continue;
-    bool bound = bound_graph_id_ == graph.id() &&
-                 (resources[i].kind == ResourceKind::Texture
-                      ? i < imported_images_.size() && imported_images_[i]
-                      : i < imported_buffers_.size() && imported_buffers_[i]);
-    if (!bound) throw GraphError("imported " + std::string(to_string(resources[i].kind)) + " '" + resources[i].name +
-                                 "' has no physical resource: call Executor::bind before record");
+    if (!resources[i].imported) continue;
+    if (!imported_images_[i]) imported_images_[i] = carried<Image>(resources[i]);
+    if (!imported_buffers_[i]) imported_buffers_[i] = carried<Buffer>(resources[i]);
+    if (!plan_.resources[i].used) continue;
+    const bool found = resources[i].kind == ResourceKind::Texture ? imported_images_[i] != nullptr
+                                                                  : imported_buffers_[i] != nullptr;
+    if (!found)
+      throw GraphError("imported " + std::string(to_string(resources[i].kind)) + " '" + resources[i].name +
+                       "' has no physical resource: import it with rg::vulkan::import or call Executor::bind");
   }
 }
 
@@ -151,7 +177,7 @@ void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOpti
     has_plan_ = true;
     realise_transients();
   }
-  check_imports_bound(graph);
+  resolve_imports(graph);
 
   // Physical resource of every plan resource: placed transient or bound import.
   images_.assign(plan_.resources.size(), nullptr);

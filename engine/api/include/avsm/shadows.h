@@ -12,7 +12,7 @@
 //
 //   // Every frame: the host's graph and executor (rendergraph/).
 //   rg::Graph graph;
-//   avsm::ShadowInputs maps = shadows.add_to_graph(graph, executor, camera, casters);
+//   avsm::ShadowInputs maps = shadows.add_to_graph(graph, camera, casters);
 //   graph.add_pass<...>("my shading", ...,
 //       [&](rg::PassBuilder& b, ...) { maps.declare_reads(b); ... },
 //       [=](..., rg::PassContext& c) { avsm::gpu::Bindings bindings(context, pipeline);
@@ -137,11 +137,10 @@ class Shadows {
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
 
   // Declares this frame's passes for every light in `graph` (capture, sort, resolve,
-  // mips) and binds their persistent maps to `executor`. The casters' buffers must stay
-  // alive and unchanged until the frame completes. The result is what the host's
-  // shading passes declare as reads and bind.
-  ShadowInputs add_to_graph(rg::Graph& graph, rg::vulkan::Executor& executor, const Camera& camera,
-                            const ShadowCasters& casters);
+  // mips); their persistent maps come imported with the graph, so any executor can run
+  // it. The casters' buffers must stay alive and unchanged until the frame completes.
+  // The result is what the host's shading passes declare as reads and bind.
+  ShadowInputs add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters);
 
   // After the frame's command buffer completed: reads the capture counters and grows
   // an overflowed capture buffer for the next frame.

@@ -20,6 +20,14 @@
 
 namespace rg::vulkan {
 
+// Imports an engine image or buffer into `graph`, carrying it: its description comes
+// from the object, and the executor finds it without a bind(). It must outlive the
+// graph's execution.
+TextureHandle import(Graph& graph, std::string name, const avsm::gpu::Image& image, ImportState initial,
+                     ImportState final_state);
+BufferHandle import(Graph& graph, std::string name, const avsm::gpu::Buffer& buffer, ImportState initial,
+                    ImportState final_state);
+
 // MemoryModel answered by the driver (vkGetDevice*MemoryRequirements).
 class DeviceMemoryModel final : public MemoryModel {
  public:
@@ -44,7 +52,8 @@ class Executor {
   Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t max_passes = 512);
   ~Executor();
 
-  // Physical resources behind the imported handles of the graph about to run.
+  // Physical resources behind imported handles declared without one (rg::vulkan::import
+  // carries its resource; a bind() here takes precedence).
   void bind(TextureHandle texture, const avsm::gpu::Image& image);
   void bind(BufferHandle buffer, const avsm::gpu::Buffer& buffer_object);
 
@@ -66,7 +75,7 @@ class Executor {
  private:
   void start_binding(uint32_t graph_id);
   void realise_transients();
-  void check_imports_bound(const Graph& graph) const;
+  void resolve_imports(const Graph& graph);
   void record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers) const;
 
   avsm::gpu::Context& ctx_;
