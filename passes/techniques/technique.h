@@ -107,14 +107,11 @@ class ShadowTechnique {
   // created again (it grew `state`).
   virtual bool finish_frame(const uint32_t counters[2], TechniqueMapState& state, LightShadowStats& stats) const;
 
-  // GpuShadow::technique: the registry position + 1 (0 is kShadowNone).
-  uint32_t code() const { return code_; }
+  // GpuShadow::technique: the registry position + 1 (0 is kShadowNone), as the
+  // generated GLSL dispatch numbers them.
+  uint32_t code() const;
   // A parameter's value in `settings`, else its default.
   double parameter(const scene::ShadowSettings& settings, std::string_view name) const;
-
- private:
-  friend class TechniqueRegistry;
-  uint32_t code_ = 0;
 };
 
 }  // namespace avsm::passes

@@ -12,26 +12,21 @@ namespace avsm::passes {
 #include "passes/techniques/registry.h"
 #undef AVSM_SHADOW_TECHNIQUE
 
-class TechniqueRegistry {
- public:
-  static const std::vector<const ShadowTechnique*>& all() {
-    static const std::vector<const ShadowTechnique*> list = number({
+std::span<const ShadowTechnique* const> shadow_techniques() {
+  static const std::vector<const ShadowTechnique*> list = {
 #define AVSM_SHADOW_TECHNIQUE(name) &name##_technique(),
 #include "passes/techniques/registry.h"
 #undef AVSM_SHADOW_TECHNIQUE
-    });
-    return list;
-  }
+  };
+  return list;
+}
 
- private:
-  // Codes follow the registry order; the generated GLSL dispatch numbers them the same way.
-  static std::vector<const ShadowTechnique*> number(std::vector<const ShadowTechnique*> list) {
-    for (size_t i = 0; i < list.size(); ++i) const_cast<ShadowTechnique*>(list[i])->code_ = uint32_t(i + 1);
-    return list;
-  }
-};
-
-std::span<const ShadowTechnique* const> shadow_techniques() { return TechniqueRegistry::all(); }
+uint32_t ShadowTechnique::code() const {
+  const std::span<const ShadowTechnique* const> all = shadow_techniques();
+  for (size_t i = 0; i < all.size(); ++i)
+    if (all[i] == this) return uint32_t(i + 1);
+  throw std::logic_error("shadow technique '" + std::string(name()) + "' is not in passes/techniques/registry.h");
+}
 
 const ShadowTechnique* find_shadow_technique(std::string_view name) {
   for (const ShadowTechnique* t : shadow_techniques())
