@@ -42,7 +42,8 @@ install(DIRECTORY shaders/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/shaders
 install(DIRECTORY ${AVSM_SPIRV_DIR}/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/spirv
         FILES_MATCHING PATTERN "*.spv" PATTERN "*.glsl" PATTERN "tests" EXCLUDE)
 # The shadow techniques' lookups, as in the source tree (gpu::glsl_include_dirs).
-install(DIRECTORY passes/techniques DESTINATION ${AVSM_INSTALL_DATA_DIR}/passes FILES_MATCHING PATTERN "*.glsl")
+install(DIRECTORY passes/techniques DESTINATION ${AVSM_INSTALL_DATA_DIR}/passes
+        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.comp")
 
 # The package. The static libraries' private dependencies are link dependencies of the
 # host, so the config file finds them again (the same Debian packages). OpenVDB ships a

@@ -1,8 +1,8 @@
 #pragma once
 // Builds a comparison technique's per-texel map from a light's capture lists:
 // one compute dispatch per light, one thread per texel, with the technique's
-// shader (shaders/passes/avsm_resolve.comp, osm_build.comp: opacity shadow maps,
-// fom_build.comp: Fourier opacity maps, dsm_build.comp: deep shadow maps). All
+// shader (shaders/passes/avsm_resolve.comp; the osm, fom and dsm builds in their
+// folders under passes/techniques/). All
 // share one push-constant block.
 #include <rendergraph/graph.h>
 
@@ -19,7 +19,7 @@ using MapBuildParameters = shared::MapBuildPush;  // shaders/shared/passes/map_b
 
 class MapBuildPass {
  public:
-  // `shader`: e.g. "shaders/passes/osm_build.comp"; `name`: the pass name after the light prefix.
+  // `shader`: e.g. "passes/techniques/osm/osm_build.comp"; `name`: the pass name after the light prefix.
   MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name);
   // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's
   // size). With `counter` (a host-readable buffer, updated to its new version), the

@@ -1,6 +1,6 @@
 // Deep shadow maps (Lokovic & Veach 2000): per texel the exact curve of its capture
 // list, compressed greedily to an error bound, with a variable node count stored in a
-// pool shared by the texels (shaders/passes/dsm_build.comp; layout: shared/map_layouts.h).
+// pool shared by the texels (dsm_build.comp; layout: shared/map_layouts.h).
 // The pool starts at 8 nodes per texel and grows after a frame that needed more.
 #include <rendergraph/vulkan/pass_context.h>
 
@@ -26,7 +26,7 @@ uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple 
 class DsmBuilder final : public TechniqueBuilder {
  public:
   DsmBuilder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-      : build_(ctx, shaders, "shaders/passes/dsm_build.comp", "dsm build") {}
+      : build_(ctx, shaders, "passes/techniques/dsm/dsm_build.comp", "dsm build") {}
   rg::BufferHandle add_to_graph(const TechniqueBuild& b, CaptureLists& lists) const override;
 
  private:

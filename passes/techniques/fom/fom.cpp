@@ -1,5 +1,5 @@
 // Fourier opacity maps (Jansen & Bavoil 2010): the optical depth along the light's
-// caster depth range as K Fourier terms (shaders/passes/fom_build.comp, K (a, b) pairs).
+// caster depth range as K Fourier terms (fom_build.comp, K (a, b) pairs).
 #include "passes/techniques/opacity_map_technique.h"
 
 namespace avsm::passes {
@@ -14,7 +14,7 @@ constexpr TechniqueParameter kParameters[] = {
 
 const ShadowTechnique& fom_technique() {
   static const OpacityMapTechnique technique({"fom", "Fourier opacity maps: optical depth as K Fourier terms", "FOM-",
-                                              "terms", 8, "shaders/passes/fom_build.comp", "fom build", kParameters});
+                                              "terms", 8, "passes/techniques/fom/fom_build.comp", "fom build", kParameters});
   return technique;
 }
 

@@ -1,4 +1,4 @@
-// Fourier opacity map lookups (K/2 vec4 of (a, b) pairs per texel, shaders/passes/fom_build.comp).
+// Fourier opacity map lookups (K/2 vec4 of (a, b) pairs per texel, fom_build.comp).
 #ifndef AVSM_TECHNIQUE_FOM_GLSL
 #define AVSM_TECHNIQUE_FOM_GLSL
 

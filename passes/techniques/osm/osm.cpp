@@ -1,5 +1,5 @@
 // Opacity shadow maps (Kim & Neumann 2001): K planes of accumulated optical depth over
-// the light's caster depth range (shaders/passes/osm_build.comp, K floats per texel).
+// the light's caster depth range (osm_build.comp, K floats per texel).
 #include "passes/techniques/opacity_map_technique.h"
 
 namespace avsm::passes {
@@ -14,7 +14,7 @@ constexpr TechniqueParameter kParameters[] = {
 
 const ShadowTechnique& osm_technique() {
   static const OpacityMapTechnique technique({"osm", "opacity shadow maps: optical depth at K planes", "OSM-", "slices", 4,
-                                              "shaders/passes/osm_build.comp", "osm build", kParameters});
+                                              "passes/techniques/osm/osm_build.comp", "osm build", kParameters});
   return technique;
 }
 

@@ -1,4 +1,4 @@
-// Opacity shadow map lookups (K floats of optical depth per texel, shaders/passes/osm_build.comp).
+// Opacity shadow map lookups (K floats of optical depth per texel, osm_build.comp).
 #ifndef AVSM_TECHNIQUE_OSM_GLSL
 #define AVSM_TECHNIQUE_OSM_GLSL
 
