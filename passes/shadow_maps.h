@@ -95,7 +95,6 @@ class ShadowMaps {
   void finish_frame();
   const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
   const std::vector<LightView>& light_views() const { return views_; }
-  const gpu::Buffer& parameters() const { return parameters_; }
   // Light `light`'s AVSM map (layout: map_layout(light)); empty for uncompressed lights.
   const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
   // The state every frame leaves the maps in (read by the camera passes' shaders): what a

@@ -15,10 +15,6 @@ bool same_size(const gpu::Image& a, const gpu::Image& b) {
   return a.desc().width == b.desc().width && a.desc().height == b.desc().height && a.desc().format == b.desc().format;
 }
 
-rg::TextureDesc texture_desc(const gpu::Image& image) {
-  return {image.desc().width, image.desc().height, 1, 1, 1, image.desc().format};
-}
-
 // The panel samples the textures in fragment shaders. Before a copy their contents are not
 // needed (UNDEFINED), but the panel's last reads must finish first.
 constexpr rg::ImportState kPanelRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
@@ -52,12 +48,9 @@ void LightMapTextures::add_copy_pass(rg::Graph& graph, const gpu::Image& source,
   const rg::ImportState renderer_output = rg::ImportState::of(rg::Usage::TransferSrc);
   static_assert(passes::ShadowDebugPass::kOutputLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   const std::string light = std::to_string(index);
-  const rg::TextureHandle src =
-      graph.import_texture("light map " + light, texture_desc(source), renderer_output, renderer_output);
+  const rg::TextureHandle src = rg::vulkan::import(graph, "light map " + light, source, renderer_output, renderer_output);
   const rg::TextureHandle dst =
-      graph.import_texture("panel light map " + light, texture_desc(texture), kPanelReadDiscarded, kPanelRead);
-  executor_.bind(src, source);
-  executor_.bind(dst, texture);
+      rg::vulkan::import(graph, "panel light map " + light, texture, kPanelReadDiscarded, kPanelRead);
   graph.add_pass("copy light map " + light, rg::QueueType::Transfer,
       [&](rg::PassBuilder& b) {
         b.read(src, rg::Usage::TransferSrc);

@@ -71,10 +71,6 @@ void write_rgba_png(const fs::path& path, const std::vector<uint8_t>& rgba, VkEx
 
 VkImageSubresourceRange colour_range() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}; }
 
-rg::TextureDesc texture_desc(const gpu::Image& image) {
-  return {image.desc().width, image.desc().height, 1, 1, 1, image.desc().format};
-}
-
 class ViewerApp {
  public:
   explicit ViewerApp(const ViewerOptions& options);
@@ -527,9 +523,8 @@ void ViewerApp::record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawD
   rg::Graph graph;
   const gpu::Image& swapchain_image = swapchain_.target(image);
   const rg::ImportState acquired{Swapchain::kAcquireWaitStages, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
-  rg::TextureHandle target = graph.import_texture("swapchain image", texture_desc(swapchain_image), acquired,
-                                                  rg::ImportState::of(rg::Usage::Present));
-  window_executor_.bind(target, swapchain_image);
+  rg::TextureHandle target =
+      rg::vulkan::import(graph, "swapchain image", swapchain_image, acquired, rg::ImportState::of(rg::Usage::Present));
   target = ldr_valid_ ? add_scene_blit(graph, target) : add_grey_clear(graph, target);
   target = add_panel(graph, target, draw_data);
   if (read_back) add_window_readback(graph, target, image);
@@ -543,8 +538,7 @@ rg::TextureHandle ViewerApp::add_scene_blit(rg::Graph& graph, rg::TextureHandle 
   // The state the scene graph leaves it in (its final state), which it keeps.
   static_assert(renderer::SceneRenderer::kOutputLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   const rg::ImportState scene_output = rg::ImportState::of(rg::Usage::TransferSrc);
-  const rg::TextureHandle source = graph.import_texture("tonemapped", texture_desc(ldr), scene_output, scene_output);
-  window_executor_.bind(source, ldr);
+  const rg::TextureHandle source = rg::vulkan::import(graph, "tonemapped", ldr, scene_output, scene_output);
   graph.add_pass("blit scene", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b) {
         b.read(source, rg::Usage::TransferSrc);
@@ -588,9 +582,8 @@ rg::TextureHandle ViewerApp::add_panel(rg::Graph& graph, rg::TextureHandle targe
 }
 
 void ViewerApp::add_window_readback(rg::Graph& graph, rg::TextureHandle target, uint32_t image) {
-  const rg::BufferHandle readback = graph.import_buffer("window readback", {window_readback_.size()},
-                                                        rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  window_executor_.bind(readback, window_readback_);
+  const rg::BufferHandle readback = rg::vulkan::import(graph, "window readback", window_readback_, rg::ImportState::none(),
+                                                       rg::ImportState::of(rg::Usage::HostRead));
   graph.add_pass("read back window", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b) {
         b.read(target, rg::Usage::TransferSrc);

@@ -1,5 +1,6 @@
 #include "passes/techniques/techniques.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -75,13 +76,16 @@ void check_parameter(const ShadowTechnique& t, const TechniqueParameter& p, doub
                                 number_text(value) + "; use " + accepted_values(p));
 }
 
-// Names every technique reads, for the error on a parameter none of them knows.
+// Names every technique reads, once each in registry order, for the error on a
+// parameter none of them knows.
 std::string all_parameter_names() {
-  std::string names;
+  std::vector<std::string_view> names;
   for (const ShadowTechnique* t : shadow_techniques())
     for (const TechniqueParameter& p : t->parameters())
-      if (names.find(std::string(p.name)) == std::string::npos) names += (names.empty() ? "" : ", ") + std::string(p.name);
-  return names;
+      if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+  std::string text;
+  for (std::string_view name : names) text += (text.empty() ? "" : ", ") + std::string(name);
+  return text;
 }
 
 }  // namespace
