@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "gpu/context.h"
+#include "passes/avsm_variants.h"
 #include "shared/passes/avsm_mips.h"
 
 namespace avsm::passes {
@@ -27,7 +28,7 @@ rg::BufferRange level_window(const AvsmMapLayout& layout, uint32_t level, uint64
 }  // namespace
 
 AvsmMipsPass::AvsmMipsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/avsm_mips.comp"), "avsm mips")) {}
+    : ctx_(ctx), pipelines_(avsm_node_variants(ctx, shaders, "shaders/passes/avsm_mips.comp", "avsm mips")) {}
 
 rg::BufferHandle AvsmMipsPass::add_to_graph(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
                                             const AvsmMapLayout& layout) const {
@@ -46,15 +47,16 @@ rg::BufferHandle AvsmMipsPass::add_level(rg::Graph& graph, const std::string& pr
   const uint32_t window_vec4 = uint32_t(window.offset / kVec4Bytes);  // offsets below count from the window
   const Data& data = graph.add_pass<Data>(prefix + " avsm mips level " + std::to_string(level), rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) { d.map = b.read_write(map, rg::Usage::StorageReadWrite, window); },
-      [this, layout, level, window, window_vec4](const Data& d, rg::PassContext& c) {
+      [this, layout, level, window, window_vec4, &pipeline = pipelines_.get(layout.nodes)](const Data& d,
+                                                                                          rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
-        pipeline_.bind(cmd);
-        gpu::Bindings(ctx_, pipeline_).buffer("AvsmMap", {c.buffer(d.map).buffer, window.size, window.offset}).push(cmd);
-        pipeline_.push_constants(cmd, Push{uint32_t(layout.level_offset(level - 1)) - window_vec4,
+        pipeline.bind(cmd);
+        gpu::Bindings(ctx_, pipeline).buffer("AvsmMap", {c.buffer(d.map).buffer, window.size, window.offset}).push(cmd);
+        pipeline.push_constants(cmd, Push{uint32_t(layout.level_offset(level - 1)) - window_vec4,
                                            layout.level_size(level - 1),
                                            uint32_t(layout.level_offset(level)) - window_vec4, layout.level_size(level),
                                            layout.nodes});
-        pipeline_.dispatch_threads(cmd, layout.level_size(level), layout.level_size(level));
+        pipeline.dispatch_threads(cmd, layout.level_size(level), layout.level_size(level));
       });
   return data.map;
 }

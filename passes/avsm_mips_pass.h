@@ -24,7 +24,7 @@ class AvsmMipsPass {
                              const AvsmMapLayout& layout, uint32_t level) const;
 
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::ComputeVariants pipelines_;  // per node count
 };
 
 }  // namespace avsm::passes

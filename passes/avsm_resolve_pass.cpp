@@ -3,10 +3,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "passes/avsm_variants.h"
+
 namespace avsm::passes {
 
 AvsmResolvePass::AvsmResolvePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-    : build_(ctx, shaders, "shaders/passes/avsm_resolve.comp", "avsm resolve") {}
+    : build_(ctx, avsm_node_variants(ctx, shaders, "shaders/passes/avsm_resolve.comp", "avsm resolve"), "avsm resolve") {}
 
 rg::BufferHandle AvsmResolvePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                                                rg::BufferHandle map, const AvsmMapLayout& layout, float far_depth) const {

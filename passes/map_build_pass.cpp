@@ -9,6 +9,9 @@ MapBuildPass::MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders,
                            std::string name)
     : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load(shader), name)), name_(std::move(name)) {}
 
+MapBuildPass::MapBuildPass(gpu::Context& ctx, gpu::ComputeVariants per_count, std::string name)
+    : ctx_(ctx), per_count_(std::move(per_count)), name_(std::move(name)) {}
+
 rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                                             rg::BufferHandle map, const MapBuildParameters& parameters,
                                             rg::BufferHandle* counter) const {
@@ -24,16 +27,17 @@ rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string&
         d.map = counter ? b.read_write(map, rg::Usage::StorageReadWrite) : b.write(map, rg::Usage::StorageWrite);
         if (counter) d.counter = b.read_write(*counter, rg::Usage::StorageReadWrite);
       },
-      [this, parameters](const Data& d, rg::PassContext& c) {
-        pipeline_.bind(c.cmd());
-        gpu::Bindings bindings(ctx_, pipeline_);
+      [this, parameters, &pipeline = per_count_ ? per_count_->get(parameters.count) : pipeline_](
+          const Data& d, rg::PassContext& c) {
+        pipeline.bind(c.cmd());
+        gpu::Bindings bindings(ctx_, pipeline);
         bindings.image("capture_heads", c.view(d.heads), c.layout(d.heads))
             .buffer("CaptureNodes", c.buffer(d.nodes))
             .buffer("Map", c.buffer(d.map));
         if (d.counter.valid()) bindings.buffer("Counter", c.buffer(d.counter));
         bindings.push(c.cmd());
-        pipeline_.push_constants(c.cmd(), parameters);
-        pipeline_.dispatch_threads(c.cmd(), parameters.resolution, parameters.resolution);
+        pipeline.push_constants(c.cmd(), parameters);
+        pipeline.dispatch_threads(c.cmd(), parameters.resolution, parameters.resolution);
       });
   if (counter) *counter = data.counter;
   return data.map;

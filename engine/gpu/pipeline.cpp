@@ -464,4 +464,13 @@ void Bindings::push(VkCommandBuffer cmd) {
                                writes_.data());
 }
 
+const Pipeline& ComputeVariants::get(uint32_t value) const {
+  auto found = pipelines_.find(value);
+  if (found != pipelines_.end()) return found->second;
+  auto source = spirv_.find(value);
+  if (source == spirv_.end())
+    throw std::invalid_argument("pipeline '" + name_ + "': no variant for " + std::to_string(value));
+  return pipelines_.emplace(value, Pipeline::compute(*ctx_, source->second, name_)).first->second;
+}
+
 }  // namespace avsm::gpu

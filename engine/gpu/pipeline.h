@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -113,6 +114,24 @@ class Pipeline {
 
 // Checks the shared structs of a pipeline's shaders against C++ (see above).
 void check_shared_structs(const std::string& pipeline, const std::vector<ShaderReflection>& stages);
+
+// One compute shader's pipelines per value of a build-time define (its variants, see
+// ShaderLibrary::load), e.g. an AVSM build per node count. The SPIR-V is read when this
+// is made; each pipeline is created the first time it is asked for, since compiling all
+// of them up front costs start-up time for values no scene uses.
+class ComputeVariants {
+ public:
+  ComputeVariants(const Context& ctx, std::map<uint32_t, std::vector<uint32_t>> spirv, std::string name)
+      : ctx_(&ctx), spirv_(std::move(spirv)), name_(std::move(name)) {}
+  // Throws std::invalid_argument for a value that has no variant.
+  const Pipeline& get(uint32_t value) const;
+
+ private:
+  const Context* ctx_;
+  std::map<uint32_t, std::vector<uint32_t>> spirv_;
+  std::string name_;
+  mutable std::map<uint32_t, Pipeline> pipelines_;
+};
 
 // Collects the resources of set 0 and pushes them. Resources are named as the
 // shaders declare them (buffers by their block name, images and samplers by their

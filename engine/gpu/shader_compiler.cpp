@@ -199,23 +199,25 @@ std::vector<std::filesystem::path> ShaderLibrary::source_files() const {
   return {files.begin(), files.end()};
 }
 
-CompiledShader ShaderLibrary::compile(const std::string& relative_path) const {
+CompiledShader ShaderLibrary::compile(const std::string& relative_path, const Variant& variant) const {
   ShaderCompileOptions options;
   options.include_dirs = glsl_include_dirs(paths_);
+  if (!variant.empty()) options.defines.emplace_back(variant.define, variant.value);
   return compile_glsl_file(paths_.source_root / relative_path, options);
 }
 
-std::vector<uint32_t> ShaderLibrary::load(const std::string& relative_path) const {
+std::vector<uint32_t> ShaderLibrary::load(const std::string& relative_path, const Variant& variant) const {
+  const std::string name = variant.empty() ? relative_path : relative_path + "." + variant.define + "-" + variant.value;
   if (compile_from_source_) {
     std::lock_guard lock(cache_->mutex);
-    auto found = cache_->entries.find(relative_path);
+    auto found = cache_->entries.find(name);
     if (found != cache_->entries.end() && found->second.current()) return found->second.shader.spirv;
     Cache::Entry entry;
-    entry.shader = compile(relative_path);  // throws before the cache changes
+    entry.shader = compile(relative_path, variant);  // throws before the cache changes
     for (const std::filesystem::path& file : entry.shader.files) entry.times.push_back(io::write_time_or_min(file));
-    return (cache_->entries[relative_path] = std::move(entry)).shader.spirv;
+    return (cache_->entries[name] = std::move(entry)).shader.spirv;
   }
-  return read_spirv_file(paths_.spirv_root / (relative_path + ".spv"));
+  return read_spirv_file(paths_.spirv_root / (name + ".spv"));
 }
 
 }  // namespace avsm::gpu

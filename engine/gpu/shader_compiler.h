@@ -64,9 +64,16 @@ class ShaderLibrary {
   ~ShaderLibrary();
 
   // Throws ShaderCompileError (from source) or std::runtime_error (a missing file).
-  std::vector<uint32_t> load(const std::string& relative_path) const;
+  // With `variant`, the shader compiled with `#define <variant.define> <variant.value>`:
+  // prebuilt as <path>.<define>-<value>.spv (avsm_add_shader_variants, cmake/Shaders.cmake).
+  struct Variant {
+    std::string define;
+    std::string value;
+    bool empty() const { return define.empty(); }
+  };
+  std::vector<uint32_t> load(const std::string& relative_path, const Variant& variant = {}) const;
   // Compiles now, bypassing the cache.
-  CompiledShader compile(const std::string& relative_path) const;
+  CompiledShader compile(const std::string& relative_path, const Variant& variant = {}) const;
   const Paths& paths() const { return paths_; }
   bool compiles_from_source() const { return compile_from_source_; }
 

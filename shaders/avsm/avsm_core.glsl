@@ -7,10 +7,10 @@
 // removing the interior node whose removal changes the area under the curve
 // least; the first and last nodes are never removed and no node ever moves.
 //
-// Every loop runs to a constant bound (the curve capacity) and breaks out on the
-// real condition: with loop bounds that differ between lanes (a curve's count),
-// lavapipe dropped iterations for some lanes after long divergent loops and stored
-// corrupt curves.
+// Every loop runs to a constant bound (the curve capacity) with the real condition
+// inside: with loop bounds that differ between lanes (a curve's count), lavapipe
+// dropped iterations for some lanes after long divergent loops and stored corrupt
+// curves. No array is indexed by a value that differs between lanes.
 //
 // C++ includes this file through passes/avsm_core.h, which defines AVSM_INOUT
 // and brings GLSL's built-ins (min, max, abs, mix, exp, pow) in from GLM. Keep
@@ -22,9 +22,16 @@
 #define AVSM_INOUT(T) inout T
 #endif
 
-// Room for the largest node count plus the two nodes one insertion adds. A shader
-// that needs longer curves (the deep shadow map build) defines a larger capacity
-// before including this file.
+// Room for the node count plus the two nodes one insertion adds. Every loop below
+// runs over the whole capacity with the real condition inside, so the compiler can
+// unroll it and keep the curve in registers; that is what makes insertion fast (on
+// lavapipe about 10x at 8 nodes), and it only happens when the capacity is the
+// curve's own: shaders built per node count (shaders/CMakeLists.txt) get
+// AVSM_NODES. Others may define a capacity (the deep shadow map build: longer
+// curves); the default has room for the largest AVSM, 16 nodes.
+#if defined(AVSM_NODES) && !defined(AVSM_CURVE_CAPACITY)
+#define AVSM_CURVE_CAPACITY (AVSM_NODES + 2)
+#endif
 #ifndef AVSM_CURVE_CAPACITY
 #define AVSM_CURVE_CAPACITY 18
 #endif
@@ -49,31 +56,46 @@ AvsmCurve avsm_clear(float far_depth) {
 
 // Transmittance of the curve at depth d with linear interpolation between nodes.
 float avsm_evaluate_linear(AvsmCurve c, float d) {
-  if (d <= c.depth[0]) return 1.0f;
+  float value = c.trans[0];  // behind the last node: its value
+  bool found = false;
   for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
-    if (i >= c.count) break;
-    if (d < c.depth[i]) {
-      float span = c.depth[i] - c.depth[i - 1];
-      float t = span > 0.0f ? (d - c.depth[i - 1]) / span : 1.0f;
-      return mix(c.trans[i - 1], c.trans[i], t);
+    bool live = i < c.count;
+    if (live && !found) {
+      if (d < c.depth[i]) {
+        float span = c.depth[i] - c.depth[i - 1];
+        float t = span > 0.0f ? (d - c.depth[i - 1]) / span : 1.0f;
+        value = mix(c.trans[i - 1], c.trans[i], t);
+        found = true;
+      } else {
+        value = c.trans[i];
+      }
     }
   }
-  return c.trans[c.count - 1];
+  return d <= c.depth[0] ? 1.0f : value;
 }
 
 // Inserts a node at depth d with the curve's current value there; returns its index.
 // The caller multiplies it (and the nodes behind it) by the segment's transmittance.
+// Nodes at or in front of d stay, the others move back one slot (walked back to front
+// so each slot reads its neighbour before that is overwritten).
 int avsm_insert_node(AVSM_INOUT(AvsmCurve) c, float d) {
   float value = avsm_evaluate_linear(c, d);
-  int at = c.count;
-  for (int step = 0; step < AVSM_CURVE_CAPACITY; ++step) {
-    if (at == 0 || c.depth[at - 1] <= d) break;
-    c.depth[at] = c.depth[at - 1];
-    c.trans[at] = c.trans[at - 1];
-    --at;
+  int at = 0;
+  for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i)
+    if (i < c.count && c.depth[i] <= d) at = i + 1;
+  for (int j = AVSM_CURVE_CAPACITY - 1; j > 0; --j) {
+    if (j == at) {
+      c.depth[j] = d;
+      c.trans[j] = value;
+    } else if (j > at && j <= c.count) {
+      c.depth[j] = c.depth[j - 1];
+      c.trans[j] = c.trans[j - 1];
+    }
   }
-  c.depth[at] = d;
-  c.trans[at] = value;
+  if (at == 0) {
+    c.depth[0] = d;
+    c.trans[0] = value;
+  }
   c.count += 1;
   return at;
 }
@@ -87,30 +109,37 @@ float avsm_removal_cost(AvsmCurve c, int i) {
 
 void avsm_remove_node(AVSM_INOUT(AvsmCurve) c, int i) {
   for (int k = 1; k + 1 < AVSM_CURVE_CAPACITY; ++k) {
-    if (k + 1 >= c.count) break;
-    if (k < i) continue;
-    c.depth[k] = c.depth[k + 1];
-    c.trans[k] = c.trans[k + 1];
+    if (k >= i && k + 1 < c.count) {
+      c.depth[k] = c.depth[k + 1];
+      c.trans[k] = c.trans[k + 1];
+    }
   }
   c.count -= 1;
 }
 
-// Removes the cheapest interior node until at most max_nodes remain (ties: the
-// front-most, so results are deterministic).
-void avsm_compress(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
-  for (int round = 0; round < AVSM_CURVE_CAPACITY; ++round) {
-    if (c.count <= max_nodes || c.count <= 2) break;
-    int cheapest = 1;
-    float cheapest_cost = avsm_removal_cost(c, 1);
-    for (int i = 2; i + 1 < AVSM_CURVE_CAPACITY; ++i) {
-      if (i + 1 >= c.count) break;
+// Removes the cheapest interior node (ties: the front-most, so results are
+// deterministic) if the curve has more than max_nodes.
+void avsm_compress_once(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
+  if (c.count <= max_nodes || c.count <= 2) return;
+  int cheapest = 1;
+  float cheapest_cost = avsm_removal_cost(c, 1);
+  for (int i = 2; i + 1 < AVSM_CURVE_CAPACITY; ++i) {
+    if (i + 1 < c.count) {
       float cost = avsm_removal_cost(c, i);
       if (cost < cheapest_cost) {
         cheapest_cost = cost;
         cheapest = i;
       }
     }
-    avsm_remove_node(c, cheapest);
+  }
+  avsm_remove_node(c, cheapest);
+}
+
+// Removes the cheapest interior node until at most max_nodes remain.
+void avsm_compress(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
+  for (int round = 0; round < AVSM_CURVE_CAPACITY; ++round) {
+    if (c.count <= max_nodes || c.count <= 2) break;
+    avsm_compress_once(c, max_nodes);
   }
 }
 
@@ -127,7 +156,9 @@ float avsm_segment_transmittance(float entry, float exit_depth, float exit_trans
 // linearly from 1 at entry to exit_trans at exit (the paper's segments; an
 // opaque blocker is a short segment with exit_trans 0), then compresses.
 void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth, float exit_trans, int max_nodes) {
-  float far_depth = c.depth[c.count - 1];
+  float far_depth = c.depth[0];  // the last node's depth
+  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i)
+    if (i < c.count) far_depth = c.depth[i];
   entry = min(entry, far_depth);
   exit_depth = min(max(exit_depth, entry), far_depth);
   int first = avsm_insert_node(c, entry);
@@ -135,10 +166,13 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
   // The entry node keeps its value (the segment starts at 1); nodes inside get
   // the segment's value at their depth, nodes from the exit on its exit value.
   for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
-    if (i >= c.count) break;
-    if (i <= first) continue;
-    c.trans[i] *= i >= last ? exit_trans : avsm_segment_transmittance(entry, exit_depth, exit_trans, c.depth[i]);
+    if (i < c.count && i > first)
+      c.trans[i] *= i >= last ? exit_trans : avsm_segment_transmittance(entry, exit_depth, exit_trans, c.depth[i]);
   }
+  // Two nodes came in: two go when the curve was full before (unrolled, so the curve
+  // stays in registers), any more only for a curve that came in over max_nodes.
+  avsm_compress_once(c, max_nodes);
+  avsm_compress_once(c, max_nodes);
   avsm_compress(c, max_nodes);
 }
 
@@ -146,8 +180,12 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
 // simplification used to build a mip level from the merged curves of 2x2
 // texels. The newest node is the last one, so it is never the one removed.
 void avsm_append_node(AVSM_INOUT(AvsmCurve) c, float d, float t, int max_nodes) {
-  c.depth[c.count] = d;
-  c.trans[c.count] = t;
+  for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+    if (j == c.count) {
+      c.depth[j] = d;
+      c.trans[j] = t;
+    }
+  }
   c.count += 1;
   avsm_compress(c, max_nodes);
 }
