@@ -10,13 +10,6 @@ namespace {
 
 using Push = shared::CaptureHairPush;  // shaders/shared/passes/capture_hair.h
 
-// The point ribbons turn to face: the spot light itself, or for a directional
-// light a point far back along its direction (so ribbons face along it).
-glm::vec3 ribbon_facing_point(const LightView& light) {
-  if (light.perspective) return light.eye;
-  return light.eye - glm::vec3(light.depth_plane) * (1e3f * light.far_depth);
-}
-
 }  // namespace
 
 CaptureHairPass::CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
@@ -42,7 +35,7 @@ CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& 
         bind_capture_lists(bindings, c, d);
         bindings.push(cmd);
         const float resolution = float(light.resolution);
-        pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(ribbon_facing_point(light), 1.0f),
+        pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(hair_ribbon_facing_point(light), 1.0f),
                                            {resolution, resolution}, 0, 0.0f, light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
         vkCmdDraw(cmd, hair.segment_count * 6, 1, 0, 0);

@@ -79,4 +79,9 @@ LightView make_light_view(const scene::Light& light, const scene::Bounds& caster
   return v;
 }
 
+glm::vec3 hair_ribbon_facing_point(const LightView& light) {
+  if (light.perspective) return light.eye;
+  return light.eye - glm::vec3(light.depth_plane) * (1e3f * light.far_depth);
+}
+
 }  // namespace avsm::passes

@@ -36,4 +36,9 @@ struct LightView {
 // near plane just in front of the casters to the farthest corner.
 LightView make_light_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution);
 
+// The point hair ribbons turn to face in the light's captures: the spot light itself,
+// or for a directional light a point far back along its direction (so ribbons face
+// along it).
+glm::vec3 hair_ribbon_facing_point(const LightView& light);
+
 }  // namespace avsm::passes

@@ -10,7 +10,9 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/transfer.h"
+#include "passes/hair_bins_pass.h"
 #include "passes/techniques/techniques.h"
+#include "shared/hair_bins.h"
 
 namespace avsm::passes {
 namespace {
@@ -131,6 +133,10 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
     const std::string name = "light " + std::to_string(i);
     state.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                gpu::MemoryLocation::HostReadback, name + " capture counter"});
+    if (light.shadow.build == scene::ShadowBuild::fixed)
+      state.fixed_counter = gpu::Buffer::create(
+          ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                 gpu::MemoryLocation::HostReadback, name + " fixed build counter"});
     // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
     state.capacity = std::min<uint64_t>(uint64_t(resolution) * resolution * 8,
                                         options_.capture_limit_bytes / kCaptureSegmentBytes);
@@ -221,25 +227,61 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera,
     const LightView& view = views_[i];
     const std::string prefix = "light " + std::to_string(i);
 
-    rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", light.counter,
-                                                  rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-    CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, light.capacity, counter);
-    lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
-    lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
-    lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
-    if (light.settings.sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
-
-    if (light.technique->reads_capture_lists() || options_.keep_reference) {
-      inputs.heads[i] = lists.heads;
-      inputs.nodes[i] = lists.nodes;
+    const bool fixed = light.settings.build == scene::ShadowBuild::fixed;
+    const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+    // The fixed build needs no lists; they are still captured for the uncompressed reference.
+    std::optional<CaptureLists> lists;
+    light.captured_lists = !fixed || light.technique->reads_capture_lists() || options_.keep_reference;
+    light.hair_segments = casters.strands.segment_count;
+    if (light.captured_lists) {
+      lists = add_capture_lists(graph, i, casters);
+      if (light.technique->reads_capture_lists() || options_.keep_reference) {
+        inputs.heads[i] = lists->heads;
+        inputs.nodes[i] = lists->nodes;
+      }
     }
     if (!light.technique->has_map()) continue;
     rg::BufferHandle map = rg::vulkan::import(graph, prefix + " " + light.settings.technique + " map", light.map,
                                               rg::ImportState::none(), map_state_after_frame());
-    const TechniqueBuild build{graph, prefix, lists, map, view, light.settings, light.map_state};
-    inputs.maps[i] = builders_[light.technique->code() - 1]->add_to_graph(build, lists);
+    if (fixed) {
+      rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " fixed build counter", light.fixed_counter,
+                                                    rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+      inputs.maps[i] = builder.add_fixed_to_graph(
+          {graph, prefix, map, counter, view, light.settings, light.map_state, casters, options_.smoke_samples_per_segment});
+    } else {
+      inputs.maps[i] = builder.add_to_graph({graph, prefix, *lists, map, view, light.settings, light.map_state}, *lists);
+    }
   }
   return inputs;
+}
+
+// Light `i`'s capture lists: cleared, every caster appended, sorted if its settings ask.
+CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, uint32_t i, const ShadowCasters& casters) const {
+  const LightState& light = lights_[i];
+  const LightView& view = views_[i];
+  const std::string prefix = "light " + std::to_string(i);
+  rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", light.counter,
+                                                rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, light.capacity, counter);
+  lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
+  lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
+  lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
+  if (light.settings.sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
+  return lists;
+}
+
+FixedBuildStats ShadowMaps::fixed_build_stats(const LightState& light) const {
+  uint32_t counters[4] = {0, 0, 0, 0};  // kFixedCounter* (shared/hair_bins.h)
+  std::memcpy(counters, light.fixed_counter.mapped(), sizeof(counters));
+  const uint32_t resolution = light.map_state.layout.resolution;
+  FixedBuildStats f;
+  f.inserted_segments = counters[shared::kFixedCounterInserted];
+  f.light_depth_bytes = uint64_t(resolution) * resolution * 4;  // D32
+  f.hair_bin_capacity = light.hair_segments == 0 ? 0 : HairBinsPass::entry_bytes(light.hair_segments) / 4;
+  f.hair_bin_bytes = HairBinsPass::tile_bytes(resolution) + std::max<uint64_t>(f.hair_bin_capacity, 1) * 4;
+  f.hair_bin_requested = counters[shared::kFixedCounterBinEntries];
+  f.tiles_walked = counters[shared::kFixedCounterTilesWalked];
+  return f;
 }
 
 void ShadowMaps::finish_frame() {
@@ -247,7 +289,7 @@ void ShadowMaps::finish_frame() {
     LightState& light = lights_[i];
     LightShadowStats& stats = stats_[i];
     uint32_t counters[2] = {0, 0};  // capture segments, what the technique's build asked for
-    std::memcpy(counters, light.counter.mapped(), sizeof(counters));
+    if (light.captured_lists) std::memcpy(counters, light.counter.mapped(), sizeof(counters));
     const uint32_t requested = counters[0];
     stats.technique = light.settings.technique;
     stats.nodes = light.map_state.layout.nodes;
@@ -256,7 +298,9 @@ void ShadowMaps::finish_frame() {
     stats.capture_capacity = light.capacity;
     stats.capture_requested = requested;
     const uint64_t texels = uint64_t(light.map_state.layout.resolution) * light.map_state.layout.resolution;
-    stats.capture_bytes = light.capacity * kCaptureSegmentBytes + texels * 4;
+    stats.capture_bytes = light.captured_lists ? light.capacity * kCaptureSegmentBytes + texels * 4 : 0;
+    stats.fixed_build.reset();
+    if (light.settings.build == scene::ShadowBuild::fixed) stats.fixed_build = fixed_build_stats(light);
     stats.overflowed = requested > light.capacity;
     if (stats.overflowed) {
       const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;

@@ -112,11 +112,16 @@ class ShadowMaps {
     TechniqueMapState map_state;
     gpu::Buffer map;      // the technique's map (AVSM nodes, all levels; opacity planes; ...)
     gpu::Buffer counter;  // host-readable capture counter
+    gpu::Buffer fixed_counter;  // host-readable, the fixed build's (shared/hair_bins.h)
+    bool captured_lists = false;  // in the last frame declared
+    uint32_t hair_segments = 0;   // in the last frame declared (sizes the fixed build's bins)
     uint64_t capacity = 0;
   };
   void create_map(uint32_t light);
   GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
   rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera) const;
+  FixedBuildStats fixed_build_stats(const LightState& light) const;
+  CaptureLists add_capture_lists(rg::Graph& graph, uint32_t light, const ShadowCasters& casters) const;
 
   gpu::Context& ctx_;
   CaptureOpaquePass capture_opaque_;

@@ -20,6 +20,19 @@ struct DsmPoolStats {
   bool operator==(const DsmPoolStats&) const = default;
 };
 
+// The fixed-memory build (scene::ShadowBuild::fixed): what it inserted and the transient
+// memory it used, which depends on the map size and the hair segment count only.
+struct FixedBuildStats {
+  uint64_t inserted_segments = 0;   // opaque, hair and smoke segments that went into curves
+  uint64_t light_depth_bytes = 0;   // the nearest-opaque depth image
+  uint64_t hair_bin_bytes = 0;      // tile words + entry buffer
+  uint64_t hair_bin_capacity = 0;   // entries the buffer holds
+  uint64_t hair_bin_requested = 0;  // entries the segments asked for
+  uint64_t tiles_walked = 0;        // tiles whose bin did not fit: they walked every segment
+  uint64_t transient_bytes() const { return light_depth_bytes + hair_bin_bytes; }
+  bool operator==(const FixedBuildStats&) const = default;
+};
+
 struct LightShadowStats {
   std::string light;
   std::string technique = "avsm";  // a name of passes/techniques/registry.h
@@ -31,6 +44,8 @@ struct LightShadowStats {
   bool overflowed = false;              // requested > capacity: segments were dropped
   uint64_t next_capture_capacity = 0;   // after growth
   std::optional<DsmPoolStats> dsm_pool;  // technique dsm only
+  std::optional<FixedBuildStats> fixed_build;  // build fixed only (the lists above are then
+                                               // only there for the uncompressed reference)
   // A buffer grows for the next frame: rendering again does better. Not a figure of
   // the frame, so not in memory.json.
   bool grew = false;

@@ -72,6 +72,14 @@ scene::ShadowFilter filter_from_json(const json& object) {
   throw std::runtime_error("unknown filter '" + name + "'");
 }
 
+// Reports written before the fixed build existed have no "build": they were lists.
+scene::ShadowBuild build_from_json(const json& object) {
+  if (!object.contains("build")) return scene::ShadowBuild::lists;
+  const std::string name = value_of<std::string>(object, "build");
+  if (auto build = scene::shadow_build_from_string(name)) return *build;
+  throw std::runtime_error("unknown shadow build '" + name + "'");
+}
+
 json vec3_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 // Components written as null (an empty box's infinities) keep `v`'s own.
@@ -128,6 +136,16 @@ json to_json(const passes::LightShadowStats& s) {
     out["dsm_pool_requested_nodes"] = s.dsm_pool->requested_nodes;
     out["dsm_pool_overflowed"] = s.dsm_pool->overflowed;
   }
+  if (s.fixed_build) {
+    const passes::FixedBuildStats& f = *s.fixed_build;
+    out["fixed_build"] = {{"inserted_segments", f.inserted_segments},
+                          {"light_depth_bytes", f.light_depth_bytes},
+                          {"hair_bin_bytes", f.hair_bin_bytes},
+                          {"hair_bin_capacity_entries", f.hair_bin_capacity},
+                          {"hair_bin_requested_entries", f.hair_bin_requested},
+                          {"tiles_walked_whole", f.tiles_walked},
+                          {"transient_bytes", f.transient_bytes()}};
+  }
   return out;
 }
 
@@ -148,6 +166,13 @@ passes::LightShadowStats light_stats_from_json(const json& in) {
     s.dsm_pool = passes::DsmPoolStats{value_of<uint64_t>(in, "dsm_pool_requested_nodes"),
                                       value_of<uint64_t>(in, "dsm_pool_capacity_nodes"),
                                       value_of<bool>(in, "dsm_pool_overflowed")};
+  if (in.contains("fixed_build")) {
+    const json& f = in.at("fixed_build");
+    s.fixed_build = passes::FixedBuildStats{
+        value_of<uint64_t>(f, "inserted_segments"),          value_of<uint64_t>(f, "light_depth_bytes"),
+        value_of<uint64_t>(f, "hair_bin_bytes"),             value_of<uint64_t>(f, "hair_bin_capacity_entries"),
+        value_of<uint64_t>(f, "hair_bin_requested_entries"), value_of<uint64_t>(f, "tiles_walked_whole")};
+  }
   return s;
 }
 
@@ -200,6 +225,7 @@ json to_json(const LightQuality& q, size_t index) {
       {"technique_label", technique_label(q.settings)},
       {"filter", scene::to_string(q.settings.filter)},
       {"sort", q.settings.sort},
+      {"build", scene::to_string(q.settings.build)},
       {"resolution", q.settings.resolution},
       {"error_image", error_image_name(index)},
       {"receivers",
@@ -222,6 +248,7 @@ LightQuality light_quality_from_json(const json& in) {
   q.settings.technique = technique_from_json(in);
   q.settings.filter = filter_from_json(in);
   q.settings.sort = value_of<bool>(in, "sort");
+  q.settings.build = build_from_json(in);
   q.settings.resolution = value_of<int>(in, "resolution");
   q.settings.nodes = number_or(member(in, "nodes"), q.settings.nodes);
   q.settings.parameters = value_of<std::map<std::string, double>>(in, "parameters");
@@ -240,6 +267,7 @@ json to_json(const ProbeLight& light) {
           {"nodes", s.nodes},
           {"filter", scene::to_string(s.filter)},
           {"sort", s.sort},
+          {"build", scene::to_string(s.build)},
           {"resolution", s.resolution},
           {"transmittance", light.transmittance}};
 }
@@ -251,6 +279,7 @@ ProbeLight probe_light_from_json(const json& in) {
   light.settings.nodes = value_of<int>(in, "nodes");
   light.settings.filter = filter_from_json(in);
   light.settings.sort = value_of<bool>(in, "sort");
+  light.settings.build = build_from_json(in);
   light.settings.resolution = value_of<int>(in, "resolution");
   light.transmittance = value_of<std::vector<float>>(in, "transmittance");
   return light;

@@ -347,6 +347,8 @@ ShadowSettings read_shadow(const Reader& reader, const json& value, const std::s
                                         {"bilinear", ShadowFilter::bilinear},
                                         {"trilinear", ShadowFilter::trilinear}});
   shadow.sort = object.boolean_or("sort", shadow.sort);
+  shadow.build = choice<ShadowBuild>(object, "build", shadow.build,
+                                     {{"lists", ShadowBuild::lists}, {"fixed", ShadowBuild::fixed}});
   if (const json* parameters = object.optional("parameters")) {
     const std::string parameters_path = object.path_of("parameters");
     reader.expect(parameters->is_object(), parameters_path, "expected an object of numbers, got " + describe_type(*parameters));

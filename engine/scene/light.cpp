@@ -26,8 +26,15 @@ std::optional<Enum> value_of(const Table& table, std::string_view text) {
   return std::nullopt;
 }
 
+constexpr std::array<std::pair<ShadowBuild, std::string_view>, 2> kBuilds = {{
+    {ShadowBuild::lists, "lists"},
+    {ShadowBuild::fixed, "fixed"},
+}};
+
 }  // namespace
 
+std::string_view to_string(ShadowBuild build) { return name_of(kBuilds, build); }
+std::optional<ShadowBuild> shadow_build_from_string(std::string_view text) { return value_of<ShadowBuild>(kBuilds, text); }
 std::string_view to_string(ShadowFilter filter) { return name_of(kFilters, filter); }
 std::string_view to_string(LightType type) { return type == LightType::directional ? "directional" : "spot"; }
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
@@ -40,6 +47,7 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (resolution) settings.resolution = *resolution;
   if (filter) settings.filter = *filter;
   if (sort) settings.sort = *sort;
+  if (build) settings.build = *build;
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;
 }
 

@@ -11,6 +11,13 @@ namespace avsm::scene {
 
 enum class ShadowFilter { point, bilinear, trilinear };
 
+// How a light's map is built. `lists`: every caster fragment goes into per-texel lists
+// (memory grows with depth complexity), optionally sorted, then resolved. `fixed`: the
+// map is built straight from the casters in primitive order (the paper's fixed memory
+// footprint: the map, a depth image and hair bins bounded by the segment count);
+// AVSM only.
+enum class ShadowBuild { lists, fixed };
+
 struct ShadowSettings {
   // A shadow technique by name: avsm (adaptive volumetric shadow maps, Salvi et al.
   // 2010), uncompressed (the exact reference) or another of passes/techniques/. The
@@ -19,7 +26,8 @@ struct ShadowSettings {
   int nodes = 8;                 // 4, 8, 12 or 16
   int resolution = 1024;         // shadow map texels per side, 16 to 16384
   ShadowFilter filter = ShadowFilter::bilinear;
-  bool sort = true;              // sort fragments before compression
+  bool sort = true;              // sort fragments before compression (lists build)
+  ShadowBuild build = ShadowBuild::lists;
   // Technique-specific numbers (e.g. depth bias, slab count), which each technique
   // declares with its defaults and ranges and checks; the scene file only checks
   // that they are finite numbers.
@@ -39,6 +47,7 @@ struct ShadowOverrides {
   std::optional<int> resolution;
   std::optional<ShadowFilter> filter;
   std::optional<bool> sort;
+  std::optional<ShadowBuild> build;
   std::map<std::string, double> parameters;  // set on top of the light's own
 
   void apply(ShadowSettings& settings) const;
@@ -61,5 +70,7 @@ struct Light {
 std::string_view to_string(ShadowFilter filter);
 std::string_view to_string(LightType type);
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
+std::string_view to_string(ShadowBuild build);
+std::optional<ShadowBuild> shadow_build_from_string(std::string_view text);
 
 }  // namespace avsm::scene

@@ -88,10 +88,14 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
     o.resolution = parse_whole(value, what);
   } else if (field == "sort") {
     o.sort = parse_on_off(value, what);
+  } else if (field == "build") {
+    const std::optional<scene::ShadowBuild> build = scene::shadow_build_from_string(value);
+    if (!build) throw std::invalid_argument(what + ": unknown build '" + value + "' (lists, fixed)");
+    o.build = *build;
   } else if (field == "on") {
     o.enabled = parse_on_off(value, what);
   } else {
-    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, on)");
+    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, on)");
   }
 }
 

@@ -174,6 +174,10 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
       ImGui::SameLine();
       bool sort = shadow.sort;
       if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
+      ImGui::SameLine();
+      bool fixed = shadow.build == scene::ShadowBuild::fixed;
+      if (ImGui::Checkbox("fixed-memory build", &fixed))
+        o.build = fixed ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists, requests.scene_edited = true;
       if (auto t = choose("technique", shadow.technique, technique_names(), technique_name))
         o.technique = *t, requests.scene_edited = true;
       if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;

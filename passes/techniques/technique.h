@@ -22,6 +22,7 @@
 #include "passes/avsm_map_layout.h"
 #include "passes/capture_lists.h"
 #include "passes/light_view.h"
+#include "passes/shadow_casters.h"
 #include "passes/shadow_stats.h"
 #include "scene/light.h"
 #include "shared/shadow.h"
@@ -61,6 +62,20 @@ struct TechniqueBuild {
   const TechniqueMapState& state;
 };
 
+// What a technique's fixed-memory build works with (scene::ShadowBuild::fixed): the
+// casters themselves instead of capture lists.
+struct FixedTechniqueBuild {
+  rg::Graph& graph;
+  const std::string& prefix;
+  rg::BufferHandle map;      // the imported persistent map
+  rg::BufferHandle counter;  // 16 bytes, host readable (kFixedCounter* words of shared/hair_bins.h)
+  const LightView& view;
+  const scene::ShadowSettings& settings;
+  const TechniqueMapState& state;
+  const ShadowCasters& casters;
+  uint32_t smoke_samples_per_segment;
+};
+
 // The GPU side of a technique on one device: its pipelines and how it adds its passes.
 class TechniqueBuilder {
  public:
@@ -68,6 +83,8 @@ class TechniqueBuilder {
   // Declares the passes that fill `build.map`; returns the map's final version. May
   // replace `counter` in `lists` with its new version (a build that reports demand).
   virtual rg::BufferHandle add_to_graph(const TechniqueBuild& build, CaptureLists& lists) const = 0;
+  // The fixed-memory build, for techniques whose builds_fixed(); returns the map's final version.
+  virtual rg::BufferHandle add_fixed_to_graph(const FixedTechniqueBuild& build) const;
 };
 
 class ShadowTechnique {
@@ -88,6 +105,8 @@ class ShadowTechnique {
   virtual bool has_map() const { return true; }
   // Whether the camera passes read the light's capture lists at lookup time.
   virtual bool reads_capture_lists() const { return false; }
+  // Whether it can build its map straight from the casters (scene::ShadowBuild::fixed).
+  virtual bool builds_fixed() const { return false; }
   // Whether its map stores AVSM node curves (texel plots show the nodes).
   virtual bool stores_avsm_nodes() const { return false; }
   // Map mip levels for these settings (1: none).

@@ -106,6 +106,14 @@ void check_shadow_settings(const scene::ShadowSettings& settings, const std::str
       throw std::invalid_argument(who + ": '" + name + "' is not a parameter of any technique (" +
                                   all_parameter_names() + ")");
   }
+  if (settings.build == scene::ShadowBuild::fixed && !technique->builds_fixed()) {
+    std::string fixed;
+    for (const ShadowTechnique* t : shadow_techniques())
+      if (t->builds_fixed()) fixed += (fixed.empty() ? "" : ", ") + std::string(t->name());
+    throw std::invalid_argument(who + ": technique '" + settings.technique +
+                                "' builds from capture lists only; set build to \"lists\" (--build lists) or use " +
+                                fixed);
+  }
   technique->check(settings, who);
 }
 
@@ -131,6 +139,10 @@ void ShadowTechnique::fill(shared::GpuShadow&, const scene::ShadowSettings&, con
 
 std::unique_ptr<TechniqueBuilder> ShadowTechnique::create_builder(gpu::Context&, const gpu::ShaderLibrary&) const {
   return nullptr;
+}
+
+rg::BufferHandle TechniqueBuilder::add_fixed_to_graph(const FixedTechniqueBuild& build) const {
+  throw std::logic_error(build.prefix + ": technique '" + build.settings.technique + "' has no fixed-memory build");
 }
 
 bool ShadowTechnique::finish_frame(const uint32_t[2], TechniqueMapState&, LightShadowStats&) const { return false; }

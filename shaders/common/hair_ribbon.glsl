@@ -1,14 +1,18 @@
 // Hair strand segments as ribbons turned towards a point (the camera, or a light):
 // one quad (6 vertices) per segment. Shared by hair.vert and capture_hair.vert.
-// The strand buffers (shared/hair.h) are at bindings 0 (points), 1 (segments), 2 (strands).
+// The strand buffers (shared/hair.h) are at bindings AVSM_HAIR_BINDING (points, 0
+// unless the includer defines it), + 1 (segments) and + 2 (strands).
 #ifndef AVSM_HAIR_RIBBON_GLSL
 #define AVSM_HAIR_RIBBON_GLSL
 
 #extension GL_GOOGLE_include_directive : require
 #include "shared/hair.h"
-layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };
-layout(std430, binding = 1) readonly buffer Segments { StrandSegment segments[]; };
-layout(std430, binding = 2) readonly buffer Strands { Strand strands[]; };
+#ifndef AVSM_HAIR_BINDING
+#define AVSM_HAIR_BINDING 0
+#endif
+layout(std430, binding = AVSM_HAIR_BINDING) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = AVSM_HAIR_BINDING + 1) readonly buffer Segments { StrandSegment segments[]; };
+layout(std430, binding = AVSM_HAIR_BINDING + 2) readonly buffer Strands { Strand strands[]; };
 
 struct RibbonVertex {
   vec3 world;

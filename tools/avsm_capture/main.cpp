@@ -38,7 +38,9 @@ const char* kUsage =
     "shadow overrides, for every light (default: the scene file's settings):\n"
     "  --technique T    one of the shadow techniques listed at the end"" (default avsm)\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
-    "  --sort on|off    sort each texel's segments before the resolve\n"
+    "  --sort on|off    sort each texel's segments before the resolve (lists build)\n"
+    "  --build lists|fixed  how AVSM maps are built: per-texel fragment lists then a\n"
+    "                   resolve, or straight from the casters in fixed memory\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
     "  --shadow-res R   transmittance map texels per side\n"
     "  --shadow-param NAME=NUMBER   (repeatable) a technique parameter (listed at the end)\n"
@@ -152,6 +154,10 @@ int main(int argc, char** argv) {
       options.shadow.nodes = int(n);
     } else if (arg == "--sort") {
       options.shadow.sort = parse_on_off(arg, value());
+    } else if (arg == "--build") {
+      const std::string name = value();
+      options.shadow.build = avsm::scene::shadow_build_from_string(name);
+      if (!options.shadow.build) usage_error("--build expects lists or fixed, got '" + name + "'");
     } else if (arg == "--filter") {
       const std::string name = value();
       options.shadow.filter = avsm::scene::shadow_filter_from_string(name);

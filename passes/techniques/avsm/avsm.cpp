@@ -2,6 +2,7 @@
 // nodes, built by streaming insertion and compression (passes/avsm_resolve_pass.h),
 // with an optional mip chain for trilinear lookups (passes/avsm_mips_pass.h).
 #include "gpu/shader_compiler.h"
+#include "passes/avsm_fixed_build_pass.h"
 #include "passes/avsm_mips_pass.h"
 #include "passes/avsm_resolve_pass.h"
 #include "passes/techniques/technique.h"
@@ -11,14 +12,21 @@ namespace {
 
 class AvsmBuilder final : public TechniqueBuilder {
  public:
-  AvsmBuilder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : resolve_(ctx, shaders), mips_(ctx, shaders) {}
+  AvsmBuilder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+      : resolve_(ctx, shaders), fixed_(ctx, shaders), mips_(ctx, shaders) {}
   rg::BufferHandle add_to_graph(const TechniqueBuild& b, CaptureLists& lists) const override {
     rg::BufferHandle map = resolve_.add_to_graph(b.graph, b.prefix, lists, b.map, b.state.layout, b.view.far_depth);
+    return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
+  }
+  rg::BufferHandle add_fixed_to_graph(const FixedTechniqueBuild& b) const override {
+    rg::BufferHandle map = fixed_.add_to_graph(b.graph, b.prefix, b.map, b.counter, b.state.layout, b.view,
+                                               b.casters, b.smoke_samples_per_segment);
     return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
   }
 
  private:
   AvsmResolvePass resolve_;
+  AvsmFixedBuildPass fixed_;
   AvsmMipsPass mips_;
 };
 
@@ -28,6 +36,7 @@ class Avsm final : public ShadowTechnique {
   std::string_view summary() const override { return "adaptive volumetric shadow maps, N nodes per texel (--nodes)"; }
   std::string label(const scene::ShadowSettings& s) const override { return "AVSM-" + std::to_string(s.nodes); }
   bool stores_avsm_nodes() const override { return true; }
+  bool builds_fixed() const override { return true; }
   uint32_t mip_levels(const scene::ShadowSettings& s, uint32_t resolution) const override {
     return s.filter == scene::ShadowFilter::trilinear ? AvsmMapLayout::full_mip_count(resolution) : 1;
   }

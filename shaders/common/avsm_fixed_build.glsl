@@ -1,0 +1,161 @@
+// The fixed-memory AVSM build (passes/avsm_fixed_build_pass.h): one workgroup per
+// 8x8 tile of the light's map, one thread per texel, the texel's curve in registers
+// from start to end. No per-fragment list exists; each texel inserts, in this order:
+//   1. the nearest opaque caster (the light depth image) as one blocking segment;
+//      anything that starts behind it is rejected before insertion;
+//   2. every hair strand crossing, in segment order: the tile's bin (hair_bins_*.comp)
+//      is put in segment order, then walked in batches of 64 ribbons that every
+//      thread tests its texel centre against (a tile whose bin did not fit walks
+//      every segment instead);
+//   3. the smoke along the texel's ray, segment by segment as the march goes.
+// The order is fixed, so the result is the same on every run without any sort of
+// fragments. Built per node count (AVSM_NODES), with the density atlas
+// (avsm_fixed_build.comp) or NanoVDB (avsm_fixed_build_nanovdb.comp).
+#ifndef AVSM_FIXED_BUILD_GLSL
+#define AVSM_FIXED_BUILD_GLSL
+#extension GL_GOOGLE_include_directive : require
+#include "avsm/avsm_core.glsl"
+
+#define AVSM_VOLUME_BINDING_NANOVDB 0
+#define AVSM_VOLUME_BINDING_MAJORANTS 1
+#define AVSM_VOLUME_BINDING_PARAMETERS 2
+#ifndef AVSM_FIXED_BUILD_NANOVDB
+#define AVSM_VOLUME_BINDING_ATLAS 3  // the atlas, and its brick slots at 4
+#endif
+#define AVSM_HAIR_BINDING 5  // points, segments, strands
+#include "shared/hair_bins.h"
+#include "shared/passes/avsm_fixed_build.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 8) uniform sampler2D light_depth;
+layout(std430, binding = 9) readonly buffer HairTiles { uint hair_tiles[]; };
+layout(std430, binding = 10) buffer HairBinEntries { uint hair_bin_entries[]; };
+layout(std430, binding = 11) buffer FixedBuildCounter { uint fixed_counters[4]; };
+layout(std430, binding = 12) writeonly buffer Map { vec4 map_texels[]; };
+#include "avsm/avsm_map.glsl"
+
+// This texel's curve and what has gone into it (module-scope: per invocation).
+AvsmCurve curve;
+float blocker_end = 3.4e38;  // the nearest opaque caster's far side: T is 0 behind it
+uint inserted = 0u;
+
+void insert(float entry_depth, float exit_depth, float transmittance) {
+  if (entry_depth >= blocker_end) return;  // early rejection
+  avsm_insert_segment(curve, entry_depth, exit_depth, transmittance, AVSM_NODES);
+  ++inserted;
+}
+
+void smoke_light_segment(ivec2 texel, float entry_depth, float exit_depth, float transmittance) {
+  insert(entry_depth, exit_depth, transmittance);
+}
+#include "common/smoke_light_march.glsl"
+#include "common/hair_footprint.glsl"
+
+float texel_thickness(float depth) { return pc.texel_size.x + pc.texel_size.y * depth; }
+
+// ---- 1. opaque ----
+void insert_opaque(ivec2 texel, mat4 world_from_light) {
+  float z = texelFetch(light_depth, texel, 0).r;
+  if (z >= 1.0) return;  // no opaque caster
+  vec2 ndc = (vec2(texel) + 0.5) / float(pc.resolution) * 2.0 - 1.0;
+  vec4 world = world_from_light * vec4(ndc, z, 1.0);
+  float depth = dot(pc.depth_plane.xyz, world.xyz / world.w) + pc.depth_plane.w;
+  float exit_depth = depth + texel_thickness(depth);  // the capture's opaque segment
+  insert(depth, exit_depth, 0.0);
+  blocker_end = exit_depth;
+}
+
+// ---- 2. hair ----
+shared vec4 ribbon_x[64], ribbon_y[64], ribbon_depth[64], ribbon_inverse_w[64];
+shared float ribbon_transmittance[64];  // < 0: no ribbon in this slot
+
+// Puts hair_bin_entries[offset, offset + count) in ascending order: a bitonic network
+// over the next power of two whose every comparison puts the smaller value first, so
+// the missing entries past `count` act as +infinity and never move.
+void order_bin(uint offset, uint count) {
+  uint size = 1u;
+  while (size < count) size <<= 1u;
+  for (uint block = 2u; block <= size; block <<= 1u) {
+    for (uint stride = block; stride > 1u; stride >>= 1u) {
+      bool flip = stride == block;  // the block's first step compares mirrored pairs
+      uint half_stride = stride >> 1u;
+      for (uint base = 0u; base < size; base += 64u) {
+        uint i = base + gl_LocalInvocationIndex;
+        uint partner = flip ? (i ^ (block - 1u)) : (i ^ half_stride);
+        if (i < size && partner > i && partner < count) {
+          uint a = hair_bin_entries[offset + i], b = hair_bin_entries[offset + partner];
+          if (a > b) {
+            hair_bin_entries[offset + i] = b;
+            hair_bin_entries[offset + partner] = a;
+          }
+        }
+      }
+      memoryBarrierBuffer();
+      barrier();
+    }
+  }
+}
+
+void insert_hair(ivec2 texel, bool in_map) {
+  uint tiles_per_row = (pc.resolution + kHairTileSize - 1u) / kHairTileSize;
+  uint tile = gl_WorkGroupID.y * tiles_per_row + gl_WorkGroupID.x;
+  uint count = hair_tiles[hair_tile_count_word(tile)];
+  uint offset = hair_tiles[hair_tile_offset_word(tile)];
+  bool walk_all = offset == kHairBinOverflow;
+  uint n = walk_all ? pc.segment_count : count;
+  if (!walk_all) order_bin(offset, count);
+  ivec2 tile_first = ivec2(gl_WorkGroupID.xy) * int(kHairTileSize);
+  vec2 centre = vec2(texel) + 0.5;
+  for (uint base = 0u; base < n; base += 64u) {
+    uint i = base + gl_LocalInvocationIndex;
+    float transmittance = -1.0;
+    if (i < n) {
+      uint s = walk_all ? i : hair_bin_entries[offset + i];
+      HairFootprint f = hair_footprint(s, pc.light_from_world, pc.facing_point.xyz, pc.depth_plane,
+                                       float(pc.resolution));
+      ivec4 box = hair_footprint_texels(f, int(pc.resolution));
+      bool overlaps = all(lessThanEqual(box.xy, box.zw)) && all(lessThanEqual(box.xy, tile_first + 7)) &&
+                      all(greaterThanEqual(box.zw, tile_first));
+      if (overlaps) {
+        ribbon_x[gl_LocalInvocationIndex] = f.x;
+        ribbon_y[gl_LocalInvocationIndex] = f.y;
+        ribbon_depth[gl_LocalInvocationIndex] = f.depth;
+        ribbon_inverse_w[gl_LocalInvocationIndex] = f.inverse_w;
+        transmittance = 1.0 - f.opacity;
+      }
+    }
+    ribbon_transmittance[gl_LocalInvocationIndex] = transmittance;
+    barrier();
+    uint batch = min(64u, n - base);
+    for (uint k = 0u; k < 64u; ++k) {
+      if (k >= batch) break;  // the same bound in every lane
+      float t = ribbon_transmittance[k];
+      HairFootprint f;
+      f.x = ribbon_x[k];
+      f.y = ribbon_y[k];
+      f.depth = ribbon_depth[k];
+      f.inverse_w = ribbon_inverse_w[k];
+      float depth;
+      if (in_map && t >= 0.0 && hair_footprint_covers(f, centre, depth))
+        insert(depth, depth + texel_thickness(depth), t);
+    }
+    barrier();
+  }
+}
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  // No early return: the hair batches synchronise the workgroup.
+  bool in_map = all(lessThan(uvec2(texel), uvec2(pc.resolution)));
+  mat4 world_from_light = inverse(pc.light_from_world);
+  curve = avsm_clear(pc.facing_point.w);
+  if (in_map) insert_opaque(texel, world_from_light);
+  if (pc.segment_count > 0u) insert_hair(texel, in_map);
+  if (!in_map) return;
+  march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, pc.volume_count,
+                         pc.samples_per_segment, blocker_end);
+  avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(AVSM_NODES / 2), curve, AVSM_NODES);
+  if (inserted > 0u) atomicAdd(fixed_counters[kFixedCounterInserted], inserted);
+}
+
+#endif

@@ -1,0 +1,11 @@
+// Push constants of the light depth pass (shaders/passes/light_depth.vert).
+#ifndef AVSM_SHARED_PASSES_LIGHT_DEPTH_H
+#define AVSM_SHARED_PASSES_LIGHT_DEPTH_H
+#include "shared/gpu_struct.h"
+GPU_NAMESPACE_BEGIN
+
+#define GPU_LIGHT_DEPTH_PUSH(F, A) F(mat4, light_from_world)
+GPU_PUSH_CONSTANTS(LightDepthPush, GPU_LIGHT_DEPTH_PUSH)
+
+GPU_NAMESPACE_END
+#endif
