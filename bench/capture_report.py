@@ -51,10 +51,18 @@ class LightShadowStats:
     technique: str
     map_bytes: int
     capture_bytes: int
+    capture_requested: int  # segments the lists asked for (0 in the fixed build)
+    # The fixed-memory build's depth image + hair bins; None for the lists build.
+    fixed_transient_bytes: Optional[int] = None
+    inserted_segments: Optional[int] = None  # fixed build: segments that went into curves
 
     @staticmethod
     def from_json(j):
-        return LightShadowStats(j["light"], j["technique"], j["map_bytes"], j["capture_bytes"])
+        fixed = j.get("fixed_build")
+        return LightShadowStats(j["light"], j["technique"], j["map_bytes"], j["capture_bytes"],
+                                j["capture_requested_segments"],
+                                fixed["transient_bytes"] if fixed else None,
+                                fixed["inserted_segments"] if fixed else None)
 
 
 @dataclass

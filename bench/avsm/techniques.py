@@ -39,7 +39,8 @@ def grid_points(lo, hi, counts):
 
 
 def stage(name):
-    if "capture" in name or "clear lists" in name:
+    # The fixed build's light depth image and hair bins stand where the lists' capture does.
+    if "capture" in name or "clear lists" in name or "light depth" in name or "hair bins" in name:
         return "capture"
     if "sort" in name:
         return "sort"
@@ -52,10 +53,10 @@ def stage(name):
     return "other"
 
 
-def run(capture, scene, out, args, technique, nodes, probe_file, params=()):
+def run(capture, scene, out, args, technique, nodes, probe_file, params=(), build="lists"):
     cmd = [capture, "--out", out, "--width", str(args.width), "--height", str(args.height),
            "--frames", str(args.frames), "--shadow-res", str(args.shadow_res), "--quiet",
-           "--technique", technique, "--probe", probe_file, "--filter", args.filter]
+           "--technique", technique, "--probe", probe_file, "--filter", args.filter, "--build", build]
     if scene:
         cmd += ["--scene", scene]
     if nodes:
@@ -71,8 +72,14 @@ def run(capture, scene, out, args, technique, nodes, probe_file, params=()):
         ms[stage(p.name)] = ms.get(stage(p.name), 0.0) + p.gpu_ms.median
     ms["frame"] = timings.frame_gpu_ms.median
     map_bytes = sum(light.map_bytes for light in memory.lights)
-    capture_bytes = sum(light.capture_bytes for light in memory.lights)
+    # Transient bytes besides the map: the lists, or the fixed build's depth image and bins.
+    capture_bytes = sum(light.capture_bytes + (light.fixed_transient_bytes or 0) for light in memory.lights)
     values = [light.transmittance for light in probes.lights]
+    # ns per segment put into curves: the resolve over the captured segments, or the
+    # fixed build's kernel over what it inserted (the smoke march included).
+    fixed = [light.inserted_segments for light in memory.lights if light.inserted_segments is not None]
+    segments = sum(fixed) if fixed else sum(light.capture_requested for light in memory.lights)
+    ms["ns_per_segment"] = ms.get("resolve", 0.0) * 1e6 / segments if segments else 0.0
     return ms, map_bytes, capture_bytes, values
 
 
@@ -107,9 +114,10 @@ def main():
     probe_file = os.path.join(work, "probes.json")
     json.dump(points, open(probe_file, "w"))
 
-    # (label, technique, AVSM nodes, technique parameters)
+    # (label, technique, AVSM nodes, technique parameters[, build])
     rows = ([("uncompressed", "uncompressed", None, ())] +
             [(f"AVSM-{n}", "avsm", n, ()) for n in (4, 8, 12, 16)] +
+            [(f"AVSM-{n} fixed", "avsm", n, (), "fixed") for n in (4, 8, 12, 16)] +
             [(f"DSM e={e}", "dsm", None, (f"error={e}",)) for e in (0.01, 0.05)] +
             [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))])
     # Every other registered technique at its defaults, so a new one is measured too.
@@ -117,10 +125,10 @@ def main():
     rows += [(name, name, None, ()) for name in registered if name not in {row[1] for row in rows}]
     print(f"{os.path.basename(args.scene) or 'default scene'}:", file=sys.stderr)
     results = {}
-    for label, technique, nodes, params in rows:
+    for label, technique, nodes, params, *build in rows:
         print(f"rendering {label} ...", file=sys.stderr)
         results[label] = run(capture, args.scene, os.path.join(work, label.replace(" ", "_")), args, technique, nodes,
-                             probe_file, params)
+                             probe_file, params, *build)
 
     reference = results["uncompressed"][3]
     receivers = sum(1 for light in reference for r in light if 0.0 < r < 1.0)
@@ -128,7 +136,7 @@ def main():
           f"{args.filter} lookups, GPU ms medians over {max(args.frames - 1, 1)} frames; receivers: {len(points)} grid points x "
           f"{len(reference)} lights, errors over partially shadowed ones")
     header = (f"{'technique':<13}{'capture':>9}{'sort':>8}{'build':>9}{'mips':>8}{'camera':>9}{'frame':>9}"
-              f"{'map MiB':>9}{'lists MiB':>10}{'mean err':>10}{'max err':>9}{'frame/AVSM-8':>13}")
+              f"{'map MiB':>9}{'trans MiB':>10}{'mean err':>10}{'max err':>9}{'frame/AVSM-8':>13}{'ns/seg':>8}")
     print(header)
     print("-" * len(header))
     avsm8_frame = results["AVSM-8"][0]["frame"]
@@ -143,13 +151,19 @@ def main():
         print(f"{label:<13}{ms.get('capture', 0):>9.1f}{ms.get('sort', 0):>8.1f}{ms.get('resolve', 0):>9.1f}"
               f"{ms.get('mips', 0):>8.1f}{ms.get('camera', 0):>9.1f}{ms['frame']:>9.1f}"
               f"{map_bytes / 2**20:>9.2f}{capture_bytes / 2**20:>10.2f}{mean:>10.4f}{worst:>9.4f}"
-              f"{ms['frame'] / avsm8_frame:>13.2f}")
+              f"{ms['frame'] / avsm8_frame:>13.2f}{ms['ns_per_segment']:>8.0f}")
     print(f"\nerror receivers: {receivers} (light, point) pairs with 0 < T_ref < 1; outputs in {work}")
     frame = {label: r[0]["frame"] for label, r in results.items()}
     print("ratios (frame ms, this run): "
           f"AVSM-8 / OSM-32 = {frame['AVSM-8'] / frame['OSM-32']:.2f}; "
           f"DSM e=0.01 / AVSM-8 = {frame['DSM e=0.01'] / frame['AVSM-8']:.2f}; "
           f"uncompressed / AVSM-8 = {frame['uncompressed'] / frame['AVSM-8']:.2f}")
+    build_ms = {label: r[0].get("capture", 0) + r[0].get("sort", 0) + r[0].get("resolve", 0) for label, r in results.items()}
+    bytes_of = {label: r[1] + r[2] for label, r in results.items()}
+    print("fixed against lists (this run): " + "; ".join(
+        f"AVSM-{n} build ms {build_ms[f'AVSM-{n} fixed']:.1f} / {build_ms[f'AVSM-{n}']:.1f} = "
+        f"{build_ms[f'AVSM-{n} fixed'] / build_ms[f'AVSM-{n}']:.2f}x, map + transient bytes "
+        f"{bytes_of[f'AVSM-{n} fixed'] / bytes_of[f'AVSM-{n}']:.2f}x" for n in (4, 8, 12, 16)))
 
 
 if __name__ == "__main__":
