@@ -117,7 +117,8 @@ def main():
     # (label, technique, AVSM nodes, technique parameters[, build])
     rows = ([("uncompressed", "uncompressed", None, ())] +
             [(f"AVSM-{n}", "avsm", n, ()) for n in (4, 8, 12, 16)] +
-            [(f"AVSM-{n} fixed", "avsm", n, (), "fixed") for n in (4, 8, 12, 16)] +
+            # The fixed build stops at 12 nodes (passes/techniques/avsm/avsm.cpp says why).
+            [(f"AVSM-{n} fixed", "avsm", n, (), "fixed") for n in (4, 8, 12)] +
             [(f"DSM e={e}", "dsm", None, (f"error={e}",)) for e in (0.01, 0.05)] +
             [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))])
     # Every other registered technique at its defaults, so a new one is measured too.
@@ -163,7 +164,7 @@ def main():
     print("fixed against lists (this run): " + "; ".join(
         f"AVSM-{n} build ms {build_ms[f'AVSM-{n} fixed']:.1f} / {build_ms[f'AVSM-{n}']:.1f} = "
         f"{build_ms[f'AVSM-{n} fixed'] / build_ms[f'AVSM-{n}']:.2f}x, map + transient bytes "
-        f"{bytes_of[f'AVSM-{n} fixed'] / bytes_of[f'AVSM-{n}']:.2f}x" for n in (4, 8, 12, 16)))
+        f"{bytes_of[f'AVSM-{n} fixed'] / bytes_of[f'AVSM-{n}']:.2f}x" for n in (4, 8, 12)))
 
 
 if __name__ == "__main__":

@@ -189,7 +189,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     renderer_storage = std::make_unique<renderer::SceneRenderer>(ctx, shaders, scene, options.width, options.height,
                                                                  shadow_options);
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(options.scene.string() + ": " + e.what());
+    // The shadow settings' checks already name the scene file (ShadowMaps::set_scene).
+    const std::string prefix = options.scene.string() + ": ", what = e.what();
+    throw std::runtime_error(what.starts_with(prefix) ? what : prefix + what);
   }
   renderer::SceneRenderer& frame = *renderer_storage;
   if (!probe_points.empty()) frame.set_probes(probe_points);
