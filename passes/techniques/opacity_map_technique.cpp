@@ -3,6 +3,7 @@
 #include <string>
 
 #include "gpu/shader_compiler.h"
+#include "passes/fixed_build_pass.h"
 #include "passes/map_build_pass.h"
 
 namespace avsm::passes {
@@ -11,16 +12,24 @@ namespace {
 class OpacityMapBuilder final : public TechniqueBuilder {
  public:
   OpacityMapBuilder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const OpacityMapTechnique& technique,
-                    std::string_view shader, std::string_view pass)
-      : technique_(technique), build_(ctx, shaders, std::string(shader), std::string(pass)) {}
+                    const OpacityMapTechnique::Spec& spec)
+      : technique_(technique),
+        build_(ctx, shaders, std::string(spec.build_shader), std::string(spec.build_pass)),
+        fixed_(ctx, shaders, std::string(spec.fixed_build_shader), std::string(spec.fixed_build_pass),
+               /*per_node_count=*/false) {}
   rg::BufferHandle add_to_graph(const TechniqueBuild& b, CaptureLists& lists) const override {
     return build_.add_to_graph(b.graph, b.prefix, lists, b.map,
                                {b.view.resolution, technique_.size(b.settings), b.view.near_depth, b.view.far_depth, 0.0f});
+  }
+  rg::BufferHandle add_fixed_to_graph(const FixedTechniqueBuild& b) const override {
+    return fixed_.add_to_graph(b.graph, b.prefix, {b.map, b.counter, technique_.size(b.settings)}, b.view, b.casters,
+                               b.smoke_samples_per_segment);
   }
 
  private:
   const OpacityMapTechnique& technique_;
   MapBuildPass build_;
+  FixedBuildPass fixed_;
 };
 
 }  // namespace
@@ -41,7 +50,7 @@ void OpacityMapTechnique::fill(shared::GpuShadow& record, const scene::ShadowSet
 
 std::unique_ptr<TechniqueBuilder> OpacityMapTechnique::create_builder(gpu::Context& ctx,
                                                                       const gpu::ShaderLibrary& shaders) const {
-  return std::make_unique<OpacityMapBuilder>(ctx, shaders, *this, spec_.build_shader, spec_.build_pass);
+  return std::make_unique<OpacityMapBuilder>(ctx, shaders, *this, spec_);
 }
 
 }  // namespace avsm::passes

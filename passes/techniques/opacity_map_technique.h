@@ -16,7 +16,8 @@ class OpacityMapTechnique final : public ShadowTechnique {
     std::string_view label_prefix;    // "OSM-"
     std::string_view size_parameter;  // K: "slices", "terms"
     uint32_t bytes_per_size;          // map bytes per texel and unit of K
-    std::string_view build_shader, build_pass;
+    std::string_view build_shader, build_pass;              // from the capture lists
+    std::string_view fixed_build_shader, fixed_build_pass;  // straight from the casters
     std::span<const TechniqueParameter> parameters;  // with size_parameter and depth_bias
   };
   explicit OpacityMapTechnique(const Spec& spec) : spec_(spec) {}
@@ -28,6 +29,8 @@ class OpacityMapTechnique final : public ShadowTechnique {
   uint64_t map_bytes(const scene::ShadowSettings& s, const TechniqueMapState& state) const override;
   void fill(shared::GpuShadow& record, const scene::ShadowSettings& s, const LightView& view) const override;
   std::unique_ptr<TechniqueBuilder> create_builder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) const override;
+  // Additive by nature: built straight from the casters as their papers build them.
+  bool builds_fixed() const override { return true; }
 
   uint32_t size(const scene::ShadowSettings& s) const { return uint32_t(parameter(s, spec_.size_parameter)); }
 

@@ -2,7 +2,7 @@
 // nodes, built by streaming insertion and compression (passes/avsm_resolve_pass.h),
 // with an optional mip chain for trilinear lookups (passes/avsm_mips_pass.h).
 #include "gpu/shader_compiler.h"
-#include "passes/avsm_fixed_build_pass.h"
+#include "passes/fixed_build_pass.h"
 #include "passes/avsm_mips_pass.h"
 #include "passes/avsm_resolve_pass.h"
 #include "passes/techniques/technique.h"
@@ -13,20 +13,22 @@ namespace {
 class AvsmBuilder final : public TechniqueBuilder {
  public:
   AvsmBuilder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-      : resolve_(ctx, shaders), fixed_(ctx, shaders), mips_(ctx, shaders) {}
+      : resolve_(ctx, shaders),
+        fixed_(ctx, shaders, "shaders/passes/avsm_fixed_build.comp", "avsm fixed build", /*per_node_count=*/true),
+        mips_(ctx, shaders) {}
   rg::BufferHandle add_to_graph(const TechniqueBuild& b, CaptureLists& lists) const override {
     rg::BufferHandle map = resolve_.add_to_graph(b.graph, b.prefix, lists, b.map, b.state.layout, b.view.far_depth);
     return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
   }
   rg::BufferHandle add_fixed_to_graph(const FixedTechniqueBuild& b) const override {
-    rg::BufferHandle map = fixed_.add_to_graph(b.graph, b.prefix, b.map, b.counter, b.state.layout, b.view,
+    rg::BufferHandle map = fixed_.add_to_graph(b.graph, b.prefix, {b.map, b.counter, b.state.layout.nodes}, b.view,
                                                b.casters, b.smoke_samples_per_segment);
     return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
   }
 
  private:
   AvsmResolvePass resolve_;
-  AvsmFixedBuildPass fixed_;
+  FixedBuildPass fixed_;
   AvsmMipsPass mips_;
 };
 

@@ -14,7 +14,9 @@ constexpr TechniqueParameter kParameters[] = {
 
 const ShadowTechnique& fom_technique() {
   static const OpacityMapTechnique technique({"fom", "Fourier opacity maps: optical depth as K Fourier terms", "FOM-",
-                                              "terms", 8, "passes/techniques/fom/fom_build.comp", "fom build", kParameters});
+                                              "terms", 8, "passes/techniques/fom/fom_build.comp", "fom build",
+                                              "passes/techniques/fom/fom_fixed_build.comp", "fom fixed build",
+                                              kParameters});
   return technique;
 }
 

@@ -14,7 +14,8 @@ constexpr TechniqueParameter kParameters[] = {
 
 const ShadowTechnique& osm_technique() {
   static const OpacityMapTechnique technique({"osm", "opacity shadow maps: optical depth at K planes", "OSM-", "slices", 4,
-                                              "passes/techniques/osm/osm_build.comp", "osm build", kParameters});
+                                              "passes/techniques/osm/osm_build.comp", "osm build",
+                                              "passes/techniques/osm/osm_fixed_build.comp", "osm fixed build", kParameters});
   return technique;
 }
 

@@ -1,30 +1,34 @@
-// The fixed-memory AVSM build (passes/avsm_fixed_build_pass.h): one workgroup per
-// 8x8 tile of the light's map, one thread per texel, the texel's curve in registers
-// from start to end. No per-fragment list exists; each texel inserts, in this order:
+// A light's map built straight from its casters, without per-fragment lists
+// (passes/fixed_build_pass.h): one workgroup per 8x8 tile of the map, one thread per
+// texel, the texel's state (an AVSM curve, opacity planes, Fourier terms) in registers
+// from start to end. Each texel takes, in this order:
 //   1. the nearest opaque caster (the light depth image) as one blocking segment;
-//      anything that starts behind it is rejected before insertion;
+//      anything that starts behind it is rejected before it is taken;
 //   2. every hair strand crossing, in segment order: the tile's bin (hair_bins_*.comp)
 //      is put in segment order, then walked in batches of 64 ribbons that every
 //      thread tests its texel centre against (a tile whose bin did not fit walks
 //      every segment instead);
 //   3. the smoke along the texel's ray, segment by segment as the march goes.
 // The order is fixed, so the result is the same on every run without any sort of
-// fragments. Built per node count (AVSM_NODES), with the density atlas
-// (avsm_fixed_build.comp) or NanoVDB (avsm_fixed_build_nanovdb.comp).
+// fragments. Smoke density comes from the brick atlas.
+//
+// The includer (a technique's <name>_fixed_build.comp) defines, after including:
+//   void fixed_clear();                        // the empty texel
+//   void fixed_take(float entry_depth, float exit_depth, float transmittance);
+//   void fixed_store(uint texel_index);        // into `map_texels`
+// and may read `pc` (shared/passes/fixed_build.h).
 #ifndef AVSM_FIXED_BUILD_GLSL
 #define AVSM_FIXED_BUILD_GLSL
 #extension GL_GOOGLE_include_directive : require
-#include "avsm/avsm_core.glsl"
+#extension GL_KHR_shader_subgroup_vote : require
 
 #define AVSM_VOLUME_BINDING_NANOVDB 0
 #define AVSM_VOLUME_BINDING_MAJORANTS 1
 #define AVSM_VOLUME_BINDING_PARAMETERS 2
-#ifndef AVSM_FIXED_BUILD_NANOVDB
 #define AVSM_VOLUME_BINDING_ATLAS 3  // the atlas, and its brick slots at 4
-#endif
-#define AVSM_HAIR_BINDING 5  // points, segments, strands
+#define AVSM_HAIR_BINDING 5          // points, segments, strands
 #include "shared/hair_bins.h"
-#include "shared/passes/avsm_fixed_build.h"
+#include "shared/passes/fixed_build.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 8) uniform sampler2D light_depth;
@@ -32,16 +36,17 @@ layout(std430, binding = 9) readonly buffer HairTiles { uint hair_tiles[]; };
 layout(std430, binding = 10) buffer HairBinEntries { uint hair_bin_entries[]; };
 layout(std430, binding = 11) buffer FixedBuildCounter { uint fixed_counters[4]; };
 layout(std430, binding = 12) writeonly buffer Map { vec4 map_texels[]; };
-#include "avsm/avsm_map.glsl"
 
-// This texel's curve and what has gone into it (module-scope: per invocation).
-AvsmCurve curve;
+void fixed_clear();
+void fixed_take(float entry_depth, float exit_depth, float transmittance);
+void fixed_store(uint texel_index);
+
 float blocker_end = 3.4e38;  // the nearest opaque caster's far side: T is 0 behind it
 uint inserted = 0u;
 
 void insert(float entry_depth, float exit_depth, float transmittance) {
   if (entry_depth >= blocker_end) return;  // early rejection
-  avsm_insert_segment(curve, entry_depth, exit_depth, transmittance, AVSM_NODES);
+  fixed_take(entry_depth, exit_depth, transmittance);
   ++inserted;
 }
 
@@ -68,6 +73,14 @@ void insert_opaque(ivec2 texel, mat4 world_from_light) {
 // ---- 2. hair ----
 shared vec4 ribbon_x[64], ribbon_y[64], ribbon_depth[64], ribbon_inverse_w[64];
 shared float ribbon_transmittance[64];  // < 0: no ribbon in this slot
+
+// A texel's crossings of a run of kRibbonRun ribbons (depth, transmittance), in ribbon
+// order. Each texel first finds its crossings, then the subgroup inserts them in step:
+// a ribbon covers one or two texels of a subgroup, and inserting as each test passes
+// would run the insertion (the same instructions in every lane) once per crossing
+// instead of once per round of crossings.
+const uint kRibbonRun = 16u;
+shared vec2 crossings[kRibbonRun][64];
 
 // Puts hair_bin_entries[offset, offset + count) in ascending order: a bitonic network
 // over the next power of two whose every comparison puts the smaller value first, so
@@ -127,17 +140,30 @@ void insert_hair(ivec2 texel, bool in_map) {
     ribbon_transmittance[gl_LocalInvocationIndex] = transmittance;
     barrier();
     uint batch = min(64u, n - base);
-    for (uint k = 0u; k < 64u; ++k) {
-      if (k >= batch) break;  // the same bound in every lane
-      float t = ribbon_transmittance[k];
-      HairFootprint f;
-      f.x = ribbon_x[k];
-      f.y = ribbon_y[k];
-      f.depth = ribbon_depth[k];
-      f.inverse_w = ribbon_inverse_w[k];
-      float depth;
-      if (in_map && t >= 0.0 && hair_footprint_covers(f, centre, depth))
-        insert(depth, depth + texel_thickness(depth), t);
+    for (uint run = 0u; run < 64u; run += kRibbonRun) {
+      if (run >= batch) break;  // the same bound in every lane
+      uint found = 0u;
+      for (uint k = run; k < run + kRibbonRun; ++k) {
+        if (k >= batch) break;
+        float t = ribbon_transmittance[k];
+        HairFootprint f;
+        f.x = ribbon_x[k];
+        f.y = ribbon_y[k];
+        f.depth = ribbon_depth[k];
+        f.inverse_w = ribbon_inverse_w[k];
+        float depth;
+        if (in_map && t >= 0.0 && hair_footprint_covers(f, centre, depth) && depth < blocker_end) {
+          crossings[found][gl_LocalInvocationIndex] = vec2(depth, t);
+          ++found;
+        }
+      }
+      for (uint j = 0u; j < kRibbonRun; ++j) {
+        if (!subgroupAny(j < found)) break;  // the subgroup's longest run of crossings
+        if (j < found) {
+          vec2 c = crossings[j][gl_LocalInvocationIndex];
+          insert(c.x, c.x + texel_thickness(c.x), c.y);
+        }
+      }
     }
     barrier();
   }
@@ -148,13 +174,13 @@ void main() {
   // No early return: the hair batches synchronise the workgroup.
   bool in_map = all(lessThan(uvec2(texel), uvec2(pc.resolution)));
   mat4 world_from_light = inverse(pc.light_from_world);
-  curve = avsm_clear(pc.facing_point.w);
+  fixed_clear();
   if (in_map) insert_opaque(texel, world_from_light);
   if (pc.segment_count > 0u) insert_hair(texel, in_map);
   if (!in_map) return;
   march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, pc.volume_count,
                          pc.samples_per_segment, blocker_end);
-  avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(AVSM_NODES / 2), curve, AVSM_NODES);
+  fixed_store(uint(texel.y) * pc.resolution + uint(texel.x));
   if (inserted > 0u) atomicAdd(fixed_counters[kFixedCounterInserted], inserted);
 }
 
