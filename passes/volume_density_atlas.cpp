@@ -113,6 +113,7 @@ void VolumeDensityAtlas::build(const gpu::Context& ctx, const std::vector<scene:
   desc.width = uint32_t(size.x);
   desc.height = uint32_t(size.y);
   desc.depth = uint32_t(size.z);
+  desc.volume = true;  // sampled as a sampler3D, also when it is one slice deep
   desc.format = kFormat;
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "volume density atlas";

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """AVSM-4/8/12/16, deep shadow maps at two error thresholds, opacity shadow maps
 (32 planes) and Fourier opacity maps (16 terms) against the uncompressed reference,
-measured in one run (a table in the manner of the AVSM paper's Table 1).
+measured in one run (a table in the manner of the AVSM paper's Table 1). AVSM-4/8/12,
+OSM-32 and FOM-16 also as the fixed-memory build ("fixed" rows: straight from the
+casters, no lists), with a line comparing fixed to lists.
 
 Renders the default scene once per technique with avsm-capture, reads the
 per-pass GPU timings (timings.json) and probes every light's transmittance at a
@@ -10,8 +12,10 @@ capture, sort, resolve, mips, camera (shading with lookups) and frame ms, the
 map memory, and the mean/max transmittance error against the uncompressed lists
 at the receivers: a 20x12x16 grid through the scene's bounds, counting the points
 whose reference transmittance is strictly between 0 and 1 (partially shadowed:
-where a compressed curve can be wrong). The last column is each row's frame time
-over AVSM-8's.
+where a compressed curve can be wrong). Then each row's frame time over AVSM-8's and
+the ns per segment put into the maps (the build passes' time over the segments
+they took). "trans MiB": the transient bytes besides the map (the lists, or the
+fixed build's depth image and hair bins).
 
 usage: bench/avsm/techniques.py [--build DIR] [--width W] [--height H] [--frames K]
                                 [--shadow-res R] [--filter F] [--scene FILE]
@@ -120,7 +124,9 @@ def main():
             # The fixed build stops at 12 nodes (passes/techniques/avsm/avsm.cpp says why).
             [(f"AVSM-{n} fixed", "avsm", n, (), "fixed") for n in (4, 8, 12)] +
             [(f"DSM e={e}", "dsm", None, (f"error={e}",)) for e in (0.01, 0.05)] +
-            [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))])
+            [("OSM-32", "osm", None, ("slices=32",)), ("FOM-16", "fom", None, ("terms=16",))] +
+            # Built straight from the casters, as their papers build them (additive).
+            [("OSM-32 fixed", "osm", None, ("slices=32",), "fixed"), ("FOM-16 fixed", "fom", None, ("terms=16",), "fixed")])
     # Every other registered technique at its defaults, so a new one is measured too.
     registered = subprocess.run([capture, "--list-techniques"], check=True, capture_output=True, text=True).stdout.split()
     rows += [(name, name, None, ()) for name in registered if name not in {row[1] for row in rows}]
@@ -157,6 +163,7 @@ def main():
     frame = {label: r[0]["frame"] for label, r in results.items()}
     print("ratios (frame ms, this run): "
           f"AVSM-8 / OSM-32 = {frame['AVSM-8'] / frame['OSM-32']:.2f}; "
+          f"AVSM-8 fixed / OSM-32 fixed = {frame['AVSM-8 fixed'] / frame['OSM-32 fixed']:.2f}; "
           f"DSM e=0.01 / AVSM-8 = {frame['DSM e=0.01'] / frame['AVSM-8']:.2f}; "
           f"uncompressed / AVSM-8 = {frame['uncompressed'] / frame['AVSM-8']:.2f}")
     build_ms = {label: r[0].get("capture", 0) + r[0].get("sort", 0) + r[0].get("resolve", 0) for label, r in results.items()}

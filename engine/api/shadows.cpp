@@ -45,6 +45,7 @@ scene::Light to_scene(const Light& light, size_t index) {
   out.shadow.resolution = int(light.resolution);
   out.shadow.filter = to_scene(light.filter);
   out.shadow.sort = light.sort;
+  out.shadow.build = light.fixed_memory_build ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists;
   return out;
 }
 
@@ -90,7 +91,8 @@ std::vector<LightStats> Shadows::finish_frame() {
   std::vector<LightStats> result;
   for (const passes::LightShadowStats& s : impl_->maps.frame_stats())
     result.push_back({s.light, s.nodes, s.resolution, s.mip_levels, s.map_bytes, s.capture_bytes, s.capture_requested,
-                      s.capture_capacity, s.overflowed, s.grew});
+                      s.capture_capacity, s.overflowed, s.grew,
+                      s.fixed_build ? s.fixed_build->transient_bytes() : 0});
   return result;
 }
 

@@ -206,7 +206,9 @@ uint32_t format_bytes_per_texel(VkFormat format) {
   }
 }
 
-VkImageType image_type_of(const ImageDesc& desc) { return desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D; }
+VkImageType image_type_of(const ImageDesc& desc) {
+  return desc.depth > 1 || desc.volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+}
 
 static VkImageCreateInfo image_info(const ImageDesc& desc) {
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -250,7 +252,7 @@ VkImageSubresourceRange Image::full_range() const {
 }
 
 static VkImageViewType view_type_of(const ImageDesc& desc) {
-  if (desc.depth > 1) return VK_IMAGE_VIEW_TYPE_3D;
+  if (desc.depth > 1 || desc.volume) return VK_IMAGE_VIEW_TYPE_3D;
   return desc.array_layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
 }
 

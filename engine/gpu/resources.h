@@ -114,6 +114,7 @@ class Buffer {
 struct ImageDesc {
   uint32_t width = 1, height = 1, depth = 1;
   uint32_t mip_levels = 1, array_layers = 1;
+  bool volume = false;  // a 3D image (and view) even when depth is 1
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageUsageFlags usage = 0;
   std::string name;

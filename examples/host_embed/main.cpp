@@ -12,7 +12,7 @@
 // (the box's shadow, displaced along the light; the hair's partial shadow) and exits
 // non-zero when they disagree. Any validation message also fails the run.
 //
-//   host_embed [--out DIR] [--size PIXELS] [--validation] [--check] [--no-shadows]
+//   host_embed [--out DIR] [--size PIXELS] [--validation] [--check] [--no-shadows] [--fixed-memory-build]
 // --validation (or AVSM_VALIDATION=1) enables VK_LAYER_KHRONOS_validation with
 // synchronization validation. --no-shadows binds unshadowed inputs instead of the maps:
 // the checks must then fail (the test uses it to show that they can).
@@ -352,6 +352,7 @@ struct Options {
   std::filesystem::path out = ".";
   uint32_t size = 128;
   bool validation = false, check = false, shadows = true;
+  bool fixed_memory_build = false;  // build the map straight from the casters (avsm::Light)
 };
 
 Options parse_options(int argc, char** argv) {
@@ -365,7 +366,9 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--validation") options.validation = true;
     else if (arg == "--check") options.check = true;
     else if (arg == "--no-shadows") options.shadows = false;
-    else throw std::invalid_argument("unknown option '" + arg + "' (--out DIR --size N --validation --check --no-shadows)");
+    else if (arg == "--fixed-memory-build") options.fixed_memory_build = true;
+    else throw std::invalid_argument("unknown option '" + arg +
+                                     "' (--out DIR --size N --validation --check --no-shadows --fixed-memory-build)");
   }
   return options;
 }
@@ -459,6 +462,7 @@ int run(const Options& options) {
     sun.direction = kLightTravel;
     sun.nodes = 8;
     sun.resolution = 256;
+    sun.fixed_memory_build = options.fixed_memory_build;
     shadows.set_light(sun, casters.bounds);
     GroundShading ground(context, shadows, options.size);
 
@@ -484,9 +488,10 @@ int run(const Options& options) {
       ground.add_to_graph(graph, maps);
       submit_frame(host, cmd, graph, executor);
       for (const avsm::LightStats& s : shadows.finish_frame())
-        std::printf("frame %d light '%s': %u nodes, %ux%u, %llu segments captured (capacity %llu)%s\n", frame,
-                    s.name.c_str(), s.nodes, s.resolution, s.resolution, (unsigned long long)s.segments_captured,
-                    (unsigned long long)s.segment_capacity, s.overflowed ? ", overflowed" : "");
+        std::printf("frame %d light '%s': %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, %llu bytes of "
+                    "fixed build\n", frame, s.name.c_str(), s.nodes, s.resolution, s.resolution,
+                    (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
+                    s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
     }
     vkDestroyCommandPool(host.device(), pool, nullptr);
 

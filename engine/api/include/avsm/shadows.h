@@ -98,6 +98,9 @@ struct Light {
   uint32_t resolution = 512;               // map texels per side
   ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
   bool sort = true;                        // sort each texel's segments first: the same map every run
+  // Build the map straight from the casters, in fixed memory (no capture lists; 4 to
+  // 12 nodes; volumes need their density atlas): see README "fixed-memory build".
+  bool fixed_memory_build = false;
 };
 
 // The camera the host shades from; only trilinear filtering uses it (a pixel's
@@ -118,6 +121,7 @@ struct LightStats {
   uint64_t segment_capacity = 0;    // what the capture buffer held this frame
   bool overflowed = false;          // segments were dropped: lighter shadows this frame
   bool grew = false;                // the capture buffer grew: the next frame fits
+  uint64_t fixed_build_bytes = 0;   // fixed build: its depth image and hair bins this frame
 };
 
 class Shadows {
