@@ -18,8 +18,10 @@ using glm::mix;
 #pragma GCC diagnostic ignored "-Wunused-function"
 namespace {
 #define AVSM_INOUT(T) T&
+#define AVSM_UNROLL
 #include "../shaders/avsm/avsm_core.glsl"
 #undef AVSM_INOUT
+#undef AVSM_UNROLL
 }  // namespace
 #pragma GCC diagnostic pop
 

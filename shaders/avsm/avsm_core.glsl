@@ -22,6 +22,14 @@
 #define AVSM_INOUT(T) inout T
 #endif
 
+// Loops over a curve's slots: unrolled, so that every slot is a register. The compiler
+// unrolls short loops by itself (on lavapipe up to 16 iterations) and not the 18 of a
+// 16-node curve without being asked. C++ (passes/avsm_core.h) defines it empty.
+#ifndef AVSM_UNROLL
+#extension GL_EXT_control_flow_attributes : require
+#define AVSM_UNROLL [[unroll]]
+#endif
+
 // Room for the node count plus the two nodes one insertion adds. Every loop below
 // runs over the whole capacity with the real condition inside, so the compiler can
 // unroll it and keep the curve in registers; that is what makes insertion fast (on
@@ -46,7 +54,7 @@ struct AvsmCurve {
 // course notes' "clear to (far, 1)").
 AvsmCurve avsm_clear(float far_depth) {
   AvsmCurve c;
-  for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i) {
+  AVSM_UNROLL for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i) {
     c.depth[i] = far_depth;
     c.trans[i] = 1.0f;
   }
@@ -58,7 +66,7 @@ AvsmCurve avsm_clear(float far_depth) {
 float avsm_evaluate_linear(AvsmCurve c, float d) {
   float value = c.trans[0];  // behind the last node: its value
   bool found = false;
-  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
+  AVSM_UNROLL for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
     bool live = i < c.count;
     if (live && !found) {
       if (d < c.depth[i]) {
@@ -81,9 +89,9 @@ float avsm_evaluate_linear(AvsmCurve c, float d) {
 int avsm_insert_node(AVSM_INOUT(AvsmCurve) c, float d) {
   float value = avsm_evaluate_linear(c, d);
   int at = 0;
-  for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i)
+  AVSM_UNROLL for (int i = 0; i < AVSM_CURVE_CAPACITY; ++i)
     if (i < c.count && c.depth[i] <= d) at = i + 1;
-  for (int j = AVSM_CURVE_CAPACITY - 1; j > 0; --j) {
+  AVSM_UNROLL for (int j = AVSM_CURVE_CAPACITY - 1; j > 0; --j) {
     if (j == at) {
       c.depth[j] = d;
       c.trans[j] = value;
@@ -108,7 +116,7 @@ float avsm_removal_cost(AvsmCurve c, int i) {
 }
 
 void avsm_remove_node(AVSM_INOUT(AvsmCurve) c, int i) {
-  for (int k = 1; k + 1 < AVSM_CURVE_CAPACITY; ++k) {
+  AVSM_UNROLL for (int k = 1; k + 1 < AVSM_CURVE_CAPACITY; ++k) {
     if (k >= i && k + 1 < c.count) {
       c.depth[k] = c.depth[k + 1];
       c.trans[k] = c.trans[k + 1];
@@ -123,7 +131,7 @@ void avsm_compress_once(AVSM_INOUT(AvsmCurve) c, int max_nodes) {
   if (c.count <= max_nodes || c.count <= 2) return;
   int cheapest = 1;
   float cheapest_cost = avsm_removal_cost(c, 1);
-  for (int i = 2; i + 1 < AVSM_CURVE_CAPACITY; ++i) {
+  AVSM_UNROLL for (int i = 2; i + 1 < AVSM_CURVE_CAPACITY; ++i) {
     if (i + 1 < c.count) {
       float cost = avsm_removal_cost(c, i);
       if (cost < cheapest_cost) {
@@ -157,7 +165,7 @@ float avsm_segment_transmittance(float entry, float exit_depth, float exit_trans
 // opaque blocker is a short segment with exit_trans 0), then compresses.
 void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth, float exit_trans, int max_nodes) {
   float far_depth = c.depth[0];  // the last node's depth
-  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i)
+  AVSM_UNROLL for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i)
     if (i < c.count) far_depth = c.depth[i];
   entry = min(entry, far_depth);
   exit_depth = min(max(exit_depth, entry), far_depth);
@@ -165,7 +173,7 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
   int last = avsm_insert_node(c, exit_depth);
   // The entry node keeps its value (the segment starts at 1); nodes inside get
   // the segment's value at their depth, nodes from the exit on its exit value.
-  for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
+  AVSM_UNROLL for (int i = 1; i < AVSM_CURVE_CAPACITY; ++i) {
     if (i < c.count && i > first)
       c.trans[i] *= i >= last ? exit_trans : avsm_segment_transmittance(entry, exit_depth, exit_trans, c.depth[i]);
   }
@@ -180,7 +188,7 @@ void avsm_insert_segment(AVSM_INOUT(AvsmCurve) c, float entry, float exit_depth,
 // simplification used to build a mip level from the merged curves of 2x2
 // texels. The newest node is the last one, so it is never the one removed.
 void avsm_append_node(AVSM_INOUT(AvsmCurve) c, float d, float t, int max_nodes) {
-  for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
+  AVSM_UNROLL for (int j = 0; j < AVSM_CURVE_CAPACITY; ++j) {
     if (j == c.count) {
       c.depth[j] = d;
       c.trans[j] = t;

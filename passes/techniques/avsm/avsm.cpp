@@ -39,15 +39,6 @@ class Avsm final : public ShadowTechnique {
   std::string label(const scene::ShadowSettings& s) const override { return "AVSM-" + std::to_string(s.nodes); }
   bool stores_avsm_nodes() const override { return true; }
   bool builds_fixed() const override { return true; }
-  // 16 nodes (an 18-node curve in the fixed build's kernel) rendered wrong maps on
-  // lavapipe (mean error against the reference 0.004 where 12 nodes give 0.0004, some
-  // texels off by 0.5: its known miscompile of private arrays above about 16 entries),
-  // so the fixed build stops at 12 until that is understood.
-  void check(const scene::ShadowSettings& s, const std::string& who) const override {
-    if (s.build == scene::ShadowBuild::fixed && s.nodes > 12)
-      throw std::invalid_argument(who + ": the fixed build takes 4, 8 or 12 AVSM nodes, not " +
-                                  std::to_string(s.nodes) + "; set nodes to 12 or less, or build to \"lists\"");
-  }
   uint32_t mip_levels(const scene::ShadowSettings& s, uint32_t resolution) const override {
     return s.filter == scene::ShadowFilter::trilinear ? AvsmMapLayout::full_mip_count(resolution) : 1;
   }

@@ -98,8 +98,8 @@ struct Light {
   uint32_t resolution = 512;               // map texels per side
   ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
   bool sort = true;                        // sort each texel's segments first: the same map every run
-  // Build the map straight from the casters, in fixed memory (no capture lists; 4 to
-  // 12 nodes; volumes need their density atlas): see README "fixed-memory build".
+  // Build the map straight from the casters, in fixed memory (no capture lists;
+  // volumes need their density atlas): see README "fixed-memory build".
   bool fixed_memory_build = false;
 };
 
