@@ -43,7 +43,7 @@ rg::BufferHandle AvsmFixedBuildPass::add_to_graph(rg::Graph& graph, const std::s
   const shared::AvsmFixedBuildPush push{light.light_from_world,
                                         light.depth_plane,
                                         glm::vec4(hair_ribbon_facing_point(light), light.far_depth),
-                                        {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f},
+                                        {light.texel_size_base, light.texel_size_per_depth, light.near_depth, 0.0f},
                                         light.resolution,
                                         hair.segment_count,
                                         volumes.volume_count,

@@ -154,7 +154,8 @@ void main() {
   if (!in_map) return;
   march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, pc.volume_count,
                          pc.samples_per_segment, blocker_end);
-  avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(AVSM_NODES / 2), curve, AVSM_NODES);
+  avsm_map_store(avsm_map_texel_base(pc.resolution, uint(AVSM_NODES), 0u, uint(texel.x), uint(texel.y)), curve,
+                 AVSM_NODES, pc.texel_size.z, pc.facing_point.w);
   if (inserted > 0u) atomicAdd(fixed_counters[kFixedCounterInserted], inserted);
 }
 

@@ -8,7 +8,8 @@ GPU_NAMESPACE_BEGIN
   F(mat4, light_from_world)     /* light clip from world */                              \
   F(vec4, depth_plane)          /* light depth(p) = dot(xyz, p) + w */                   \
   F(vec4, facing_point)         /* xyz: where hair ribbons turn to; w: the far depth */  \
-  F(vec4, texel_size)           /* xy: world size of a texel at depth d: x + y * d */    \
+  F(vec4, texel_size)           /* xy: world size of a texel at depth d: x + y * d;      \
+                                   z: the near depth (nodes stored over [z, far]) */     \
   F(uint, resolution)                                                                    \
   F(uint, segment_count)        /* hair strand segments */                               \
   F(uint, volume_count)                                                                  \
