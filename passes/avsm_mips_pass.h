@@ -15,13 +15,14 @@ namespace avsm::passes {
 class AvsmMipsPass {
  public:
   AvsmMipsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds a pass per level above 0; returns the map's new version.
+  // Adds a pass per level above 0, reading and storing nodes over the depth range level 0
+  // was stored over; returns the map's new version.
   rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
-                                const AvsmMapLayout& layout) const;
+                                const AvsmMapLayout& layout, float near_depth, float far_depth) const;
 
  private:
   rg::BufferHandle add_level(rg::Graph& graph, const std::string& prefix, rg::BufferHandle map,
-                             const AvsmMapLayout& layout, uint32_t level) const;
+                             const AvsmMapLayout& layout, uint32_t level, float near_depth, float far_depth) const;
 
   gpu::Context& ctx_;
   gpu::ComputeVariants pipelines_;  // per node count

@@ -11,10 +11,11 @@ AvsmResolvePass::AvsmResolvePass(gpu::Context& ctx, const gpu::ShaderLibrary& sh
     : build_(ctx, avsm_node_variants(ctx, shaders, "shaders/passes/avsm_resolve.comp", "avsm resolve"), "avsm resolve") {}
 
 rg::BufferHandle AvsmResolvePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                               rg::BufferHandle map, const AvsmMapLayout& layout, float far_depth) const {
+                                               rg::BufferHandle map, const AvsmMapLayout& layout, float near_depth,
+                                               float far_depth) const {
   if (layout.nodes < 4 || layout.nodes > 16 || layout.nodes % 4 != 0)
     throw std::invalid_argument("AvsmResolvePass: " + std::to_string(layout.nodes) + " nodes; use 4, 8, 12 or 16");
-  return build_.add_to_graph(graph, prefix, lists, map, {layout.resolution, layout.nodes, 0.0f, far_depth, 0.0f});
+  return build_.add_to_graph(graph, prefix, lists, map, {layout.resolution, layout.nodes, near_depth, far_depth, 0.0f});
 }
 
 }  // namespace avsm::passes

@@ -1,7 +1,8 @@
 #pragma once
 // AVSM resolve: per light texel, streams the capture list through the AVSM core
 // (insert each segment, compress to N nodes by the smallest-area rule) and
-// writes level 0 of the light's map. Shader: shaders/passes/avsm_resolve.comp.
+// writes level 0 of the light's map, 4 bytes per node (shaders/shared/map_layouts.h).
+// Shader: shaders/passes/avsm_resolve.comp.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
@@ -15,9 +16,11 @@ namespace avsm::passes {
 class AvsmResolvePass {
  public:
   AvsmResolvePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds "<prefix> avsm resolve"; `map` must hold at least layout.bytes(). Returns the written map.
+  // Adds "<prefix> avsm resolve"; `map` must hold at least layout.bytes(). Curves clear to
+  // far_depth; nodes are stored over [near_depth, far_depth]. Returns the written map.
   rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                rg::BufferHandle map, const AvsmMapLayout& layout, float far_depth) const;
+                                rg::BufferHandle map, const AvsmMapLayout& layout, float near_depth,
+                                float far_depth) const;
 
  private:
   MapBuildPass build_;

@@ -240,12 +240,14 @@ std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& 
   const gpu::Buffer& map = shadows.avsm_map(light);
   if (!map || !shadows.technique(light).stores_avsm_nodes()) return {};
   const passes::AvsmMapLayout& layout = shadows.map_layout(light);
-  const uint32_t groups = layout.nodes / 4;
-  const uint64_t base = layout.texel_base(0, x, y);
-  const std::vector<glm::vec4> curve = read_map_vec4s(ctx, map, base, layout.vec4s_per_texel());
+  const passes::LightView& view = shadows.light_views().at(light);
+  const std::vector<glm::vec4> curve =
+      read_map_vec4s(ctx, map, layout.texel_base(0, x, y), layout.vec4s_per_texel());
   std::vector<CurveNode> nodes;
   for (uint32_t i = 0; i < layout.nodes; ++i) {
-    const CurveNode n{curve[i / 4][i % 4], curve[groups + i / 4][i % 4]};
+    const passes::AvsmMapLayout::Node stored =
+        passes::AvsmMapLayout::node(curve.data(), i, view.near_depth, view.far_depth);
+    const CurveNode n{stored.depth, stored.transmittance};
     if (!nodes.empty() && n.depth == nodes.back().depth && n.transmittance == nodes.back().transmittance) continue;
     nodes.push_back(n);
   }

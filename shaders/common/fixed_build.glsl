@@ -153,7 +153,10 @@ void insert_hair(ivec2 texel, bool in_map) {
         f.inverse_w = ribbon_inverse_w[k];
         float depth;
         if (in_map && t >= 0.0 && hair_footprint_covers(f, centre, depth) && depth < blocker_end) {
-          crossings[found][gl_LocalInvocationIndex] = vec2(depth, t);
+          // The slot by a loop counter, the same in every lane: stored at a per-lane
+          // index, lavapipe wrote other workgroup memory (an OSM build's planes) too.
+          for (uint slot = 0u; slot < kRibbonRun; ++slot)
+            if (slot == found) crossings[slot][gl_LocalInvocationIndex] = vec2(depth, t);
           ++found;
         }
       }

@@ -15,4 +15,6 @@ void fixed_take(float entry_depth, float exit_depth, float transmittance) {
   avsm_insert_segment(curve, entry_depth, exit_depth, transmittance, AVSM_NODES);
 }
 
-void fixed_store(uint texel_index) { avsm_map_store(texel_index * uint(AVSM_NODES / 2), curve, AVSM_NODES); }
+void fixed_store(uint texel_index) {
+  avsm_map_store(texel_index * avsm_texel_vec4s(uint(AVSM_NODES)), curve, AVSM_NODES, pc.near_depth, pc.facing_point.w);
+}

@@ -1,7 +1,8 @@
 #version 460
 // One AVSM mip level from the one above: per texel, avsm_mip_merge of its 2x2
-// children (clamped at odd edges): their mean transmittance at every child node
-// depth, re-compressed to N nodes. Levels sit one after another in the light's map.
+// children (clamped at odd edges), loaded from their stored (packed) nodes: their mean
+// transmittance at every child node depth, re-compressed to N nodes and stored packed
+// over the same depth range. Levels sit one after another in the light's map.
 #extension GL_GOOGLE_include_directive : require
 #include "avsm/avsm_core.glsl"
 
@@ -11,15 +12,15 @@ layout(std430, binding = 0) buffer AvsmMap { vec4 map_texels[]; };
 
 #include "shared/passes/avsm_mips.h"
 
+// A stored curve, all N slots as nodes (the padding repeats the last node).
 AvsmCurve load_curve(ivec2 texel, int n) {
-  uint base = pc.source_offset + (uint(texel.y) * pc.source_size + uint(texel.x)) * uint(n / 2);
+  uint base = pc.source_offset + (uint(texel.y) * pc.source_size + uint(texel.x)) * avsm_texel_vec4s(uint(n));
   AvsmCurve c = avsm_clear(0.0f);
   for (int g = 0; g < n / 4; ++g) {
-    vec4 depths = map_texels[base + uint(g)];
-    vec4 trans = map_texels[base + uint(n / 4 + g)];
+    uvec4 nodes = floatBitsToUint(map_texels[base + uint(g)]);
     for (int k = 0; k < 4; ++k) {
-      c.depth[4 * g + k] = depths[k];
-      c.trans[4 * g + k] = trans[k];
+      c.depth[4 * g + k] = avsm_node_depth(nodes[k], pc.near_depth, pc.far_depth);
+      c.trans[4 * g + k] = avsm_node_transmittance(nodes[k]);
     }
   }
   c.count = n;
@@ -35,5 +36,6 @@ void main() {
                                     load_curve(min(2 * texel + ivec2(1, 0), ivec2(last)), n),
                                     load_curve(min(2 * texel + ivec2(0, 1), ivec2(last)), n),
                                     load_curve(min(2 * texel + ivec2(1, 1), ivec2(last)), n), n);
-  avsm_map_store(pc.target_offset + (uint(texel.y) * pc.target_size + uint(texel.x)) * uint(n / 2), merged, n);
+  uint target = pc.target_offset + (uint(texel.y) * pc.target_size + uint(texel.x)) * avsm_texel_vec4s(uint(n));
+  avsm_map_store(target, merged, n, pc.near_depth, pc.far_depth);
 }

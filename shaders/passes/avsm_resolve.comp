@@ -2,7 +2,7 @@
 // AVSM resolve: per light texel, stream the texel's capture list through the
 // AVSM core (shaders/avsm/avsm_core.glsl) — clear to (far, 1), composite each
 // segment, compress to N nodes by the smallest-area rule — and store the N nodes
-// in level 0 of the light's map (layout: shaders/common/shadow_lookup.glsl).
+// packed in level 0 of the light's map (layout: shaders/shared/map_layouts.h).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #define AVSM_CAPTURE_BINDING 0
@@ -32,5 +32,6 @@ void main() {
       node = s.next;
     }
   }
-  avsm_map_store((uint(texel.y) * pc.resolution + uint(texel.x)) * uint(n / 2), curve, n);
+  avsm_map_store(avsm_map_texel_base(pc.resolution, uint(n), 0u, uint(texel.x), uint(texel.y)), curve, n, pc.near_depth,
+                 pc.far_depth);
 }

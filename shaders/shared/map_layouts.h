@@ -6,26 +6,50 @@
 GPU_NAMESPACE_BEGIN
 
 // ---- AVSM map: one vec4 array per light ----
-// Mip levels one after another; in a level, texels row by row; per texel N/4 vec4 of
-// node depths, then N/4 vec4 of node transmittances (a curve is 2N floats,
-// contiguous). Texels with fewer than N nodes repeat their last node. Offsets count vec4s.
+// Mip levels one after another; in a level, texels row by row; per texel N/4 vec4, each
+// holding 4 nodes front to back, one 32-bit word per node (uint bits in the float array:
+// written with uintBitsToFloat, read with floatBitsToUint): the depth in the low 16 bits,
+// unorm over the light's depth range [near, far] (GpuShadow::depth_range.xy), the
+// transmittance in the high 16 bits, unorm. Texels with fewer than N nodes repeat their
+// last node. Offsets count vec4s.
 
 GPU_FUNCTION uint avsm_level_size(uint resolution, uint level) { return max(resolution >> level, 1u); }
+
+// vec4s per texel: N nodes of 4 bytes.
+GPU_FUNCTION uint avsm_texel_vec4s(uint nodes) { return nodes / 4u; }
 
 // First vec4 of mip `level`.
 GPU_FUNCTION uint avsm_level_offset(uint resolution, uint nodes, uint level) {
   uint offset = 0u;
   for (uint l = 0u; l < level; ++l) {
     uint size = avsm_level_size(resolution, l);
-    offset += size * size * (nodes / 2u);
+    offset += size * size * avsm_texel_vec4s(nodes);
   }
   return offset;
 }
 
 // First vec4 of a texel's curve.
 GPU_FUNCTION uint avsm_map_texel_base(uint resolution, uint nodes, uint level, uint x, uint y) {
-  return avsm_level_offset(resolution, nodes, level) + (y * avsm_level_size(resolution, level) + x) * (nodes / 2u);
+  return avsm_level_offset(resolution, nodes, level) +
+         (y * avsm_level_size(resolution, level) + x) * avsm_texel_vec4s(nodes);
 }
+
+// x in [0, 1] to 16 bits, rounded to nearest: monotonic, so node order survives (nodes
+// closer than a step share a depth, and a step stays a step); 1 is the top code, so the
+// cleared curve's far node (at far_depth) stays inside the range.
+GPU_FUNCTION uint avsm_unorm16(float x) { return uint(min(max(x, 0.0f), 1.0f) * 65535.0f + 0.5f); }
+GPU_FUNCTION float avsm_from_unorm16(uint q) { return float(q) * (1.0f / 65535.0f); }  // 65535 -> exactly 1
+
+// One node's word. Decoding and storing again gives the same word (the mips re-store
+// their children's nodes).
+GPU_FUNCTION uint avsm_node_pack(float depth, float transmittance, float near_depth, float far_depth) {
+  return avsm_unorm16((depth - near_depth) / max(far_depth - near_depth, 1e-20f)) |
+         (avsm_unorm16(transmittance) << 16u);
+}
+GPU_FUNCTION float avsm_node_depth(uint node, float near_depth, float far_depth) {
+  return near_depth + avsm_from_unorm16(node & 0xffffu) * (far_depth - near_depth);
+}
+GPU_FUNCTION float avsm_node_transmittance(uint node) { return avsm_from_unorm16(node >> 16u); }
 
 // ---- Deep shadow map: one uint array per light ----
 // [0] pool nodes allocated, [1..3] unused, [4 + 2 t] texel t's first node, [5 + 2 t]

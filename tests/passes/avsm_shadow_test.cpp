@@ -58,7 +58,14 @@ constexpr float kCoreTolerance = 1e-5f;
 constexpr float kMonotoneSlack = 1e-6f;
 
 using shared::kListEnd;
+// The depth range of the tests' lists; their maps store nodes over it.
 constexpr float kNear = 1.0f, kFar = 100.0f;
+// One 16-bit step of a stored node (shaders/shared/map_layouts.h): what a node may move
+// by when stored (half a step) or between device and CPU (a step: rounding in the
+// core can put a value on the other side of a rounding boundary).
+constexpr float kDepthStep = (kFar - kNear) / 65535.0f, kTransStep = 1.0f / 65535.0f;
+constexpr float kStoredDepthTolerance = kDepthStep + kCoreTolerance;
+constexpr float kStoredTransTolerance = kTransStep + kCoreTolerance;
 
 // ---- Capture lists built on the CPU ----
 
@@ -121,35 +128,41 @@ std::vector<std::vector<Segment>> random_texel_segments(std::mt19937& rng, uint3
   return per_texel;
 }
 
-// ---- Stored curves (layout: shaders/avsm/avsm_map.glsl, passes/avsm_map_layout.h) ----
+// ---- Stored curves (layout: shaders/shared/map_layouts.h, passes/avsm_map_layout.h) ----
 
-// A texel's N stored nodes, padding included.
+// A texel's N stored nodes (decoded), padding included.
 struct StoredCurve {
   std::vector<float> depth, trans;
 };
 
-// What avsm_map_store writes for curve c: its nodes, the last one repeated into unused slots.
+// What avsm_map_store writes for curve c over [kNear, kFar], decoded: its nodes packed to
+// 16-bit depth and transmittance, the last one repeated into unused slots.
 StoredCurve stored_form(const AvsmCurve& c, int n) {
   StoredCurve s;
   for (int i = 0; i < n; ++i) {
     const int k = std::min(i, c.count - 1);
-    s.depth.push_back(c.depth[k]);
-    s.trans.push_back(c.trans[k]);
+    const uint32_t node = shared::avsm_node_pack(c.depth[k], c.trans[k], kNear, kFar);
+    s.depth.push_back(shared::avsm_node_depth(node, kNear, kFar));
+    s.trans.push_back(shared::avsm_node_transmittance(node));
   }
   return s;
 }
 
+// A depth as a stored node holds it over [kNear, kFar].
+float stored_depth(float d) {
+  return shared::avsm_node_depth(shared::avsm_node_pack(d, 1.0f, kNear, kFar), kNear, kFar);
+}
+
 StoredCurve read_texel(const std::vector<glm::vec4>& map, const AvsmMapLayout& layout, uint32_t level, uint32_t x,
-                       uint32_t y) {
-  const uint32_t n = layout.nodes, groups = n / 4;
-  const uint64_t base =
-      layout.level_offset(level) + (uint64_t(y) * layout.level_size(level) + x) * layout.vec4s_per_texel();
+                       uint32_t y, float near_depth = kNear, float far_depth = kFar) {
+  const uint64_t base = layout.texel_base(level, x, y);
+  EXPECT_LE(base + layout.vec4s_per_texel(), map.size());
   StoredCurve s;
-  for (uint32_t g = 0; g < groups; ++g)
-    for (int k = 0; k < 4; ++k) {
-      s.depth.push_back(map.at(base + g)[k]);
-      s.trans.push_back(map.at(base + groups + g)[k]);
-    }
+  for (uint32_t i = 0; i < layout.nodes; ++i) {
+    const AvsmMapLayout::Node node = AvsmMapLayout::node(map.data() + base, i, near_depth, far_depth);
+    s.depth.push_back(node.depth);
+    s.trans.push_back(node.transmittance);
+  }
   return s;
 }
 
@@ -219,10 +232,10 @@ rg::ImportState uploaded(VkImageLayout layout) {
 }
 
 // Imports the lists (heads as an R32_UINT storage image, nodes as a buffer) and a map
-// buffer, runs [CaptureSortPass,] AvsmResolvePass and (when layout.levels > 1)
+// buffer, runs, over [kNear, kFar], [CaptureSortPass,] AvsmResolvePass and (when layout.levels > 1)
 // AvsmMipsPass on the device, reads the whole map back.
 std::vector<glm::vec4> run_resolve(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const Lists& lists,
-                                   const AvsmMapLayout& layout, float far_depth, bool sort = false) {
+                                   const AvsmMapLayout& layout, bool sort = false) {
   const uint32_t res = lists.resolution;
   gpu::ImageDesc desc;
   desc.width = desc.height = res;
@@ -248,8 +261,8 @@ std::vector<glm::vec4> run_resolve(gpu::Context& ctx, const gpu::ShaderLibrary& 
   const passes::AvsmMipsPass mips(ctx, shaders);
   passes::CaptureLists lists_to_resolve = imported;
   if (sort) lists_to_resolve = sort_pass.add_to_graph(graph, "test", imported, res);
-  rg::BufferHandle written = resolve.add_to_graph(graph, "test", lists_to_resolve, map_handle, layout, far_depth);
-  mips.add_to_graph(graph, "test", written, layout);
+  rg::BufferHandle written = resolve.add_to_graph(graph, "test", lists_to_resolve, map_handle, layout, kNear, kFar);
+  mips.add_to_graph(graph, "test", written, layout, kNear, kFar);
 
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
   executor.bind(imported.heads, heads);
@@ -259,7 +272,8 @@ std::vector<glm::vec4> run_resolve(gpu::Context& ctx, const gpu::ShaderLibrary& 
   return gpu::read_buffer<glm::vec4>(ctx, map);
 }
 
-// Compares every stored node of every level with the CPU map; returns the largest error.
+// Compares every stored node of every level with the CPU map; returns the largest error,
+// in tolerances (kStoredDepthTolerance, kStoredTransTolerance).
 float compare_map(const std::vector<glm::vec4>& gpu_map, const std::vector<std::vector<StoredCurve>>& cpu,
                   const AvsmMapLayout& layout, const std::string& what) {
   float max_error = 0.0f;
@@ -271,22 +285,23 @@ float compare_map(const std::vector<glm::vec4>& gpu_map, const std::vector<std::
       for (uint32_t x = 0; x < size; ++x) {
         const StoredCurve got = read_texel(gpu_map, layout, level, x, y);
         const StoredCurve& want = cpu[level][size_t(y) * size + x];
+        // In 16-bit steps: depth and transmittance on one scale.
         float texel_error = 0.0f;
         for (uint32_t i = 0; i < layout.nodes; ++i) {
-          texel_error = std::max(texel_error, std::abs(got.depth[i] - want.depth[i]));
-          texel_error = std::max(texel_error, std::abs(got.trans[i] - want.trans[i]));
+          texel_error = std::max(texel_error, std::abs(got.depth[i] - want.depth[i]) / kStoredDepthTolerance);
+          texel_error = std::max(texel_error, std::abs(got.trans[i] - want.trans[i]) / kStoredTransTolerance);
         }
         max_error = std::max(max_error, texel_error);
-        if (!(texel_error <= kCoreTolerance)) {
+        if (!(texel_error <= 1.0f)) {
           ++bad_texels;
           if (reported++ < 3)
-            ADD_FAILURE() << what << ", level " << level << ", texel (" << x << ", " << y << "): |error| " << texel_error
+            ADD_FAILURE() << what << ", level " << level << ", texel (" << x << ", " << y << "): |error| "
+                          << texel_error << " tolerances"
                           << "\n  GPU:" << describe(got) << "\n  CPU:" << describe(want);
         }
       }
   }
-  EXPECT_EQ(bad_texels, size_t(0)) << what << ": texels differing from the CPU reference by more than "
-                                   << kCoreTolerance;
+  EXPECT_EQ(bad_texels, size_t(0)) << what << ": texels differing from the CPU reference by more than a 16-bit step";
   return max_error;
 }
 
@@ -298,7 +313,7 @@ TEST_F(AvsmShadowTest, AvsmResolveMatchesCpuReference) {
   for (uint32_t n : {4u, 8u, 12u, 16u}) {
     const Lists lists = make_lists(kRes, random_texel_segments(rng, kRes, 40), rng);
     const AvsmMapLayout layout{kRes, n, 1};
-    const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout, kFar);
+    const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout);
     ASSERT_EQ(gpu_map.size(), layout.bytes() / 16);
     const auto cpu = cpu_map(lists, layout, kFar);
     const std::string what = "N = " + std::to_string(n);
@@ -317,14 +332,16 @@ TEST_F(AvsmShadowTest, AvsmResolveMatchesCpuReference) {
       compressed += lists.walk(texel).size() * 2 + 1 > n;
       // Nothing is in front of the first node: it is fully lit.
       EXPECT_EQ(got.trans[0], 1.0f) << where << ":" << describe(got);
-      // The last node (behind every segment) is never removed.
-      EXPECT_NEAR(got.depth[n - 1], reference.depth[reference.count - 1], kCoreTolerance) << where;
-      EXPECT_NEAR(got.trans[n - 1], reference.trans[reference.count - 1], kCoreTolerance) << where;
-      // Depths never decrease; transmittance never increases, up to float rounding in the
-      // core's linear interpolation (the CPU core does the same; measured: at most 6e-8).
+      // The last node (behind every segment) is never removed; stored, it moves by at most half a step.
+      EXPECT_NEAR(got.depth[n - 1], reference.depth[reference.count - 1], kStoredDepthTolerance) << where;
+      EXPECT_NEAR(got.trans[n - 1], reference.trans[reference.count - 1], kStoredTransTolerance) << where;
+      // Depths never decrease (the 16-bit depths keep the order); transmittance never
+      // increases, up to float rounding in the core's linear interpolation (the CPU core
+      // does the same; measured: at most 6e-8), which storing can turn into one step.
       for (uint32_t i = 1; i < n; ++i) {
         EXPECT_GE(got.depth[i], got.depth[i - 1]) << where << " node " << i << ":" << describe(got);
-        EXPECT_LE(got.trans[i], got.trans[i - 1] + kMonotoneSlack) << where << " node " << i << ":" << describe(got);
+        EXPECT_LE(got.trans[i], got.trans[i - 1] + kTransStep + kMonotoneSlack)
+            << where << " node " << i << ":" << describe(got);
         max_rise = std::max(max_rise, got.trans[i] - got.trans[i - 1]);
       }
       if (::testing::Test::HasFailure()) return;
@@ -343,12 +360,14 @@ TEST_F(AvsmShadowTest, AvsmResolveWithEnoughNodesIsExact) {
   std::uniform_real_distribution<float> depth(kNear, 0.95f * kFar), trans(0.0f, 1.0f), u(0.0f, 1.0f);
   for (uint32_t n : {4u, 8u, 12u, 16u}) {
     // At most N/2 - 1 disjoint segments: 1 + 2k <= N - 1 nodes, nothing is ever removed.
+    // Their ends lie on the stored depths, so storing moves only transmittances (by at
+    // most half a step).
     std::uniform_int_distribution<int> count(0, int(n / 2) - 1);
     std::vector<std::vector<Segment>> per_texel(kRes * kRes);
     for (auto& segments : per_texel) {
       const int k = count(rng);
       std::vector<float> ends;
-      for (int i = 0; i < 2 * k; ++i) ends.push_back(depth(rng));
+      for (int i = 0; i < 2 * k; ++i) ends.push_back(stored_depth(depth(rng)));
       std::sort(ends.begin(), ends.end());
       for (int i = 0; i < k; ++i)
         segments.push_back({ends[2 * i], ends[2 * i + 1], u(rng) < 0.1f ? 0.0f : trans(rng), 0});
@@ -356,7 +375,7 @@ TEST_F(AvsmShadowTest, AvsmResolveWithEnoughNodesIsExact) {
     }
     const Lists lists = make_lists(kRes, per_texel, rng);
     const AvsmMapLayout layout{kRes, n, 1};
-    const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout, kFar);
+    const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout);
 
     float max_error = 0.0f;
     for (uint32_t texel = 0; texel < kRes * kRes; ++texel) {
@@ -368,7 +387,7 @@ TEST_F(AvsmShadowTest, AvsmResolveWithEnoughNodesIsExact) {
         for (const Segment& s : list) exact *= core::avsm_segment_transmittance(s.entry, s.exit_depth, s.exit_trans, d);
         const float error = std::abs(core::avsm_evaluate_linear(stored, d) - exact);
         max_error = std::max(max_error, error);
-        ASSERT_LE(error, kCoreTolerance) << "N = " << n << ", texel (" << x << ", " << y << ") at depth " << d
+        ASSERT_LE(error, kStoredTransTolerance) << "N = " << n << ", texel (" << x << ", " << y << ") at depth " << d
                                          << ": stored" << describe(read_texel(gpu_map, layout, 0, x, y));
       }
     }
@@ -385,7 +404,7 @@ TEST_F(AvsmShadowTest, AvsmMipsMatchCpuReference) {
       const Lists lists = make_lists(res, random_texel_segments(rng, res, 24), rng);
       const AvsmMapLayout layout{res, n, AvsmMapLayout::full_mip_count(res)};
       ASSERT_EQ(layout.level_size(layout.levels - 1), 1u);
-      const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout, kFar);
+      const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout);
       const auto cpu = cpu_map(lists, layout, kFar);
       const std::string what = std::to_string(res) + "^2, N = " + std::to_string(n);
       const float max_error = compare_map(gpu_map, cpu, layout, what);
@@ -416,12 +435,12 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIgnoresAppendOrder) {
   for (uint32_t n : {4u, 8u, 16u}) {
     const AvsmMapLayout layout{kRes, n, 1};
     const size_t bytes = layout.bytes();
-    const std::vector<glm::vec4> unsorted_first = run_resolve(ctx(), shaders(), first, layout, kFar);
-    const std::vector<glm::vec4> unsorted_second = run_resolve(ctx(), shaders(), second, layout, kFar);
+    const std::vector<glm::vec4> unsorted_first = run_resolve(ctx(), shaders(), first, layout);
+    const std::vector<glm::vec4> unsorted_second = run_resolve(ctx(), shaders(), second, layout);
     ASSERT_NE(std::memcmp(unsorted_first.data(), unsorted_second.data(), bytes), 0)
         << "N = " << n << ": the append order should matter without the sort";
-    const std::vector<glm::vec4> sorted_first = run_resolve(ctx(), shaders(), first, layout, kFar, /*sort=*/true);
-    const std::vector<glm::vec4> sorted_second = run_resolve(ctx(), shaders(), second, layout, kFar, /*sort=*/true);
+    const std::vector<glm::vec4> sorted_first = run_resolve(ctx(), shaders(), first, layout, /*sort=*/true);
+    const std::vector<glm::vec4> sorted_second = run_resolve(ctx(), shaders(), second, layout, /*sort=*/true);
     EXPECT_EQ(std::memcmp(sorted_first.data(), sorted_second.data(), bytes), 0)
         << "N = " << n << ": sorted resolves of the same segments differ";
     const float max_error = compare_map(sorted_first, cpu_map(first, layout, kFar, /*sort=*/true), layout,
@@ -461,6 +480,25 @@ std::vector<std::vector<uint8_t>> read_maps(gpu::Context& ctx, const passes::Sha
   return maps;
 }
 
+// Texels of a map (every level) whose stored nodes are not a curve: depths out of the
+// light's depth range or out of order, transmittance rising (by more than a step).
+size_t invalid_stored_curves(const std::vector<uint8_t>& bytes, const AvsmMapLayout& layout,
+                             const passes::LightView& view) {
+  std::vector<glm::vec4> texels(bytes.size() / sizeof(glm::vec4));
+  std::memcpy(texels.data(), bytes.data(), texels.size() * sizeof(glm::vec4));
+  size_t invalid = 0;
+  for (uint32_t level = 0; level < layout.levels; ++level)
+    for (uint32_t y = 0; y < layout.level_size(level); ++y)
+      for (uint32_t x = 0; x < layout.level_size(level); ++x) {
+        const StoredCurve c = read_texel(texels, layout, level, x, y, view.near_depth, view.far_depth);
+        bool ok = c.depth.front() >= view.near_depth && c.depth.back() <= view.far_depth * (1.0f + 1e-6f);
+        for (size_t i = 1; i < c.depth.size(); ++i)
+          ok = ok && c.depth[i] >= c.depth[i - 1] && c.trans[i] <= c.trans[i - 1] + kTransStep + kMonotoneSlack;
+        invalid += !ok;
+      }
+  return invalid;
+}
+
 // ---- 4b. A sorted resolve of a whole scene is the same bit for bit ----
 
 TEST_F(AvsmShadowTest, AvsmSortedResolveIsBitIdenticalAcrossRuns) {
@@ -489,7 +527,7 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIsBitIdenticalAcrossRuns) {
     std::vector<glm::vec4> texels(a.size() / sizeof(glm::vec4));
     std::memcpy(texels.data(), a.data(), texels.size() * sizeof(glm::vec4));
     const AvsmMapLayout level0{64, 8, 1};
-    size_t shadowed = 0;
+    size_t shadowed = 0;  // transmittances decode alike over any depth range: the tests' will do
     for (uint32_t y = 0; y < 64; ++y)
       for (uint32_t x = 0; x < 64; ++x) shadowed += read_texel(texels, level0, 0, x, y).trans.back() < 0.5f;
     EXPECT_GT(shadowed, 0u) << scene.lights[light].name << ": no texel of level 0 is shadowed";
@@ -682,12 +720,12 @@ TEST_F(AvsmShadowTest, AvsmCaptureOverflowIsReportedClampedAndGrown) {
       // Dropped segments make shadows lighter, never invalid.
       EXPECT_TRUE(all_finite(gpu::read_image(ctx(), renderer.hdr(), renderer::SceneRenderer::kOutputLayout)))
           << "frame " << frame + 1 << ": NaN or Inf in the HDR image";
-      for (const std::vector<uint8_t>& bytes : read_maps(ctx(), renderer.shadows())) {
-        std::vector<float> values(bytes.size() / sizeof(float));
-        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
-        EXPECT_TRUE(std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); }))
-            << "frame " << frame + 1 << ": NaN or Inf in an AVSM map";
-      }
+      const std::vector<std::vector<uint8_t>> maps = read_maps(ctx(), renderer.shadows());
+      for (uint32_t light = 0; light < maps.size(); ++light)
+        EXPECT_EQ(invalid_stored_curves(maps[light], renderer.shadows().map_layout(light),
+                                        renderer.shadows().light_views()[light]),
+                  size_t(0))
+            << "frame " << frame + 1 << ", light " << light << ": AVSM map texels whose nodes are not a curve";
     }
   }
   {
@@ -779,7 +817,7 @@ TEST_F(AvsmShadowTest, FixedBuildMatchesSortedListsAtProbes) {
 // direct build only the nearest one and nothing behind it, where light is gone anyway.
 TEST_F(AvsmShadowTest, OpacityMapsBuiltDirectlyMatchTheirListBuilds) {
   for (const char* technique : {"osm", "fom"}) {
-    scene::Scene scene = default_scene(8, 64);
+    scene::Scene scene = default_scene(8, 128);  // (at 64^2 the lists' first frame overflows)
     for (scene::Light& light : scene.lights) light.shadow.technique = technique;
     const auto lists = probe_grid(ctx(), shaders(), with_build(scene, scene::ShadowBuild::lists));
     const auto direct = probe_grid(ctx(), shaders(), with_build(scene, scene::ShadowBuild::fixed));

@@ -1,6 +1,7 @@
 // Adaptive volumetric shadow maps (Salvi et al., EGSR 2010): per texel a curve of N
-// nodes, built by streaming insertion and compression (passes/avsm_resolve_pass.h),
-// with an optional mip chain for trilinear lookups (passes/avsm_mips_pass.h).
+// nodes of 4 bytes each (16-bit depth and transmittance: shaders/shared/map_layouts.h),
+// built by streaming insertion and compression (passes/avsm_resolve_pass.h), with an
+// optional mip chain for trilinear lookups (passes/avsm_mips_pass.h).
 #include "gpu/shader_compiler.h"
 #include "passes/fixed_build_pass.h"
 #include "passes/avsm_mips_pass.h"
@@ -17,13 +18,14 @@ class AvsmBuilder final : public TechniqueBuilder {
         fixed_(ctx, shaders, "shaders/passes/avsm_fixed_build.comp", "avsm fixed build", /*per_node_count=*/true),
         mips_(ctx, shaders) {}
   rg::BufferHandle add_to_graph(const TechniqueBuild& b, CaptureLists& lists) const override {
-    rg::BufferHandle map = resolve_.add_to_graph(b.graph, b.prefix, lists, b.map, b.state.layout, b.view.far_depth);
-    return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
+    rg::BufferHandle map =
+        resolve_.add_to_graph(b.graph, b.prefix, lists, b.map, b.state.layout, b.view.near_depth, b.view.far_depth);
+    return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout, b.view.near_depth, b.view.far_depth);
   }
   rg::BufferHandle add_fixed_to_graph(const FixedTechniqueBuild& b) const override {
     rg::BufferHandle map = fixed_.add_to_graph(b.graph, b.prefix, {b.map, b.counter, b.state.layout.nodes}, b.view,
                                                b.casters, b.smoke_samples_per_segment);
-    return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout);
+    return mips_.add_to_graph(b.graph, b.prefix, map, b.state.layout, b.view.near_depth, b.view.far_depth);
   }
 
  private:
