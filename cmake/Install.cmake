@@ -21,13 +21,14 @@ install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes a
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
 # Headers, laid out as the engine includes them. The C++ builds of the shader math
-# (avsm_core.h, deep_shadow.h, opacity_maps.h) include GLSL from the source tree and
-# serve the tests only, so they stay out.
+# (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h) include GLSL from the
+# source tree and serve the tests only, so they stay out.
 install(DIRECTORY engine/gpu engine/io engine/scene DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}
         FILES_MATCHING PATTERN "*.h" PATTERN "fuzz" EXCLUDE)
 install(DIRECTORY passes/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}/passes
         FILES_MATCHING PATTERN "*.h"
-        PATTERN "avsm_core.h" EXCLUDE PATTERN "deep_shadow.h" EXCLUDE PATTERN "opacity_maps.h" EXCLUDE)
+        PATTERN "avsm_core.h" EXCLUDE PATTERN "deep_shadow.h" EXCLUDE PATTERN "opacity_maps.h" EXCLUDE
+        PATTERN "hair_geometry.h" EXCLUDE)
 install(DIRECTORY rendergraph/include/rendergraph rendergraph/vulkan/include/rendergraph
         DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY engine/api/include/avsm/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
