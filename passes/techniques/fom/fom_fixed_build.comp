@@ -3,7 +3,6 @@
 // Jansen & Bavoil build them: every segment adds its share of each term.
 #extension GL_GOOGLE_include_directive : require
 #include "common/fixed_build.glsl"
-#define FOM_TERMS_IN_WORKGROUP_MEMORY
 #include "techniques/fom/fom_terms.glsl"
 
 void fixed_clear() { fom_clear(); }

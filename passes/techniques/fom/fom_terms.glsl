@@ -6,20 +6,13 @@
 #define AVSM_FOM_TERMS_GLSL
 #include "techniques/opacity_maps.glsl"
 
-// Constant bounds throughout: see avsm_core.glsl. In a build whose workgroup meets
-// at barriers, FOM_TERMS_IN_WORKGROUP_MEMORY (see osm_planes.glsl).
-#ifdef FOM_TERMS_IN_WORKGROUP_MEMORY
-shared float fom_terms_of[64][64];  // [2 k: a_k, 2 k + 1: b_k][invocation]
-#define FOM_A(k) fom_terms_of[2 * (k)][gl_LocalInvocationIndex]
-#define FOM_B(k) fom_terms_of[2 * (k) + 1][gl_LocalInvocationIndex]
-#else
+// Every loop is unrolled over all 32 terms with the real condition inside, so the
+// terms are registers (see osm_planes.glsl for what lavapipe did with them in memory).
+#extension GL_EXT_control_flow_attributes : require
 float fom_a[32], fom_b[32];
-#define FOM_A(k) fom_a[k]
-#define FOM_B(k) fom_b[k]
-#endif
 
 void fom_clear() {
-  for (int k = 0; k < 32; ++k) FOM_A(k) = FOM_B(k) = 0.0;
+  [[unroll]] for (int k = 0; k < 32; ++k) fom_a[k] = fom_b[k] = 0.0;
 }
 
 void fom_add_segment(float entry_depth, float exit_depth, float exit_trans, int terms, float near_depth,
@@ -28,20 +21,19 @@ void fom_add_segment(float entry_depth, float exit_depth, float exit_trans, int 
   float z0 = clamp((entry_depth - near_depth) * scale, 0.0, 1.0);
   float z1 = clamp((exit_depth - near_depth) * scale, 0.0, 1.0);
   float optical_depth = opacity_segment_optical_depth(exit_trans);
-  for (int k = 0; k < 32; ++k) {
-    if (k >= terms) break;
-    FOM_A(k) += fom_cosine_coefficient(z0, z1, optical_depth, k);
-    if (k > 0) FOM_B(k) += fom_sine_coefficient(z0, z1, optical_depth, k);
+  [[unroll]] for (int k = 0; k < 32; ++k) {
+    if (k < terms) {
+      fom_a[k] += fom_cosine_coefficient(z0, z1, optical_depth, k);
+      if (k > 0) fom_b[k] += fom_sine_coefficient(z0, z1, optical_depth, k);
+    }
   }
 }
 
 // Pairs (a_k, b_k), k = 0..K-1 (b_0 = 0): K/2 vec4 per texel.
 void fom_store(uint texel_index, int terms) {
   uint base = texel_index * uint(terms / 2);
-  for (int k = 0; k < 32; k += 2) {
-    if (k >= terms) break;
-    map_texels[base + uint(k / 2)] = vec4(FOM_A(k), FOM_B(k), FOM_A(k + 1), FOM_B(k + 1));
-  }
+  [[unroll]] for (int k = 0; k < 32; k += 2)
+    if (k < terms) map_texels[base + uint(k / 2)] = vec4(fom_a[k], fom_b[k], fom_a[k + 1], fom_b[k + 1]);
 }
 
 #endif

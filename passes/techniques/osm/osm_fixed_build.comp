@@ -3,7 +3,6 @@
 // Kim & Neumann build them: every segment adds its optical depth to the planes behind it.
 #extension GL_GOOGLE_include_directive : require
 #include "common/fixed_build.glsl"
-#define OSM_PLANES_IN_WORKGROUP_MEMORY
 #include "techniques/osm/osm_planes.glsl"
 
 void fixed_clear() { osm_clear(); }
