@@ -845,6 +845,49 @@ TEST_F(AvsmShadowTest, OpacityMapsBuiltDirectlyMatchTheirListBuilds) {
   }
 }
 
+// Strands each one segment long across the whole scene: every segment overlaps a row
+// of tiles, far more than the kHairBinEntriesPerSegment entries the bins hold per
+// segment, so bins do not fit. Those tiles walk every segment instead (reported), and
+// the map still matches the lists: nothing is dropped.
+TEST_F(AvsmShadowTest, FixedBuildBinsThatDoNotFitWalkEverySegment) {
+  scene::Scene scene = default_scene(8, 64);
+  scene::HairGroom groom;
+  groom.name = "long strands";
+  groom.width_kind = scene::StrandWidth::absolute;
+  const glm::vec3 lo = scene.bounds.min, hi = scene.bounds.max;
+  groom.strand_offsets.push_back(0);
+  for (int s = 0; s < 12; ++s) {
+    const float z = lo.z + (hi.z - lo.z) * (s + 0.5f) / 12.0f, y = 1.0f + 0.1f * float(s);
+    groom.points.push_back({lo.x + 0.1f, y, z});
+    groom.points.push_back({hi.x - 0.1f, y, z + 0.3f});
+    groom.strand_offsets.push_back(uint32_t(groom.points.size()));
+    groom.strand_width.push_back(0.02f);
+    groom.strand_opacity.push_back(0.5f);
+    groom.strand_color.push_back(scene::kDefaultStrandColor);
+  }
+  for (const glm::vec3& p : groom.points) groom.bounds.extend(p);
+  scene.hair = {groom};
+  std::vector<passes::LightShadowStats> stats;
+  const auto lists = probe_grid(ctx(), shaders(), with_build(scene, scene::ShadowBuild::lists));
+  const auto fixed = probe_grid(ctx(), shaders(), with_build(scene, scene::ShadowBuild::fixed), &stats);
+  for (size_t light = 0; light < scene.lights.size(); ++light) {
+    const passes::FixedBuildStats& f = *stats[light].fixed_build;
+    double sum = 0.0;
+    size_t partial = 0;
+    for (size_t i = 0; i < lists[light].size(); ++i)
+      if (lists[light][i] > 0.0f && lists[light][i] < 1.0f)
+        sum += std::abs(double(fixed[light][i]) - lists[light][i]), ++partial;
+    const double mean = partial ? sum / double(partial) : 0.0;
+    std::cout << "[ bins full   ] light " << light << ": " << f.hair_bin_requested << " entries asked for, room for "
+              << f.hair_bin_capacity << ", " << f.tiles_walked << " tiles walked every segment; mean |T_fixed - T_lists| "
+              << mean << " over " << partial << " partly shadowed probes\n";
+    EXPECT_GT(f.hair_bin_requested, f.hair_bin_capacity) << "light " << light << ": the bins should not fit";
+    EXPECT_GT(f.tiles_walked, 0u) << "light " << light;
+    EXPECT_FALSE(stats[light].lost_shadowing()) << "light " << light;
+    EXPECT_LT(mean, 0.005) << "light " << light;
+  }
+}
+
 TEST_F(AvsmShadowTest, FixedBuildIsBitIdenticalAcrossRunsWithoutSort) {
   scene::Scene scene = with_build(default_scene(8, 64), scene::ShadowBuild::fixed);
   for (scene::Light& light : scene.lights) light.shadow.sort = false;
