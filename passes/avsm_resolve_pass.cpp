@@ -3,12 +3,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "passes/avsm_variants.h"
 
 namespace avsm::passes {
 
 AvsmResolvePass::AvsmResolvePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-    : build_(ctx, avsm_node_variants(ctx, shaders, "shaders/passes/avsm_resolve.comp", "avsm resolve"), "avsm resolve") {}
+    : build_(ctx, shaders, "shaders/passes/avsm_resolve.comp", "avsm resolve", /*per_node_count=*/true) {}
 
 rg::BufferHandle AvsmResolvePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                                                rg::BufferHandle map, const AvsmMapLayout& layout, float near_depth,

@@ -11,11 +11,15 @@ namespace avsm::passes {
 
 inline constexpr std::array<uint32_t, 4> kAvsmNodeCounts = {4, 8, 12, 16};
 
-// `shader`'s compute pipelines per node count, named `name`.
+// `shader`'s compute pipelines named `name`: with `per_node_count`, one per AVSM node
+// count (get(nodes)); else the one shader for every size (get(0)).
 inline gpu::ComputeVariants avsm_node_variants(const gpu::Context& ctx, const gpu::ShaderLibrary& shaders,
-                                               const std::string& shader, const std::string& name) {
+                                               const std::string& shader, const std::string& name,
+                                               bool per_node_count = true) {
   std::map<uint32_t, std::vector<uint32_t>> spirv;
-  for (uint32_t nodes : kAvsmNodeCounts) spirv[nodes] = shaders.load(shader, {"AVSM_NODES", std::to_string(nodes)});
+  if (!per_node_count) spirv[0] = shaders.load(shader);
+  else
+    for (uint32_t nodes : kAvsmNodeCounts) spirv[nodes] = shaders.load(shader, {"AVSM_NODES", std::to_string(nodes)});
   return gpu::ComputeVariants(ctx, std::move(spirv), name);
 }
 

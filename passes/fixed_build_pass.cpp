@@ -11,16 +11,6 @@
 
 namespace avsm::passes {
 
-namespace {
-
-gpu::ComputeVariants fixed_build_pipelines(gpu::Context& ctx, const gpu::ShaderLibrary& shaders,
-                                           const std::string& shader, const std::string& name, bool per_node_count) {
-  if (per_node_count) return avsm_node_variants(ctx, shaders, shader, name);
-  return gpu::ComputeVariants(ctx, {{0u, shaders.load(shader)}}, name);
-}
-
-}  // namespace
-
 FixedBuildPass::FixedBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader,
                                std::string name, bool per_node_count)
     : ctx_(ctx),
@@ -28,7 +18,7 @@ FixedBuildPass::FixedBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shad
       per_node_count_(per_node_count),
       depth_(ctx, shaders),
       bins_(ctx, shaders),
-      pipelines_(fixed_build_pipelines(ctx, shaders, shader, name_, per_node_count)),
+      pipelines_(avsm_node_variants(ctx, shaders, shader, name_, per_node_count)),
       depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                            false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "light depth"}),
       placeholder_(gpu::create_buffer_from(ctx, std::vector<shared::GpuVolume>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,

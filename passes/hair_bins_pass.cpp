@@ -9,12 +9,6 @@
 #include "shared/passes/hair_bins.h"
 
 namespace avsm::passes {
-namespace {
-
-uint32_t tiles_per_row(uint32_t resolution) { return (resolution + shared::kHairTileSize - 1) / shared::kHairTileSize; }
-
-}  // namespace
-
 HairBinsPass::HairBinsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
       count_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/hair_bins_count.comp"), "hair bins count")),
@@ -22,19 +16,19 @@ HairBinsPass::HairBinsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
       fill_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/hair_bins_fill.comp"), "hair bins fill")) {}
 
 uint64_t HairBinsPass::tile_bytes(uint32_t resolution) {
-  const uint64_t row = tiles_per_row(resolution);
+  const uint64_t row = shared::hair_tiles_per_row(resolution);
   return row * row * shared::kHairTileWords * sizeof(uint32_t);
 }
 
-uint64_t HairBinsPass::entry_bytes(uint32_t segment_count) {
-  return std::max<uint64_t>(uint64_t(segment_count) * shared::kHairBinEntriesPerSegment, 1) * sizeof(uint32_t);
+uint64_t HairBinsPass::entry_bytes(uint32_t segment_count, uint64_t max_storage_buffer_range) {
+  const uint64_t wanted =
+      std::max<uint64_t>(uint64_t(segment_count) * shared::kHairBinEntriesPerSegment, 1) * sizeof(uint32_t);
+  return std::min(wanted, max_storage_buffer_range / sizeof(uint32_t) * sizeof(uint32_t));
 }
 
 HairBins HairBinsPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const LightView& light,
                                     const StrandCasters& hair, rg::BufferHandle counter) const {
-  // A storage buffer binding reaches maxStorageBufferRange at most: past it, tiles walk
-  // every segment (reported), as they do when their bin does not fit.
-  const uint64_t entries = std::min(entry_bytes(hair.segment_count), ctx_.info().max_storage_buffer_range / 4 * 4);
+  const uint64_t entries = entry_bytes(hair.segment_count, ctx_.info().max_storage_buffer_range);
   HairBins bins = graph.add_pass<HairBins>(prefix + " hair bins clear", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, HairBins& d) {
         d.tiles = b.write(b.create_buffer(prefix + " hair tiles", {tile_bytes(light.resolution)}),
@@ -64,7 +58,7 @@ HairBins HairBinsPass::add_to_graph(rg::Graph& graph, const std::string& prefix,
             .buffer("FixedBuildCounter", c.buffer(d.counter))
             .push(c.cmd());
         scan_.push_constants(c.cmd(), shared::HairBinsPush{light.light_from_world, {}, light.resolution, 0,
-                                                           tiles_per_row(light.resolution), uint32_t(entries / 4)});
+                                                           shared::hair_tiles_per_row(light.resolution), uint32_t(entries / 4)});
         vkCmdDispatch(c.cmd(), 1, 1, 1);
       });
   add_segment_pass(graph, prefix + " hair bins fill", fill_, bins, light, hair, true);
@@ -95,7 +89,7 @@ void HairBinsPass::add_segment_pass(rg::Graph& graph, const std::string& name, c
         pipeline.push_constants(c.cmd(), shared::HairBinsPush{light.light_from_world,
                                                               glm::vec4(hair_ribbon_facing_point(light), 1.0f),
                                                               light.resolution, hair.segment_count,
-                                                              tiles_per_row(light.resolution), 0});
+                                                              shared::hair_tiles_per_row(light.resolution), 0});
         pipeline.dispatch_threads(c.cmd(), hair.segment_count, 1);
       });
 }

@@ -27,9 +27,10 @@ struct HairBins {
 class HairBinsPass {
  public:
   HairBinsPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Bytes of the bins for `segment_count` segments on a `resolution`^2 map.
+  // Bytes of the bins for `segment_count` segments on a `resolution`^2 map; the entries
+  // stop at a storage buffer binding's reach (past it, tiles walk every segment, reported).
   static uint64_t tile_bytes(uint32_t resolution);
-  static uint64_t entry_bytes(uint32_t segment_count);
+  static uint64_t entry_bytes(uint32_t segment_count, uint64_t max_storage_buffer_range);
   // Clears `counter` (16 bytes) and, with hair, bins it; without hair the bins are
   // empty (one tile word set, one entry).
   HairBins add_to_graph(rg::Graph& graph, const std::string& prefix, const LightView& light,

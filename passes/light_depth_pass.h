@@ -16,6 +16,7 @@ class LightDepthPass {
   static constexpr VkFormat kFormat = VK_FORMAT_D32_SFLOAT;
 
   LightDepthPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  static uint64_t bytes(uint32_t resolution) { return uint64_t(resolution) * resolution * sizeof(float); }
   // Adds "<prefix> light depth": a new resolution^2 depth texture, cleared to the far
   // plane (1) and drawn with `meshes` (none: it stays clear). Returns it.
   rg::TextureHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const LightView& light,

@@ -2,15 +2,16 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include "passes/avsm_variants.h"
+
 namespace avsm::passes {
 
-
 MapBuildPass::MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader,
-                           std::string name)
-    : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load(shader), name)), name_(std::move(name)) {}
-
-MapBuildPass::MapBuildPass(gpu::Context& ctx, gpu::ComputeVariants per_count, std::string name)
-    : ctx_(ctx), per_count_(std::move(per_count)), name_(std::move(name)) {}
+                           std::string name, bool per_node_count)
+    : ctx_(ctx),
+      per_node_count_(per_node_count),
+      pipelines_(avsm_node_variants(ctx, shaders, shader, name, per_node_count)),
+      name_(std::move(name)) {}
 
 rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                                             rg::BufferHandle map, const MapBuildParameters& parameters,
@@ -27,7 +28,7 @@ rg::BufferHandle MapBuildPass::add_to_graph(rg::Graph& graph, const std::string&
         d.map = counter ? b.read_write(map, rg::Usage::StorageReadWrite) : b.write(map, rg::Usage::StorageWrite);
         if (counter) d.counter = b.read_write(*counter, rg::Usage::StorageReadWrite);
       },
-      [this, parameters, &pipeline = per_count_ ? per_count_->get(parameters.count) : pipeline_](
+      [this, parameters, &pipeline = pipelines_.get(per_node_count_ ? parameters.count : 0)](
           const Data& d, rg::PassContext& c) {
         pipeline.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline);

@@ -6,7 +6,6 @@
 // share one push-constant block.
 #include <rendergraph/graph.h>
 
-#include <optional>
 #include <string>
 
 #include "gpu/pipeline.h"
@@ -21,11 +20,10 @@ using MapBuildParameters = shared::MapBuildPush;  // shaders/shared/passes/map_b
 class MapBuildPass {
  public:
   // `shader`: e.g. "passes/techniques/osm/osm_build.comp"; `name`: the pass name after the
-  // light prefix.
-  MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name);
-  // A shader built per AVSM node count (passes/avsm_variants.h): the variant for
-  // MapBuildParameters::count.
-  MapBuildPass(gpu::Context& ctx, gpu::ComputeVariants per_count, std::string name);
+  // light prefix. With `per_node_count` the shader is built per AVSM node count
+  // (passes/avsm_variants.h) and MapBuildParameters::count picks the variant.
+  MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name,
+               bool per_node_count = false);
   // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's
   // size). With `counter` (a host-readable buffer, updated to its new version), the
   // shader also gets it at binding 3: the deep shadow map reports its node pool
@@ -36,8 +34,8 @@ class MapBuildPass {
 
  private:
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;                         // one shader for every count, or
-  std::optional<gpu::ComputeVariants> per_count_;  // one per count
+  bool per_node_count_;
+  gpu::ComputeVariants pipelines_;  // one per node count, or one (0)
   std::string name_;
 };
 

@@ -11,6 +11,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/transfer.h"
 #include "passes/hair_bins_pass.h"
+#include "passes/light_depth_pass.h"
 #include "passes/techniques/techniques.h"
 #include "shared/hair_bins.h"
 
@@ -229,16 +230,16 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera,
 
     const bool fixed = light.settings.build == scene::ShadowBuild::fixed;
     const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
-    // The fixed build needs no lists; they are still captured for the uncompressed reference.
+    // The fixed build needs no lists; they are still captured for lookups that read them
+    // (the uncompressed reference).
+    const bool lookups_read_lists = light.technique->reads_capture_lists() || options_.keep_reference;
     std::optional<CaptureLists> lists;
-    light.captured_lists = !fixed || light.technique->reads_capture_lists() || options_.keep_reference;
+    light.captured_lists = !fixed || lookups_read_lists;
     light.hair_segments = casters.strands.segment_count;
-    if (light.captured_lists) {
-      lists = add_capture_lists(graph, i, casters);
-      if (light.technique->reads_capture_lists() || options_.keep_reference) {
-        inputs.heads[i] = lists->heads;
-        inputs.nodes[i] = lists->nodes;
-      }
+    if (light.captured_lists) lists = add_capture_lists(graph, i, casters);
+    if (lookups_read_lists) {
+      inputs.heads[i] = lists->heads;
+      inputs.nodes[i] = lists->nodes;
     }
     if (!light.technique->has_map()) continue;
     rg::BufferHandle map = rg::vulkan::import(graph, prefix + " " + light.settings.technique + " map", light.map,
@@ -276,9 +277,10 @@ FixedBuildStats ShadowMaps::fixed_build_stats(const LightState& light) const {
   const uint32_t resolution = light.map_state.layout.resolution;
   FixedBuildStats f;
   f.inserted_segments = counters[shared::kFixedCounterInserted];
-  f.light_depth_bytes = uint64_t(resolution) * resolution * 4;  // D32
-  f.hair_bin_capacity = light.hair_segments == 0 ? 0 : HairBinsPass::entry_bytes(light.hair_segments) / 4;
-  f.hair_bin_bytes = HairBinsPass::tile_bytes(resolution) + std::max<uint64_t>(f.hair_bin_capacity, 1) * 4;
+  const uint64_t entry_bytes = HairBinsPass::entry_bytes(light.hair_segments, ctx_.info().max_storage_buffer_range);
+  f.light_depth_bytes = LightDepthPass::bytes(resolution);
+  f.hair_bin_capacity = light.hair_segments == 0 ? 0 : entry_bytes / sizeof(uint32_t);
+  f.hair_bin_bytes = HairBinsPass::tile_bytes(resolution) + entry_bytes;
   f.hair_bin_requested = counters[shared::kFixedCounterBinEntries];
   f.tiles_walked = counters[shared::kFixedCounterTilesWalked];
   return f;

@@ -110,8 +110,7 @@ void order_bin(uint offset, uint count) {
 }
 
 void insert_hair(ivec2 texel, bool in_map) {
-  uint tiles_per_row = (pc.resolution + kHairTileSize - 1u) / kHairTileSize;
-  uint tile = gl_WorkGroupID.y * tiles_per_row + gl_WorkGroupID.x;
+  uint tile = gl_WorkGroupID.y * hair_tiles_per_row(pc.resolution) + gl_WorkGroupID.x;
   uint count = hair_tiles[hair_tile_count_word(tile)];
   uint offset = hair_tiles[hair_tile_offset_word(tile)];
   bool walk_all = offset == kHairBinOverflow;

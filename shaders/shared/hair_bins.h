@@ -15,6 +15,8 @@ GPU_CONST(uint, kHairBinEntriesPerSegment, 4u)
 GPU_CONST(uint, kHairBinOverflow, 0xffffffffu)
 GPU_CONST(uint, kHairTileWords, 3u)
 
+GPU_FUNCTION uint hair_tiles_per_row(uint resolution) { return (resolution + kHairTileSize - 1u) / kHairTileSize; }
+
 GPU_FUNCTION uint hair_tile_count_word(uint tile) { return kHairTileWords * tile; }
 GPU_FUNCTION uint hair_tile_offset_word(uint tile) { return kHairTileWords * tile + 1u; }
 GPU_FUNCTION uint hair_tile_cursor_word(uint tile) { return kHairTileWords * tile + 2u; }
