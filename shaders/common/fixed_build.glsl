@@ -126,7 +126,8 @@ void insert_hair(ivec2 texel, bool in_map) {
       HairFootprint f = hair_footprint(s, pc.light_from_world, pc.facing_point.xyz, pc.depth_plane,
                                        float(pc.resolution));
       ivec4 box = hair_footprint_texels(f, int(pc.resolution));
-      bool overlaps = all(lessThanEqual(box.xy, box.zw)) && all(lessThanEqual(box.xy, tile_first + 7)) &&
+      ivec2 tile_last = tile_first + int(kHairTileSize) - 1;
+      bool overlaps = all(lessThanEqual(box.xy, box.zw)) && all(lessThanEqual(box.xy, tile_last)) &&
                       all(greaterThanEqual(box.zw, tile_first));
       if (overlaps) {
         ribbon_x[gl_LocalInvocationIndex] = f.x;
