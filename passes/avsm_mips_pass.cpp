@@ -53,7 +53,7 @@ rg::BufferHandle AvsmMipsPass::add_level(rg::Graph& graph, const std::string& pr
        &pipeline = pipelines_.get(layout.nodes)](const Data& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
         pipeline.bind(cmd);
-        gpu::Bindings(ctx_, pipeline).buffer("AvsmMap", {c.buffer(d.map).buffer, window.size, window.offset}).push(cmd);
+        gpu::Bindings(ctx_, pipeline).buffer("AvsmMap", {c.buffer(d.map).buffer, window.size, c.buffer(d.map).offset + window.offset}).push(cmd);
         pipeline.push_constants(cmd, Push{uint32_t(layout.level_offset(level - 1)) - window_vec4,
                                            layout.level_size(level - 1),
                                            uint32_t(layout.level_offset(level)) - window_vec4, layout.level_size(level),

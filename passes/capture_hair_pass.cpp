@@ -38,7 +38,7 @@ CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& 
         pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(hair_ribbon_facing_point(light), 1.0f),
                                            {resolution, resolution}, 0, 0.0f, light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
-        vkCmdDraw(cmd, hair.segment_count * 6, 1, 0, 0);
+        vkCmdDraw(cmd, hair.segment_count * 6, 1, hair.first_segment * 6, 0);  // gl_VertexIndex counts from the first
         vkCmdEndRendering(cmd);
       });
 }

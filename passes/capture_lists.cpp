@@ -37,7 +37,7 @@ CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists
 void bind_capture_lists(gpu::Bindings& bindings, const rg::PassContext& context, const CaptureLists& lists) {
   bindings.image("capture_heads", context.view(lists.heads), context.layout(lists.heads))
       .buffer("CaptureNodes", context.buffer(lists.nodes))
-      .buffer("CaptureCounter", {context.buffer(lists.counter).buffer, sizeof(uint32_t)});
+      .buffer("CaptureCounter", {context.buffer(lists.counter).buffer, sizeof(uint32_t), context.buffer(lists.counter).offset});
 }
 
 }  // namespace avsm::passes

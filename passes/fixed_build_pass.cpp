@@ -50,11 +50,12 @@ rg::BufferHandle FixedBuildPass::add_to_graph(rg::Graph& graph, const std::strin
                                     glm::vec4(hair_ribbon_facing_point(light), light.far_depth),
                                     {light.texel_size_base, light.texel_size_per_depth},
                                     light.near_depth,
-                                    target.technique_size,
+                                    shared::fixed_build_sizes(target.technique_size, smoke_samples_per_segment,
+                                                              volumes.volume_count),
                                     light.resolution,
+                                    hair.first_segment,
                                     hair.segment_count,
-                                    volumes.volume_count,
-                                    smoke_samples_per_segment};
+                                    volumes.volume_mask};
   return graph.add_pass<Data>(prefix + " " + name_, rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) {
         d.inputs.depth = b.read(inputs.depth, rg::Usage::Sampled);

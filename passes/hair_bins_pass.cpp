@@ -57,7 +57,7 @@ HairBins HairBinsPass::add_to_graph(rg::Graph& graph, const std::string& prefix,
             .buffer("HairTiles", c.buffer(d.tiles))
             .buffer("FixedBuildCounter", c.buffer(d.counter))
             .push(c.cmd());
-        scan_.push_constants(c.cmd(), shared::HairBinsPush{light.light_from_world, {}, light.resolution, 0,
+        scan_.push_constants(c.cmd(), shared::HairBinsPush{light.light_from_world, {}, light.resolution, 0, 0,
                                                            shared::hair_tiles_per_row(light.resolution), uint32_t(entries / 4)});
         vkCmdDispatch(c.cmd(), 1, 1, 1);
       });
@@ -88,7 +88,7 @@ void HairBinsPass::add_segment_pass(rg::Graph& graph, const std::string& name, c
         bindings.push(c.cmd());
         pipeline.push_constants(c.cmd(), shared::HairBinsPush{light.light_from_world,
                                                               glm::vec4(hair_ribbon_facing_point(light), 1.0f),
-                                                              light.resolution, hair.segment_count,
+                                                              light.resolution, hair.first_segment, hair.segment_count,
                                                               shared::hair_tiles_per_row(light.resolution), 0});
         pipeline.dispatch_threads(c.cmd(), hair.segment_count, 1);
       });

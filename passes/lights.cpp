@@ -6,11 +6,22 @@
 
 namespace avsm::passes {
 
+namespace {
+uint32_t type_code(scene::LightType type) {
+  switch (type) {
+    case scene::LightType::directional: return shared::kLightDirectional;
+    case scene::LightType::spot: return shared::kLightSpot;
+    case scene::LightType::point: return shared::kLightPoint;
+  }
+  return shared::kLightDirectional;
+}
+}  // namespace
+
 GpuLight to_gpu(const scene::Light& light) {
-  bool spot = light.type == scene::LightType::spot;
-  return {glm::vec4(light.position, spot ? 1.0f : 0.0f),
+  return {glm::vec4(light.position, float(type_code(light.type))),
           glm::vec4(glm::normalize(light.direction), std::cos(light.outer_cone_angle)),
-          glm::vec4(light.color * light.intensity, std::cos(light.inner_cone_angle))};
+          glm::vec4(light.color * light.intensity, std::cos(light.inner_cone_angle)),
+          glm::vec4(light.range, 0.0f, 0.0f, 0.0f)};
 }
 
 gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {

@@ -47,6 +47,8 @@ struct StrandCasters {
   VkBuffer segments = VK_NULL_HANDLE;  // StrandSegment[]; usage STORAGE_BUFFER
   VkBuffer strands = VK_NULL_HANDLE;   // StrandParameters[]; usage STORAGE_BUFFER
   uint32_t segment_count = 0;
+  // Segments [first_segment, first_segment + segment_count) cast (a clustered map's groom).
+  uint32_t first_segment = 0;
   bool empty() const { return segment_count == 0; }
 };
 
@@ -64,6 +66,8 @@ struct VolumeCasters {
   VkImageView atlas = VK_NULL_HANDLE;
   VkSampler atlas_sampler = VK_NULL_HANDLE;
   VkBuffer brick_slots = VK_NULL_HANDLE;
+  // Which of volumes 0..31 cast (a clustered map's); volumes from 32 on always do.
+  uint32_t volume_mask = ~0u;
   bool empty() const { return volume_count == 0; }
   bool has_atlas() const { return atlas != VK_NULL_HANDLE && brick_slots != VK_NULL_HANDLE; }
 };

@@ -8,9 +8,10 @@
 
 #include <glm/glm.hpp>
 
-#include <array>
 #include <cstdint>
+#include <vector>
 
+#include "gpu/resources.h"
 #include "shared/shadow.h"
 
 namespace rg {
@@ -18,30 +19,31 @@ class PassContext;
 }
 namespace avsm::gpu {
 class Bindings;
-}
+}  // namespace avsm::gpu
 
 namespace avsm::passes {
 
 using shared::GpuShadow;  // shaders/shared/shadow.h
-using shared::kMaxShadowedLights;
 using shared::kNoReference;
 
-// What a camera pass reads to look shadows up (shaders/common/shadow_lookup.glsl).
+// What a camera pass reads to look shadows up (shaders/common/shadow_lookup.glsl): the
+// GpuShadow records and three buffers every record addresses by offset (the map atlas,
+// and the looked-up capture lists' heads and nodes), bound whole. The graph orders the
+// reads through each map's and list's own handle (a region of those buffers).
 struct ShadowInputs {
-  VkBuffer parameters = VK_NULL_HANDLE;  // one GpuShadow per scene light
+  VkBuffer parameters = VK_NULL_HANDLE;  // the GpuShadow records
   // The same buffer as a graph resource when the frame writes it (ShadowMaps uploads the
   // records in a "shadow parameters" pass); invalid for static parameters.
   rg::BufferHandle records;
-  std::array<rg::BufferHandle, kMaxShadowedLights> maps{};
-  std::array<rg::TextureHandle, kMaxShadowedLights> heads{};
-  std::array<rg::BufferHandle, kMaxShadowedLights> nodes{};
-  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound to slots without a map or lists
-  VkImageView unused_heads = VK_NULL_HANDLE;
+  std::vector<rg::BufferHandle> maps;   // every map this frame builds: regions of `atlas`
+  std::vector<rg::BufferHandle> lists;  // the looked-up lists: regions of `list_heads`, `list_nodes`
+  gpu::BufferRange atlas, list_heads, list_nodes;
+  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists
 
   // Declares the reads in a camera pass's setup.
   void declare_reads(rg::PassBuilder& builder) const;
-  // In the pass's execute step: the parameters, then the maps, the list heads and the
-  // list nodes (each an array of kMaxShadowedLights), by their shader names.
+  // In the pass's execute step: the records, the atlas, the list heads and nodes, by
+  // their shader names.
   void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
 };
 

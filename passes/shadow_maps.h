@@ -20,6 +20,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,7 @@
 #include "passes/capture_sort_pass.h"
 #include "passes/light_view.h"
 #include "passes/shadow_casters.h"
+#include "passes/shadow_clusters.h"
 #include "passes/shadow_inputs.h"
 #include "passes/techniques/technique.h"
 #include "passes/shadow_stats.h"
@@ -44,13 +47,14 @@ namespace avsm::passes {
 // all-unshadowed lights: camera passes rendered without shadow maps use these.
 class UnshadowedInputs {
  public:
-  static constexpr uint32_t kMaxLights = 64;
   explicit UnshadowedInputs(gpu::Context& ctx);
+  // Room for `lights` records (at least 64).
+  void reserve(uint32_t lights);
   ShadowInputs inputs() const;
 
  private:
-  gpu::Buffer parameters_;  // kMaxLights zeroed GpuShadows (technique 0)
-  gpu::Image heads_;        // 1x1 R32_UINT, one empty list, GENERAL layout
+  gpu::Context& ctx_;
+  gpu::Buffer parameters_;  // zeroed GpuShadows (technique 0)
 };
 
 struct ShadowOptions {
@@ -59,32 +63,46 @@ struct ShadowOptions {
   uint64_t capture_limit_bytes = 128ull << 20;  // node buffer growth limit (lavapipe's maxStorageBufferRange)
   uint32_t smoke_samples_per_segment = CaptureSmokePass::kDefaultSamplesPerSegment;
   // Keep every light's capture lists to the end of the frame, so passes can look up
-  // the exact (uncompressed) transmittance next to the technique's: GpuShadow entries
-  // light_count() .. 2 * light_count() - 1 are the lights' exact references
-  // (reference_light_transmittance() in shaders/common/shadow_lookup.glsl). Costs the
-  // lists' memory for the whole frame (no aliasing between lights).
+  // the exact (uncompressed) transmittance next to the technique's: every record has an
+  // exact-reference record (GpuShadow::reference; reference_light_transmittance() in
+  // shaders/common/shadow_lookup.glsl). Costs a copy of the lists for the whole frame.
   bool keep_reference = false;
+  // Bytes all maps together may take (they share one atlas buffer); 0: the device's
+  // storage buffer range, the most one binding can see. Checked before allocating.
+  uint64_t map_budget_bytes = 0;
+  // Over the budget: halve the resolution of the lights with the largest maps until
+  // they fit (LightShadowStats::lowered_from says which) instead of failing.
+  bool fit_budget = false;
+};
+
+// Maps that do not fit the budget (ShadowOptions::map_budget_bytes): names the lights
+// and their bytes, and the settings to change.
+class ShadowBudgetError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
 };
 
 class ShadowMaps {
  public:
   ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
-  // Every scene light casts (at most kMaxShadowedLights; more is an error naming
-  // the scene), with its ShadowSettings, each map fitted around the scene's bounds.
-  // Throws std::invalid_argument for settings this build cannot render (bad N, an
-  // unknown technique parameter value).
+  // Every scene light casts, with its ShadowSettings; each map is fitted as its
+  // settings say (shadow.fit) around the scene's bounds. Throws std::invalid_argument for
+  // settings this build cannot render (bad N, an unknown technique parameter value) and
+  // ShadowBudgetError for maps over the budget, naming the scene.
   void set_scene(const scene::Scene& scene, const ShadowOptions& options = {});
   // The same for lights that come without a scene: each light's map is fitted around
   // `casters` (everything that casts or receives: what the map must cover; empty
-  // bounds give a unit box at the origin).
+  // bounds give a unit box at the origin). `objects` are what clustered maps group
+  // (lights with shadow.clusters > 1 need them).
   void set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
-                  const ShadowOptions& options = {});
+                  const ShadowOptions& options = {}, const std::vector<CasterObject>& objects = {});
 
-  // Declares this frame's shadow passes for every light; their persistent resources
-  // (maps, capture counters) are imported with the graph (rg::vulkan::import). `casters`
-  // are captured by value: their buffers must stay alive and unchanged until the frame
-  // completes. Returns what the camera passes need to read the maps.
+  // Declares this frame's shadow passes for every light's maps; their persistent resources
+  // (the map atlas, capture counters) are imported with the graph (rg::vulkan::import).
+  // Maps fitted to the view follow `camera`. `casters` are captured by value: their
+  // buffers must stay alive and unchanged until the frame completes. Returns what the
+  // camera passes need to read the maps.
   ShadowInputs add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters);
 
   // Inputs that leave every light unshadowed (for camera passes used without maps).
@@ -94,34 +112,73 @@ class ShadowMaps {
   // grows the node buffers for the next frame.
   void finish_frame();
   const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
+  // Fits the maps that follow the camera (shadow.fit view, cascades) to `camera` now, as
+  // add_to_graph() does each frame: for code that needs light_views() before a frame.
+  void follow_camera(const View& camera) { update_views(camera); }
+  // Each light's first map's view (its only one but for point, cascaded and clustered lights).
   const std::vector<LightView>& light_views() const { return views_; }
-  // Light `light`'s AVSM map (layout: map_layout(light)); empty for uncompressed lights.
-  const gpu::Buffer& avsm_map(uint32_t light) const { return lights_.at(light).map; }
+  // Every map of light `light`, as the last frame declared them.
+  std::vector<LightView> map_views(uint32_t light) const;
+  uint32_t map_count(uint32_t light) const { return lights_.at(light).map_count; }
+  // Light `light`'s first map (layout: map_layout(light)); empty for uncompressed lights.
+  const gpu::Buffer& avsm_map(uint32_t light) const { return maps_.at(lights_.at(light).first_map).map; }
   // The state every frame leaves the maps in (read by the camera passes' shaders): what a
   // later graph reading a map back imports it in.
   static rg::ImportState map_state_after_frame() { return rg::ImportState::of(rg::Usage::StorageRead); }
-  const AvsmMapLayout& map_layout(uint32_t light) const { return lights_.at(light).map_state.layout; }
+  const AvsmMapLayout& map_layout(uint32_t light) const {
+    return maps_.at(lights_.at(light).first_map).map_state.layout;
+  }
   const ShadowTechnique& technique(uint32_t light) const { return *lights_.at(light).technique; }
-  uint32_t light_count() const { return uint32_t(views_.size()); }
+  uint32_t light_count() const { return uint32_t(lights_.size()); }
   bool has_reference() const { return options_.keep_reference; }
+  // Bytes of the one buffer every map lives in.
+  uint64_t atlas_bytes() const { return atlas_ ? atlas_.size() : 0; }
 
  private:
   struct LightState {
-    scene::ShadowSettings settings;
+    scene::Light light;
     const ShadowTechnique* technique = nullptr;
+    uint32_t views = shared::kViewsSingle;  // how the lookup picks among its maps
+    uint32_t first_map = 0, map_count = 1;
+    uint32_t lowered_from = 0;  // resolution before the budget lowered it; 0: not lowered
+    std::vector<float> cascade_ends;  // the last frame's, cascaded lights only
+  };
+  // One map: a light's only one, a cube face, a cascade or a cluster's.
+  struct MapState {
+    uint32_t light = 0;
+    uint32_t record = 0;  // its GpuShadow in the parameter buffer
+    std::string prefix;   // its passes' names start with it ("light 0", "light 1 face 2")
+    LightView view;
+    int face = -1;               // a point light's cube face, else -1
+    scene::Bounds fit_bounds;    // what it covers before a camera is known
+    std::optional<std::vector<uint32_t>> objects;  // a cluster's CasterObjects; unset: every caster
     TechniqueMapState map_state;
-    gpu::Buffer map;      // the technique's map (AVSM nodes, all levels; opacity planes; ...)
-    gpu::Buffer counter;  // host-readable capture counter
+    uint64_t atlas_offset = 0;
+    gpu::Buffer map;            // a region of atlas_
+    gpu::Buffer counter;        // host-readable capture counter
     gpu::Buffer fixed_counter;  // host-readable, the fixed build's (shared/hair_bins.h)
     bool captured_lists = false;  // in the last frame declared
+    bool lookups_read_lists = false;
+    uint64_t list_heads_offset = 0, list_nodes_offset = 0;  // bytes in list_heads_, list_nodes_
+    gpu::Buffer list_heads, list_nodes;                     // regions of them
     uint32_t hair_segments = 0;   // in the last frame declared (sizes the fixed build's bins)
     uint64_t capacity = 0;
+    LightShadowStats stats;       // the last frame's
   };
-  void create_map(uint32_t light);
-  GpuShadow gpu_shadow(uint32_t light, const View& camera) const;
+  void add_light_maps(uint32_t light, const scene::Bounds& casters, const std::vector<CasterObject>& objects);
+  LightView initial_view(const MapState& map) const;
+  void fit_to_budget();
+  void create_atlas();
+  void create_list_buffers();
+  void update_views(const View& camera);
+  GpuShadow gpu_shadow(const MapState& map, const View& camera) const;
+  std::vector<GpuShadow> frame_records(const View& camera) const;
   rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera) const;
-  FixedBuildStats fixed_build_stats(const LightState& light) const;
-  CaptureLists add_capture_lists(rg::Graph& graph, uint32_t light, const ShadowCasters& casters) const;
+  FixedBuildStats fixed_build_stats(const MapState& map) const;
+  CaptureLists add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters) const;
+  void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
+  ShadowCasters casters_of(const MapState& map, const ShadowCasters& all) const;
+  LightShadowStats finish_map(MapState& map);
 
   gpu::Context& ctx_;
   CaptureOpaquePass capture_opaque_;
@@ -130,10 +187,17 @@ class ShadowMaps {
   CaptureSortPass sort_;
   std::vector<std::unique_ptr<TechniqueBuilder>> builders_;  // by technique code - 1
   ShadowOptions options_;
-  std::vector<LightView> views_;
+  scene::Bounds casters_;
+  std::vector<CasterObject> objects_;
+  std::vector<LightView> views_;   // per light: its first map's
   std::vector<LightState> lights_;
+  std::vector<MapState> maps_;
+  uint32_t record_count_ = 0;      // GpuShadows per frame, before the exact references
+  std::optional<View> last_camera_;  // the last frame's: new lights' maps fit to it until the next
   std::vector<LightShadowStats> stats_;
-  gpu::Buffer parameters_;  // GpuShadow per light (and per exact reference), written in the frame
+  gpu::Buffer atlas_;              // every map, at MapState::atlas_offset
+  gpu::Buffer list_heads_, list_nodes_;  // copies of the lists lookups read
+  gpu::Buffer parameters_;  // GpuShadow per record (and per exact reference), written in the frame
   UnshadowedInputs unshadowed_;
 };
 

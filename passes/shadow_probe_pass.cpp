@@ -30,7 +30,7 @@ void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t 
 void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples) {
   std::vector<glm::vec4> packed;  // x, y texel, z depth, w light: exact in floats at these sizes
   for (const TexelSample& s : samples) {
-    if (s.light >= kMaxShadowedLights || s.texel.x > 16384 || s.texel.y > 16384)
+    if (s.texel.x > 16384 || s.texel.y > 16384)
       throw std::invalid_argument("ShadowProbePass: texel sample of light " + std::to_string(s.light) +
                                   " at texel (" + std::to_string(s.texel.x) + ", " + std::to_string(s.texel.y) +
                                   ") is out of range");

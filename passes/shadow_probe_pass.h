@@ -41,7 +41,7 @@ class ShadowProbePass {
   // Points to probe (uploaded now) for `light_count` lights.
   void set_points(const std::vector<glm::vec3>& points, uint32_t light_count);
   // Switches this pass to texel curves: the samples are uploaded now. Texels must
-  // lie inside their light's level-0 map and lights be below kMaxShadowedLights.
+  // lie inside their light's level-0 map and lights be the scene's (texels of a light's first map).
   void set_texel_samples(const std::vector<TexelSample>& samples);
   // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
   // are ready after the frame.

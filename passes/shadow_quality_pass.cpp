@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/context.h"
 #include "passes/frame_inputs.h"
 #include "shared/passes/shadow_quality.h"
 
@@ -24,9 +25,13 @@ ShadowQualityPass::ShadowQualityPass(gpu::Context& ctx, const gpu::ShaderLibrary
                            false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "quality depth"}) {}
 
 void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light_count) {
-  if (light_count > kMaxShadowedLights)
-    throw std::invalid_argument("ShadowQualityPass: " + std::to_string(light_count) + " lights; at most " +
-                                std::to_string(kMaxShadowedLights));
+  const uint64_t bytes = uint64_t(width) * height * std::max(light_count, 1u) * sizeof(PixelShadowError);
+  if (bytes > ctx_.info().max_storage_buffer_range)
+    throw std::invalid_argument("shadow quality: " + std::to_string(width) + "x" + std::to_string(height) +
+                                " pixels for " + std::to_string(light_count) + " lights need " +
+                                std::to_string(bytes >> 20) + " MiB of per-pixel errors, more than the device's " +
+                                std::to_string(ctx_.info().max_storage_buffer_range >> 20) +
+                                " MiB storage buffer range; capture smaller images (--width/--height) or fewer lights");
   width_ = width;
   height_ = height;
   light_count_ = light_count;

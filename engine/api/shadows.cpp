@@ -1,5 +1,7 @@
 #include "avsm/shadows.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -29,15 +31,22 @@ scene::ShadowFilter to_scene(ShadowFilter filter) {
 // (nodes, resolution) are ShadowMaps' own, so both paths give the same messages.
 scene::Light to_scene(const Light& light, size_t index) {
   const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
-  const float length = glm::length(light.direction);
+  const float length = light.type == LightType::point ? 1.0f : glm::length(light.direction);
   if (!std::isfinite(length) || length < 1e-6f) throw std::invalid_argument(who + ": direction has no length");
   if (light.type == LightType::spot && !(light.outer_cone_radians > 0.0f && light.outer_cone_radians < 1.55f))
     throw std::invalid_argument(who + ": a spot light's outer cone must be in (0, 1.55) radians");
   scene::Light out;
   out.name = light.name;
-  out.type = light.type == LightType::spot ? scene::LightType::spot : scene::LightType::directional;
-  out.direction = light.direction / length;
+  out.type = light.type == LightType::spot    ? scene::LightType::spot
+             : light.type == LightType::point ? scene::LightType::point
+                                              : scene::LightType::directional;
+  out.direction = light.type == LightType::point ? glm::vec3(0.0f, -1.0f, 0.0f) : light.direction / length;
   out.position = light.position;
+  out.range = light.range;
+  out.shadow.fit = light.fit_to_view ? scene::ShadowFit::view : scene::ShadowFit::scene;
+  out.shadow.distance = light.shadow_distance;
+  out.shadow.cascades = int(light.cascades);
+  out.shadow.clusters = int(light.clusters);
   out.inner_cone_angle = light.outer_cone_radians;
   out.outer_cone_angle = light.outer_cone_radians;
   out.shadow.technique = "avsm";
@@ -54,8 +63,15 @@ scene::Light to_scene(const Light& light, size_t index) {
 passes::View to_view(const Camera& camera) {
   passes::View view;
   view.camera_position = camera.position;
-  view.projection[1][1] = 1.0f / std::tan(0.5f * camera.vertical_fov_radians);
+  const glm::vec3 forward = glm::length(camera.forward) > 1e-6f ? glm::normalize(camera.forward) : glm::vec3(0, 0, -1);
+  view.view = glm::lookAtRH(camera.position, camera.position + forward, camera.up);
+  view.projection = glm::perspectiveRH_ZO(camera.vertical_fov_radians, std::max(camera.aspect, 1e-3f),
+                                          camera.near_plane, camera.far_plane);
+  view.view_projection = view.projection * view.view;
+  view.inverse_view_projection = glm::inverse(view.view_projection);
   view.height = std::max(camera.height_pixels, 1u);
+  view.near_plane = camera.near_plane;
+  view.far_plane = camera.far_plane;
   return view;
 }
 
@@ -76,10 +92,11 @@ Shadows::Shadows(gpu::Context& context, const ShaderLocation& shaders)
 
 Shadows::~Shadows() = default;
 
-void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds) {
+void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
+                         const std::vector<CasterObject>& objects) {
   std::vector<scene::Light> scene_lights;
   for (size_t i = 0; i < lights.size(); ++i) scene_lights.push_back(to_scene(lights[i], i));
-  impl_->maps.set_lights(scene_lights, casters_bounds);
+  impl_->maps.set_lights(scene_lights, casters_bounds, {}, objects);
 }
 
 ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters) {
@@ -92,7 +109,7 @@ std::vector<LightStats> Shadows::finish_frame() {
   for (const passes::LightShadowStats& s : impl_->maps.frame_stats())
     result.push_back({s.light, s.nodes, s.resolution, s.mip_levels, s.map_bytes, s.capture_bytes, s.capture_requested,
                       s.capture_capacity, s.overflowed, s.grew,
-                      s.fixed_build ? s.fixed_build->transient_bytes() : 0});
+                      s.fixed_build ? s.fixed_build->transient_bytes() : 0, s.maps});
   return result;
 }
 

@@ -111,7 +111,11 @@ std::vector<glm::vec4> read_map_vec4s(gpu::Context& ctx, const gpu::Buffer& map,
         b.read(source, rg::Usage::TransferSrc, {region.srcOffset, bytes});
         b.write(target, rg::Usage::TransferDst);
       },
-      [&](rg::PassContext& c) { vkCmdCopyBuffer(c.cmd(), c.buffer(source), c.buffer(target), 1, &region); });
+      [&](rg::PassContext& c) {
+        VkBufferCopy copy = region;
+        copy.srcOffset += c.buffer(source).offset;  // the map is a region of the shadow map atlas
+        vkCmdCopyBuffer(c.cmd(), c.buffer(source), c.buffer(target), 1, &copy);
+      });
   rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact, /*max_passes=*/1);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
   std::vector<glm::vec4> out(count);

@@ -138,6 +138,21 @@ Buffer Buffer::create_placed(const Context& ctx, const BufferDesc& desc, const M
   return b;
 }
 
+Buffer Buffer::region(const Buffer& parent, VkDeviceSize offset, VkDeviceSize size, std::string name) {
+  if (offset + size > parent.size())
+    throw std::runtime_error("region '" + name + "' (" + std::to_string(size) + " bytes at " + std::to_string(offset) +
+                             ") overflows buffer '" + parent.name() + "' of " + std::to_string(parent.size()) + " bytes");
+  Buffer b;
+  b.ctx_ = parent.ctx_;
+  b.buffer_ = parent.buffer_;
+  b.size_ = size;
+  b.offset_ = parent.offset_ + offset;
+  b.owns_handle_ = false;
+  b.name_ = std::move(name);
+  if (parent.mapped_) b.mapped_ = static_cast<char*>(parent.mapped_) + offset;
+  return b;
+}
+
 Buffer::~Buffer() { release(); }
 Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
 
@@ -148,6 +163,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
     own_memory_ = std::exchange(other.own_memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
+    offset_ = std::exchange(other.offset_, 0);
+    owns_handle_ = std::exchange(other.owns_handle_, true);
     mapped_ = std::exchange(other.mapped_, nullptr);
     name_ = std::move(other.name_);
   }
@@ -155,7 +172,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 }
 
 void Buffer::release() {
-  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
+  if (buffer_ && owns_handle_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
   if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
   buffer_ = VK_NULL_HANDLE;
   own_memory_ = VK_NULL_HANDLE;
@@ -376,6 +393,6 @@ Sampler& Sampler::operator=(Sampler&& other) noexcept {
   return *this;
 }
 
-BufferRange::BufferRange(const Buffer& whole) : buffer(whole.handle()), size(whole.size()) {}
+BufferRange::BufferRange(const Buffer& whole) : buffer(whole.handle()), size(whole.size()), offset(whole.offset()) {}
 
 }  // namespace avsm::gpu

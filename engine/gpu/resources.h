@@ -84,12 +84,18 @@ class Buffer {
   static Buffer create(const Context& ctx, const BufferDesc& desc);
   static Buffer create_placed(const Context& ctx, const BufferDesc& desc, const MemoryHeap& heap,
                               VkDeviceSize offset);
+  // Bytes [offset, offset + size) of `parent`, as a buffer of its own: descriptors,
+  // barriers and transfers made from it see that range only. It owns nothing; `parent`
+  // must outlive it. (Several shadow maps live in one atlas buffer this way.)
+  static Buffer region(const Buffer& parent, VkDeviceSize offset, VkDeviceSize size, std::string name);
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
   Buffer& operator=(Buffer&& other) noexcept;
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
+  // Where this buffer starts in handle(): 0 but for a region().
+  VkDeviceSize offset() const { return offset_; }
   const std::string& name() const { return name_; }
   explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
 
@@ -107,6 +113,8 @@ class Buffer {
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory own_memory_ = VK_NULL_HANDLE;  // null when placed in a heap
   VkDeviceSize size_ = 0;
+  VkDeviceSize offset_ = 0;
+  bool owns_handle_ = true;  // false for a region
   void* mapped_ = nullptr;
   std::string name_;
 };

@@ -25,7 +25,7 @@ void upload_buffer(const Context& ctx, const Buffer& dst, const void* data, VkDe
   stage.upload(data, bytes);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     buffer_barrier(cmd, dst.handle(), kAnyPriorWork, kTransferWrite);
-    VkBufferCopy region{0, offset, bytes};
+    VkBufferCopy region{0, dst.offset() + offset, bytes};
     vkCmdCopyBuffer(cmd, stage.handle(), dst.handle(), 1, &region);
     buffer_barrier(cmd, dst.handle(), kTransferWrite, kAnyPriorWork);
   });
@@ -43,7 +43,7 @@ std::vector<uint8_t> read_buffer_bytes(const Context& ctx, const Buffer& src) {
   Buffer stage = staging(ctx, src.size(), MemoryLocation::HostReadback);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     buffer_barrier(cmd, src.handle(), kAnyPriorWork, kTransferRead);
-    VkBufferCopy region{0, 0, src.size()};
+    VkBufferCopy region{src.offset(), 0, src.size()};
     vkCmdCopyBuffer(cmd, src.handle(), stage.handle(), 1, &region);
     buffer_barrier(cmd, stage.handle(), kTransferWrite, kHostRead);
   });

@@ -97,6 +97,8 @@ class SceneRenderer {
   // After the frame completed: reads the shadow capture counters (overflow, growth).
   void finish_frame() { shadows_.finish_frame(); }
   const passes::ShadowMaps& shadows() const { return shadows_; }
+  // Fits the maps that follow the camera to `view` before the next frame (ShadowMaps::follow_camera).
+  void fit_shadows_to(const passes::View& view) { shadows_.follow_camera(view); }
 
   // After the frame: linear HDR and tonemapped images, both in TRANSFER_SRC_OPTIMAL.
   const gpu::Image& hdr() const { return hdr_; }

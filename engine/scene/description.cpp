@@ -349,6 +349,17 @@ ShadowSettings read_shadow(const Reader& reader, const json& value, const std::s
   shadow.sort = object.boolean_or("sort", shadow.sort);
   shadow.build = choice<ShadowBuild>(object, "build", shadow.build,
                                      {{"lists", ShadowBuild::lists}, {"fixed", ShadowBuild::fixed}});
+  shadow.fit = choice<ShadowFit>(object, "fit", shadow.fit, {{"view", ShadowFit::view}, {"scene", ShadowFit::scene}});
+  shadow.distance = object.number_or("distance", shadow.distance);
+  object.check(shadow.distance >= 0.0f, "distance", "must be >= 0 (0: the camera's far plane)");
+  shadow.cascades = object.integer_or("cascades", shadow.cascades);
+  object.check(shadow.cascades >= 1 && shadow.cascades <= 4, "cascades",
+               "must be 1 to 4, got " + std::to_string(shadow.cascades));
+  shadow.cascade_blend = object.number_or("cascade_blend", shadow.cascade_blend);
+  object.check(shadow.cascade_blend >= 0.0f && shadow.cascade_blend <= 0.5f, "cascade_blend", "must be 0 to 0.5");
+  shadow.clusters = object.integer_or("clusters", shadow.clusters);
+  object.check(shadow.clusters >= 0 && shadow.clusters <= 8, "clusters",
+               "must be 0 (off) to 8 maps, got " + std::to_string(shadow.clusters));
   if (const json* parameters = object.optional("parameters")) {
     const std::string parameters_path = object.path_of("parameters");
     reader.expect(parameters->is_object(), parameters_path, "expected an object of numbers, got " + describe_type(*parameters));
@@ -357,6 +368,19 @@ ShadowSettings read_shadow(const Reader& reader, const json& value, const std::s
   }
   object.finish();
   return shadow;
+}
+
+SceneShadows read_scene_shadows(const Reader& reader, const json& value) {
+  ObjectReader object(reader, value, "shadows");
+  SceneShadows shadows;
+  shadows.budget_mib = object.number_or("budget_mib", float(shadows.budget_mib));
+  object.check(shadows.budget_mib >= 0.0, "budget_mib", "must be >= 0 (0: the device's storage buffer range)");
+  shadows.fit_budget = object.boolean_or("fit_budget", shadows.fit_budget);
+  shadows.clusters = object.integer_or("clusters", shadows.clusters);
+  object.check(shadows.clusters >= 0 && shadows.clusters <= 8, "clusters",
+               "must be 0 (off) to 8 maps per light, got " + std::to_string(shadows.clusters));
+  object.finish();
+  return shadows;
 }
 
 VolumeShading read_volume_shading(const Reader& reader, const json& value) {
@@ -379,18 +403,26 @@ VolumeShading read_volume_shading(const Reader& reader, const json& value) {
 Light read_light(ObjectReader& object, std::size_t index) {
   Light light;
   light.name = name_or(object, "light" + std::to_string(index));
-  light.type = choice<LightType>(object, "type", LightType::directional,
-                                 {{"directional", LightType::directional}, {"spot", LightType::spot}}, true);
+  light.type = choice<LightType>(
+      object, "type", LightType::directional,
+      {{"directional", LightType::directional}, {"spot", LightType::spot}, {"point", LightType::point}}, true);
   light.color = object.vec3_or("color", glm::vec3(1.0f));
   object.check(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))), "color", "components must be >= 0");
   light.intensity = object.number_or("intensity", 1.0f);
   object.check(light.intensity >= 0.0f, "intensity", "must be >= 0");
 
-  const bool spot = light.type == LightType::spot;
-  for (const char* key : {"position", "target", "inner_cone_deg", "outer_cone_deg"})
+  const bool spot = light.type == LightType::spot, point = light.type == LightType::point;
+  for (const char* key : {"target", "inner_cone_deg", "outer_cone_deg"})
     object.check(spot || !object.has(key), key, "only spot lights have this");
-  glm::vec3 direction;
-  if (spot) {
+  for (const char* key : {"position", "range"})
+    object.check(spot || point || !object.has(key), key, "only spot and point lights have this");
+  object.check(!point || !object.has("direction"), "direction", "point lights shine every way; remove it");
+  light.range = object.number_or("range", 0.0f);
+  object.check(light.range >= 0.0f, "range", "must be >= 0 (0: no limit)");
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};
+  if (point) {
+    light.position = object.vec3("position");
+  } else if (spot) {
     light.position = object.vec3("position");
     object.check(object.has("direction") != object.has("target"), "direction",
                  "give exactly one of 'direction' and 'target'");
@@ -404,7 +436,7 @@ Light read_light(ObjectReader& object, std::size_t index) {
   } else {
     direction = object.vec3("direction");
   }
-  object.check(glm::length(direction) > 1e-6f, object.has("target") ? "target" : "direction",
+  object.check(point || glm::length(direction) > 1e-6f, object.has("target") ? "target" : "direction",
                "gives no direction (zero length)");
   light.direction = glm::normalize(direction);
   if (const json* shadow = object.optional("shadow")) light.shadow = read_shadow(object.reader(), *shadow, object.path_of("shadow"));
@@ -530,6 +562,7 @@ SceneDescription parse_scene_description(std::string_view json_text, const std::
   scene.lights = read_list<Light>(top, "lights", read_light);
   scene.cameras = read_list<Camera>(top, "cameras", read_camera);
   if (const json* shading = top.optional("volume_shading")) scene.volume_shading = read_volume_shading(reader, *shading);
+  if (const json* shadows = top.optional("shadows")) scene.shadows = read_scene_shadows(reader, *shadows);
   reader.expect(top.has("cameras"), "cameras", "required key is missing (a scene needs at least one camera)");
   reader.expect(!scene.cameras.empty(), "cameras", "a scene needs at least one camera");
   top.finish();

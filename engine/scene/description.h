@@ -58,6 +58,7 @@ struct SceneDescription {
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // at least one
   VolumeShading volume_shading;  // "volume_shading"
+  SceneShadows shadows;          // "shadows"
 };
 
 // Reads and checks a scene file; asset paths come back resolved against its folder.

@@ -36,7 +36,15 @@ constexpr std::array<std::pair<ShadowBuild, std::string_view>, 2> kBuilds = {{
 std::string_view to_string(ShadowBuild build) { return name_of(kBuilds, build); }
 std::optional<ShadowBuild> shadow_build_from_string(std::string_view text) { return value_of<ShadowBuild>(kBuilds, text); }
 std::string_view to_string(ShadowFilter filter) { return name_of(kFilters, filter); }
-std::string_view to_string(LightType type) { return type == LightType::directional ? "directional" : "spot"; }
+std::string_view to_string(LightType type) {
+  switch (type) {
+    case LightType::directional: return "directional";
+    case LightType::spot: return "spot";
+    case LightType::point: return "point";
+  }
+  return "?";
+}
+std::string_view to_string(ShadowFit fit) { return fit == ShadowFit::view ? "view" : "scene"; }
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
   return value_of<ShadowFilter>(kFilters, text);
 }
@@ -48,6 +56,8 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (filter) settings.filter = *filter;
   if (sort) settings.sort = *sort;
   if (build) settings.build = *build;
+  if (cascades) settings.cascades = *cascades;
+  if (clusters) settings.clusters = *clusters;
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;
 }
 

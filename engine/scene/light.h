@@ -18,6 +18,12 @@ enum class ShadowFilter { point, bilinear, trilinear };
 // AVSM only.
 enum class ShadowBuild { lists, fixed };
 
+// What a light's map covers. `view`: the casters the camera can see up to the shadow
+// distance (directional lights; spot lights fit their cone to the casters inside it),
+// moved in whole texels so that a static scene does not shimmer as the camera moves.
+// `scene`: everything that casts or receives, whatever the camera sees.
+enum class ShadowFit { view, scene };
+
 struct ShadowSettings {
   // A shadow technique by name: avsm (adaptive volumetric shadow maps, Salvi et al.
   // 2010), uncompressed (the exact reference) or another of passes/techniques/. The
@@ -28,6 +34,13 @@ struct ShadowSettings {
   ShadowFilter filter = ShadowFilter::bilinear;
   bool sort = true;              // sort fragments before compression (lists build)
   ShadowBuild build = ShadowBuild::lists;
+  ShadowFit fit = ShadowFit::view;
+  float distance = 0.0f;       // directional, fit view: how far from the camera shadows reach (0: its far plane)
+  int cascades = 1;            // directional: maps split along the camera's view, 1 to 4
+  float cascade_blend = 0.1f;  // the fraction of a cascade blended into the next one
+  // Clustered maps (seed 004): the casters grouped by their light-space bounds, each
+  // group with its own map of this resolution (at most `clusters` maps; 0 or 1: off).
+  int clusters = 0;
   // Technique-specific numbers (e.g. depth bias, slab count), which each technique
   // declares with its defaults and ranges and checks; the scene file only checks
   // that they are finite numbers.
@@ -48,22 +61,34 @@ struct ShadowOverrides {
   std::optional<ShadowFilter> filter;
   std::optional<bool> sort;
   std::optional<ShadowBuild> build;
+  std::optional<int> cascades;
+  std::optional<int> clusters;
   std::map<std::string, double> parameters;  // set on top of the light's own
 
   void apply(ShadowSettings& settings) const;
 };
 
-enum class LightType { directional, spot };
+enum class LightType { directional, spot, point };
+
+// The scene's "shadows" block: what holds for all of its lights' maps.
+struct SceneShadows {
+  double budget_mib = 0.0;  // all maps together (0: the device's storage buffer range)
+  bool fit_budget = false;  // over the budget: lower resolutions instead of failing
+  int clusters = 0;         // clustered maps for every light whose own shadow.clusters is 0
+};
 
 struct Light {
   std::string name;
   LightType type = LightType::directional;
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit; the way the light travels
-  glm::vec3 position{0.0f};                // spot only
+  glm::vec3 position{0.0f};                // spot and point
   glm::vec3 color{1.0f};                   // linear RGB
   float intensity = 1.0f;
   float inner_cone_angle = 0.0f;           // spot only: radians from the axis, full intensity inside
   float outer_cone_angle = 0.0f;           // spot only: radians from the axis, dark outside
+  // Spot and point: where the light's inverse-square falloff is windowed to 0 (world
+  // units; 0: no window). Point lights are shadowed out to it.
+  float range = 0.0f;
   ShadowSettings shadow;
 };
 
@@ -72,5 +97,6 @@ std::string_view to_string(LightType type);
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
 std::string_view to_string(ShadowBuild build);
 std::optional<ShadowBuild> shadow_build_from_string(std::string_view text);
+std::string_view to_string(ShadowFit fit);
 
 }  // namespace avsm::scene

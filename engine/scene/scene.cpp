@@ -82,6 +82,7 @@ Scene load_scene(const SceneDescription& description) {
   scene.lights = description.lights;
   scene.cameras = description.cameras;
   scene.volume_shading = description.volume_shading;
+  scene.shadows = description.shadows;
 
   for (std::size_t i = 0; i < description.models.size(); ++i) {
     const ModelEntry& entry = description.models[i];

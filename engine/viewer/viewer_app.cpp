@@ -423,6 +423,8 @@ void ViewerApp::ensure_reference() {
 void ViewerApp::refresh_inspection() {
   if (!inspector_.active()) return;
   renderer::SceneRenderer& renderer = live_->renderer();
+  // The texels of the maps the next frame builds, which follow the camera.
+  renderer.fit_shadows_to(current_view());
   const std::vector<passes::TexelSample> samples = inspector_.prepare(live_->scene(), renderer.shadows().light_views());
   try {
     // The first inspection builds the curve pass from source: a shader broken on disk

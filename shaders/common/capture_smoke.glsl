@@ -27,7 +27,7 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
   march_smoke_from_light(texel, pc.resolution, pc.world_from_light, pc.depth_plane, pc.volume_count,
-                         pc.samples_per_segment, 3.4e38);
+                         pc.volume_mask, pc.samples_per_segment, 3.4e38);
 }
 
 #endif

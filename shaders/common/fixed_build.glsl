@@ -30,6 +30,11 @@
 #include "shared/hair_bins.h"
 #include "shared/passes/fixed_build.h"
 
+// The numbers packed in pc.sizes (fixed_build_sizes()).
+uint fixed_technique_size() { return pc.sizes & 0xffu; }
+uint fixed_samples_per_segment() { return (pc.sizes >> 8u) & 0xffu; }
+uint fixed_volume_count() { return pc.sizes >> 16u; }
+
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 8) uniform sampler2D light_depth;
 layout(std430, binding = 9) readonly buffer HairTiles { uint hair_tiles[]; };
@@ -114,7 +119,7 @@ void insert_hair(ivec2 texel, bool in_map) {
   uint count = hair_tiles[hair_tile_count_word(tile)];
   uint offset = hair_tiles[hair_tile_offset_word(tile)];
   bool walk_all = offset == kHairBinOverflow;
-  uint n = walk_all ? pc.segment_count : count;
+  uint n = walk_all ? pc.segment_count : count;  // walking all: segments first_segment + i
   if (!walk_all) order_bin(offset, count);
   ivec2 tile_first = ivec2(gl_WorkGroupID.xy) * int(kHairTileSize);
   vec2 centre = vec2(texel) + 0.5;
@@ -122,7 +127,7 @@ void insert_hair(ivec2 texel, bool in_map) {
     uint i = base + gl_LocalInvocationIndex;
     float transmittance = -1.0;
     if (i < n) {
-      uint s = walk_all ? i : hair_bin_entries[offset + i];
+      uint s = walk_all ? pc.first_segment + i : hair_bin_entries[offset + i];
       HairFootprint f = hair_footprint(s, pc.light_from_world, pc.facing_point.xyz, pc.depth_plane,
                                        float(pc.resolution));
       ivec4 box = hair_footprint_texels(f, int(pc.resolution));
@@ -181,8 +186,8 @@ void main() {
   if (in_map) insert_opaque(texel, world_from_light);
   if (pc.segment_count > 0u) insert_hair(texel, in_map);
   if (!in_map) return;
-  march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, pc.volume_count,
-                         pc.samples_per_segment, blocker_end);
+  march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, fixed_volume_count(),
+                         pc.volume_mask, fixed_samples_per_segment(), blocker_end);
   fixed_store(uint(texel.y) * pc.resolution + uint(texel.x));
   if (inserted > 0u) atomicAdd(fixed_counters[kFixedCounterInserted], inserted);
 }

@@ -8,19 +8,31 @@
 // Light from the sky, the same on every surface and fibre.
 const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);
 
+// Spot and point lights: inverse-square falloff, windowed to reach 0 at the range
+// (the window of Karis, "Real Shading in Unreal Engine 4", 2013), 1 with no range.
+float light_distance_window(float distance2, float range) {
+  if (range <= 0.0) return 1.0;
+  float x = distance2 / (range * range);
+  float w = clamp(1.0 - x * x, 0.0, 1.0);
+  return w * w;
+}
+
 // Radiance arriving at `p` from light `L` (unshadowed) and the unit vector towards the light.
 vec3 light_radiance(GpuLight L, vec3 p, out vec3 to_light) {
   vec3 direction = L.direction_cos_outer.xyz;
-  if (L.position_type.w < 0.5) {
+  uint type = uint(L.position_type.w + 0.5);
+  if (type == kLightDirectional) {
     to_light = -direction;
     return L.radiance_cos_inner.rgb;
   }
   vec3 d = L.position_type.xyz - p;
   float distance2 = max(dot(d, d), 1e-8);
   to_light = d * inversesqrt(distance2);
+  float falloff = light_distance_window(distance2, L.range.x) / distance2;
+  if (type == kLightPoint) return L.radiance_cos_inner.rgb * falloff;
   float cos_angle = dot(-to_light, direction);
   float cone = smoothstep(L.direction_cos_outer.w, L.radiance_cos_inner.w, cos_angle);
-  return L.radiance_cos_inner.rgb * cone / distance2;
+  return L.radiance_cos_inner.rgb * cone * falloff;
 }
 
 #endif

@@ -1,9 +1,10 @@
 // Transmittance from a light to a world point: the one place every camera pass
 // asks about shadows (GpuShadow: shared/shadow.h).
 //
-// Before including, define AVSM_SHADOW_BINDING: the per-light parameters are at
-// that binding, the AVSM maps at +1, and (uncompressed reference) the capture
-// list heads at +2 and nodes at +3, each an array of AVSM_MAX_SHADOWED_LIGHTS.
+// Before including, define AVSM_SHADOW_BINDING: the GpuShadow records are at that
+// binding, the map atlas at +1, and (uncompressed reference) the capture list heads at
+// +2 and nodes at +3. Each record finds its data at its own offsets in those buffers,
+// so any number of lights and maps share four bindings.
 //
 // The maps' layouts are in shared/map_layouts.h. AVSM lookups search a texel's
 // depths two levels deep (the course notes' 4-stride search): the last depth of each
@@ -17,40 +18,21 @@
 #include "shared/capture.h"
 #include "shared/map_layouts.h"
 #include "shared/shadow.h"
-#if AVSM_MAX_SHADOWED_LIGHTS != 4
-#error "the per-slot chains below index each of the AVSM_MAX_SHADOWED_LIGHTS slots: extend them"
-#endif
 
 layout(std430, binding = AVSM_SHADOW_BINDING) readonly buffer ShadowParameters { GpuShadow shadows[]; };
-layout(std430, binding = AVSM_SHADOW_BINDING + 1) readonly buffer AvsmMap { vec4 texels[]; }
-avsm_maps[AVSM_MAX_SHADOWED_LIGHTS];
-layout(binding = AVSM_SHADOW_BINDING + 2, r32ui) uniform readonly uimage2D shadow_list_heads[AVSM_MAX_SHADOWED_LIGHTS];
-layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { CaptureSegment nodes[]; }
-shadow_list_nodes[AVSM_MAX_SHADOWED_LIGHTS];
+layout(std430, binding = AVSM_SHADOW_BINDING + 1) readonly buffer ShadowMapAtlas { vec4 shadow_atlas[]; };
+layout(std430, binding = AVSM_SHADOW_BINDING + 2) readonly buffer ShadowListHeads { uint shadow_heads[]; };
+layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { CaptureSegment shadow_nodes[]; };
 
-// The per-light arrays are indexed only with constants: lavapipe took the index of
-// the first SIMD lane even when that lane was inactive in a branch (reading another
-// light's data), and it lacks non-uniform indexing to ask for better.
-vec4 shadow_map_texel(uint slot, uint i) {
-  if (slot == 0u) return avsm_maps[0].texels[i];
-  if (slot == 1u) return avsm_maps[1].texels[i];
-  if (slot == 2u) return avsm_maps[2].texels[i];
-  return avsm_maps[3].texels[i];
+// vec4 i of the map record `s` describes.
+vec4 shadow_map_texel(GpuShadow s, uint i) { return shadow_atlas[s.map_offset + i]; }
+
+uint shadow_list_head(GpuShadow s, ivec2 texel) {
+  return shadow_heads[s.list_heads_offset + uint(texel.y) * s.resolution + uint(texel.x)];
 }
 
-uint shadow_list_head(uint slot, ivec2 texel) {
-  if (slot == 0u) return imageLoad(shadow_list_heads[0], texel).r;
-  if (slot == 1u) return imageLoad(shadow_list_heads[1], texel).r;
-  if (slot == 2u) return imageLoad(shadow_list_heads[2], texel).r;
-  return imageLoad(shadow_list_heads[3], texel).r;
-}
-
-CaptureSegment shadow_list_node(uint slot, uint i) {
-  if (slot == 0u) return shadow_list_nodes[0].nodes[i];
-  if (slot == 1u) return shadow_list_nodes[1].nodes[i];
-  if (slot == 2u) return shadow_list_nodes[2].nodes[i];
-  return shadow_list_nodes[3].nodes[i];
-}
+// Node indices are the capture's own, counted from the record's first node.
+CaptureSegment shadow_list_node(GpuShadow s, uint i) { return shadow_nodes[s.list_nodes_offset + i]; }
 
 float shadow_light_depth(GpuShadow s, vec3 p) { return dot(s.depth_plane.xyz, p) + s.depth_plane.w; }
 
@@ -112,7 +94,67 @@ float shadow_transmittance(GpuShadow s, vec3 p) {
   return result;
 }
 
-float light_transmittance(uint light_index, vec3 p) { return shadow_transmittance(shadows[light_index], p); }
+// For surfaces: the point moved along its normal (towards the light's side) by a
+// few texels, so a surface does not shadow itself through its own blocker segment.
+vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
+  vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
+  return p + n * (s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p)));
+}
+
+// The face of a point light's cube that direction d (from the light) leaves through:
+// its major axis, in the order +x -x +y -y +z -z (passes/light_view.cpp builds the faces
+// so, each a little wider than 90 degrees, so filtering at a face's edge reads texels
+// the face captured).
+uint shadow_cube_face(vec3 d) {
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0u : 1u;
+  if (a.y >= a.z) return d.y >= 0.0 ? 2u : 3u;
+  return d.z >= 0.0 ? 4u : 5u;
+}
+
+// Transmittance from the light whose record is shadows[record] to p: its one map, the
+// cube face p lies in, the cascade(s) at p's camera depth (blended across a split), or
+// the product over its cluster maps. `surface`: p is on a surface with that normal and is
+// moved off it in each map's own texels. The maps are looked up in one loop so that
+// shadow_transmittance() is compiled once (see above).
+float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal, vec3 to_light) {
+  GpuShadow s = shadows[record];
+  if (s.views == kViewsSingle && s.technique == kShadowNone) return 1.0;
+  uint first = record, count = 1u;
+  float blend = 0.0;  // cascades: weight of the second map
+  if (s.views == kViewsCube) {
+    first = s.first_view + shadow_cube_face(p - s.view_select.xyz);
+  } else if (s.views == kViewsCascades) {
+    float depth = dot(p - s.camera_position.xyz, s.view_select.xyz);
+    uint split = 0u;
+    for (uint k = 0u; k < 3u; ++k)
+      if (k + 1u < s.view_count && depth > s.cascade_ends[k]) split = k + 1u;
+    first = s.first_view + split;
+    float end = s.cascade_ends[split], begin = split == 0u ? 0.0 : s.cascade_ends[split - 1u];
+    float band = (end - begin) * s.view_select.w;
+    if (split + 1u < s.view_count && band > 0.0 && depth > end - band) {
+      blend = clamp((depth - (end - band)) / band, 0.0, 1.0);
+      count = 2u;
+    }
+  } else if (s.views == kViewsClusters) {
+    first = s.first_view;
+    count = s.view_count;
+  }
+  bool product = s.views == kViewsClusters;
+  float result = product ? 1.0 : 0.0;
+  for (uint k = 0u; k < kMaxViewsPerLight; ++k) {
+    if (k >= count) break;
+    GpuShadow v = shadows[first + k];
+    vec3 q = surface ? shadow_surface_point(v, p, normal, to_light) : p;
+    float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance(v, q);
+    result = product ? result * t : result + (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend)) * t;
+  }
+  return result;
+}
+
+float light_transmittance(uint light_index, vec3 p) {
+  return light_record_transmittance(light_index, p, false, vec3(0.0), vec3(0.0));
+}
 
 // The exact transmittance (the light's capture lists, all nodes) when the frame
 // kept them (ShadowOptions::keep_reference), else the technique's own.
@@ -121,21 +163,15 @@ float reference_light_transmittance(uint light_index, vec3 p) {
   return light_transmittance(reference == kNoReference ? light_index : reference, p);
 }
 
-// For surfaces: the point moved along its normal (towards the light's side) by a
-// few texels, so a surface does not shadow itself through its own blocker segment.
-vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
-  vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
-  return p + n * (s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p)));
-}
-
+// The point a surface's lookups in light light_index start from, in its first map's
+// texels (a light's record is a copy of its first map's): what the quality pass
+// reports against.
 vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
   return shadow_surface_point(shadows[light_index], p, normal, to_light);
 }
 
 float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
-  GpuShadow s = shadows[light_index];  // read once for the offset and the lookup
-  if (s.technique == kShadowNone) return 1.0;
-  return shadow_transmittance(s, shadow_surface_point(s, p, normal, to_light));
+  return light_record_transmittance(light_index, p, true, normal, to_light);
 }
 
 #endif

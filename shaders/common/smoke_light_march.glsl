@@ -58,9 +58,10 @@ bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 wo
   return true;
 }
 
-// Marches texel `texel` of a `resolution`^2 light map through volumes 0..volume_count-1.
+// Marches texel `texel` of a `resolution`^2 light map through volumes 0..volume_count-1
+// that `volume_mask` selects (bit v for volume v < 32; volumes from 32 on always march).
 void march_smoke_from_light(ivec2 texel, uint resolution, mat4 world_from_light, vec4 depth_plane, uint volume_count,
-                            uint samples_per_segment, float stop_depth) {
+                            uint volume_mask, uint samples_per_segment, float stop_depth) {
   vec2 ndc = (vec2(texel) + 0.5) / float(resolution) * 2.0 - 1.0;
   vec4 near_h = world_from_light * vec4(ndc, 0.0, 1.0), far_h = world_from_light * vec4(ndc, 1.0, 1.0);
   vec3 origin = near_h.xyz / near_h.w, far_point = far_h.xyz / far_h.w;
@@ -70,6 +71,7 @@ void march_smoke_from_light(ivec2 texel, uint resolution, mat4 world_from_light,
   SmokeRay ray = SmokeRay(texel, dot(depth_plane.xyz, origin) + depth_plane.w, dot(depth_plane.xyz, direction),
                           samples_per_segment, stop_depth);
   for (uint v = 0u; v < volume_count; ++v) {
+    if (v < 32u && (volume_mask & (1u << v)) == 0u) continue;
     float t_enter, t_exit;
     if (volume_interval(v, origin, direction, t_max, t_enter, t_exit))
       walk_volume_bricks(v, origin, direction, t_enter, t_exit, true, ray);

@@ -8,8 +8,8 @@
 layout(local_size_x = 64) in;
 
 void main() {
-  uint s = gl_GlobalInvocationID.x;
-  if (s >= pc.segment_count) return;
+  if (gl_GlobalInvocationID.x >= pc.segment_count) return;
+  uint s = pc.first_segment + gl_GlobalInvocationID.x;
   ivec4 tiles = segment_tiles(s);
   uint entries = 0u;
   for (int y = tiles.y; y <= tiles.w; ++y)

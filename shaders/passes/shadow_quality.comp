@@ -27,7 +27,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 0) uniform sampler2D depth_texture;
-layout(std430, binding = 1) writeonly buffer Errors { PixelShadowError errors[]; };  // [light * width * height + y * width + x]
+layout(std430, binding = 1) buffer Errors { PixelShadowError errors[]; };  // [light * width * height + y * width + x]
 layout(std430, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 
 
@@ -96,21 +96,18 @@ void main() {
   vec3 direction = t_max > 0.0 ? (far_point - origin) / t_max : vec3(0.0, 0.0, -1.0);
   vec3 normal = has_surface ? surface_normal(pixel, far_point, -direction) : vec3(0.0);
 
-  // Every lookup below runs with all of the group's pixels active: lavapipe (Mesa
-  // 22.3) takes the index into the shadow descriptor arrays (the light's slot) from
-  // the first SIMD lane even when that lane is inactive, so a lookup inside a branch
-  // some pixels skip can read another light's map. Receivers that do not count are
-  // looked up all the same and dropped afterwards.
-  uint light_count = min(pc.light_count, uint(AVSM_MAX_SHADOWED_LIGHTS));
-  vec4 results[AVSM_MAX_SHADOWED_LIGHTS];
+  // Each pixel's errors are kept in its own entries of `errors` as they add up (no
+  // private array per light, so any number of lights). The lookups run for every
+  // pixel, and receivers that do not count are dropped afterwards, so that no lookup
+  // sits in a branch only some lanes take.
+  uint light_count = pc.light_count;
   for (uint light = 0u; light < light_count; ++light) {
-    results[light] = vec4(-1.0, 0.0, 0.0, 0.0);
     vec3 to_light;
     vec3 radiance = light_radiance(lights[light], far_point, to_light);
     bool counts = has_surface && lit(radiance) && dot(normal, to_light) > 0.0;
     vec3 q = surface_lookup_point(light, far_point, has_surface ? normal : to_light, to_light);
     float error = abs(light_transmittance(light, q) - reference_light_transmittance(light, q));
-    if (counts) results[light].x = error;
+    errors[light * pixel_count + pixel_index] = PixelShadowError(counts ? error : -1.0, 0.0, 0.0, 0.0);
   }
 
   for (uint v = 0u; v < pc.volume_count; ++v) {
@@ -129,13 +126,13 @@ void main() {
         vec3 to_light;
         bool counts = inside && lit(light_radiance(lights[light], p, to_light));
         float error = abs(light_transmittance(light, p) - reference_light_transmittance(light, p));
-        if (counts) results[light] += vec4(0.0, error, 0.0, 1.0);
-        if (counts) results[light].z = max(results[light].z, error);
+        if (counts) {  // member by member: glslang 11 emits an invalid store for the whole struct
+          uint entry = light * pixel_count + pixel_index;
+          errors[entry].smoke_sum += error;
+          errors[entry].smoke_max = max(errors[entry].smoke_max, error);
+          errors[entry].smoke_count += 1.0;
+        }
       }
     }
-  }
-  for (uint light = 0u; light < light_count; ++light) {
-    vec4 r = results[light];
-    errors[light * pixel_count + pixel_index] = PixelShadowError(r.x, r.y, r.z, r.w);
   }
 }

@@ -5,10 +5,16 @@
 #include "shared/gpu_struct.h"
 GPU_NAMESPACE_BEGIN
 
+// GpuLight::position_type.w
+GPU_CONST(uint, kLightDirectional, 0u)
+GPU_CONST(uint, kLightSpot, 1u)
+GPU_CONST(uint, kLightPoint, 2u)
+
 #define GPU_LIGHT(F, A)                                                                        \
-  F(vec4, position_type)       /* xyz: position (spot); w: 0 directional, 1 spot */           \
+  F(vec4, position_type)       /* xyz: position (spot, point); w: kLight* */                  \
   F(vec4, direction_cos_outer) /* xyz: direction the light travels; w: cos(outer cone) */     \
-  F(vec4, radiance_cos_inner)  /* rgb: colour * intensity; w: cos(inner cone) */
+  F(vec4, radiance_cos_inner)  /* rgb: colour * intensity; w: cos(inner cone) */              \
+  F(vec4, range)               /* x: where the falloff reaches 0 (0: no limit); yzw unused */
 GPU_STRUCT(GpuLight, GPU_LIGHT)
 
 GPU_NAMESPACE_END

@@ -1,15 +1,12 @@
 // What a camera pass reads to look a light's shadows up (shaders/common/shadow_lookup.glsl):
-// one GpuShadow per scene light, and per shadowed light (at most AVSM_MAX_SHADOWED_LIGHTS)
-// its map and, for the exact reference, its capture lists.
+// GpuShadow records (one per scene light first, then the extra maps of lights with
+// several), every map in one atlas buffer at its record's map_offset, and for lookups
+// that read capture lists (the exact reference) the lists in two more buffers, also
+// at per-record offsets. No per-light descriptors, so no cap on the number of lights.
 #ifndef AVSM_SHARED_SHADOW_H
 #define AVSM_SHARED_SHADOW_H
 #include "shared/gpu_struct.h"
 GPU_NAMESPACE_BEGIN
-
-// Lights with a shadow map per frame. A #define, as GLSL array sizes and the lookups'
-// per-slot chains (shadow_lookup.glsl checks it is 4) need it at preprocessing time.
-#define AVSM_MAX_SHADOWED_LIGHTS 4
-GPU_CONST(uint, kMaxShadowedLights, AVSM_MAX_SHADOWED_LIGHTS)
 
 // GpuShadow::technique: a light without shadows; the techniques' codes follow their
 // registry order from 1 (passes/techniques/registry.h).
@@ -20,6 +17,13 @@ GPU_CONST(uint, kFilterBilinear, 1u)
 GPU_CONST(uint, kFilterTrilinear, 2u)
 // GpuShadow::reference when the light has no exact-reference entry
 GPU_CONST(uint, kNoReference, 0xffffffffu)
+// GpuShadow::views: how a light's record finds its maps.
+GPU_CONST(uint, kViewsSingle, 0u)    // the record is the light's one map
+GPU_CONST(uint, kViewsCube, 1u)      // a point light: six face maps, +x -x +y -y +z -z
+GPU_CONST(uint, kViewsCascades, 2u)  // a directional light split along the camera's view
+GPU_CONST(uint, kViewsClusters, 3u)  // one map per caster cluster; transmittances multiply
+// The most maps one light has (cube faces, cascades or clusters): the lookup loops to it.
+GPU_CONST(uint, kMaxViewsPerLight, 8u)
 
 #define GPU_SHADOW(F, A)                                                                                        \
   F(mat4, light_from_world) /* world -> light clip; uv = clip.xy / clip.w * 0.5 + 0.5 */                       \
@@ -30,14 +34,26 @@ GPU_CONST(uint, kNoReference, 0xffffffffu)
   F(vec4, depth_range)      /* x, y: the light's caster depth range (osm and fom normalise over it);           \
                                z: osm/fom lookup bias (depth units), against self-shadowing inside a slice */  \
   F(vec4, technique_data)   /* the technique's own lookup numbers (constant: x, its transmittance) */          \
+  F(vec4, view_select)      /* cube: xyz the light's position; cascades: xyz the camera's forward axis,        \
+                               w the fraction of a split blended into the next */                             \
+  F(vec4, cascade_ends)     /* cascades: camera depth where split 0..3 ends */                                 \
   F(uint, technique)        /* kShadowNone, or the technique's registry code */                                \
   F(uint, node_count)       /* avsm: N nodes (a multiple of 4); osm: K planes; fom: K terms */                 \
   F(uint, resolution)       /* level-0 texels per side */                                                      \
   F(uint, mip_count)                                                                                           \
   F(uint, filter_mode)      /* kFilter* */                                                                     \
   F(uint, exponential)      /* 1: exponential interpolation between nodes */                                   \
-  F(uint, slot)             /* index into the map and list arrays */                                           \
-  F(uint, reference)        /* index of this light's exact-reference entry in shadows[], or kNoReference */
+  F(uint, map_offset)       /* the map's first vec4 in the atlas (ShadowMapAtlas) */                           \
+  F(uint, list_heads_offset) /* its capture lists' first head in ShadowListHeads (lookups that read lists) */   \
+  F(uint, list_nodes_offset) /* and first node in ShadowListNodes */                                           \
+  F(uint, reference)        /* index of this record's exact-reference record in shadows[], or kNoReference */  \
+  F(uint, views)            /* kViews*: a light's record; the maps' own records are kViewsSingle */            \
+  F(uint, first_view)       /* kViewsCube..Clusters: the light's maps are records first_view ..              \
+                               first_view + view_count - 1 */                                                  \
+  F(uint, view_count)                                                                                          \
+  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */            \
+  F(uint, padding1)                                                                                            \
+  F(uint, padding2)
 GPU_STRUCT(GpuShadow, GPU_SHADOW)
 
 GPU_NAMESPACE_END

@@ -121,7 +121,8 @@ TEST(SceneDescription, MatrixTransformIsColumnMajor) {
 TEST(SceneDescriptionErrors, UnknownKeyNamesThePathAndSuggests) {
   EXPECT_THAT(error_of(full_scene(R"("nodes": 16)", R"("nodez": 16)")),
               StartsWith("/scenes/test/scene.json: lights[1].shadow.nodez: unknown key (did you mean 'nodes'?); allowed here: "
-                         "technique, nodes, resolution, filter, sort, build, parameters"));
+                         "technique, nodes, resolution, filter, sort, build, fit, distance, cascades, cascade_blend, "
+                         "clusters, parameters"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 1, "colour": 2,)")),
               HasSubstr("scene.json: colour: unknown key"));
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", R"("grid": "density", "density_scale": 2,)")),
@@ -225,7 +226,7 @@ TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", "")), HasSubstr("volumes[0].grid: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("type": "spot", )", "")), HasSubstr("lights[1].type: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "position": [1, 1, 1],)")),
-              HasSubstr("lights[0].position: only spot lights have this"));
+              HasSubstr("lights[0].position: only spot and point lights have this"));
   EXPECT_THAT(error_of(full_scene(R"("target": [0, 0, 0], "inner)", R"("target": [0, 0, 0], "direction": [0, -1, 0], "inner)")),
               HasSubstr("lights[1].direction: give exactly one of 'direction' and 'target'"));
   EXPECT_THAT(error_of(full_scene(R"("scale": 2 })", R"("scale": 2, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1] })")),

@@ -12,7 +12,7 @@ uint avsm_texel_base(GpuShadow s, uint level, ivec2 texel) {
 }
 
 // Four packed nodes of a texel (vec4 i of the light's map).
-uvec4 avsm_texel_nodes(GpuShadow s, uint i) { return floatBitsToUint(shadow_map_texel(s.slot, i)); }
+uvec4 avsm_texel_nodes(GpuShadow s, uint i) { return floatBitsToUint(shadow_map_texel(s, i)); }
 
 float avsm_texel_node_depth(GpuShadow s, uint node) {
   return avsm_node_depth(node, s.depth_range.x, s.depth_range.y);

@@ -83,7 +83,10 @@ rg::BufferHandle add_clear_pass(rg::Graph& graph, const std::string& prefix, rg:
   };
   return graph.add_pass<Data>(prefix + " dsm clear", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) { d.map = b.write(map, rg::Usage::TransferDst); },
-      [](const Data& d, rg::PassContext& c) { vkCmdFillBuffer(c.cmd(), c.buffer(d.map), 0, 16, 0); })
+      [](const Data& d, rg::PassContext& c) {
+        const gpu::BufferRange map = c.buffer(d.map);  // a region of the shadow map atlas
+        vkCmdFillBuffer(c.cmd(), map, map.offset, 16, 0);
+      })
       .map;
 }
 

@@ -4,11 +4,11 @@
 
 // Deep shadow map texel (layout: shared/map_layouts.h): its own count of
 // nodes in the shared pool, searched front to back.
-uint dsm_word(uint slot, uint word) { return floatBitsToUint(shadow_map_texel(slot, word >> 2u)[word & 3u]); }
+uint dsm_word(GpuShadow s, uint word) { return floatBitsToUint(shadow_map_texel(s, word >> 2u)[word & 3u]); }
 
 float dsm_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
   uint index = uint(texel.y) * s.resolution + uint(texel.x);
-  uint first = dsm_word(s.slot, dsm_first_node_word(index)), count = dsm_word(s.slot, dsm_node_count_word(index));
+  uint first = dsm_word(s, dsm_first_node_word(index)), count = dsm_word(s, dsm_node_count_word(index));
   // A texel the full pool could not take (counted and reported; the pool grows for the next frame).
   if (count == 0u || count == kDsmLost) return 1.0;
   uint pool = dsm_pool_base(s.resolution);
@@ -17,7 +17,7 @@ float dsm_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
     if (k >= count) break;
     // A node is two words at an even word of a pool that starts on a vec4: one vec4 half.
     uint word = pool + 2u * (first + k);
-    vec4 pair = shadow_map_texel(s.slot, word >> 2u);
+    vec4 pair = shadow_map_texel(s, word >> 2u);
     vec2 node = uintBitsToFloat(floatBitsToUint((word & 2u) == 0u ? pair.xy : pair.zw));
     float depth = node.x, trans = node.y;
     if (d < depth) {

@@ -12,7 +12,7 @@ float fom_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
   float optical_depth = 0.0;
   for (int k = 0; k < 32; k += 2) {
     if (k >= terms) break;
-    vec4 pair = shadow_map_texel(s.slot, base + uint(k / 2));
+    vec4 pair = shadow_map_texel(s, base + uint(k / 2));
     optical_depth +=
         fom_term_optical_depth(pair.x, pair.y, k, terms, z) + fom_term_optical_depth(pair.z, pair.w, k + 1, terms, z);
   }

@@ -8,7 +8,7 @@
 void fixed_clear() { fom_clear(); }
 
 void fixed_take(float entry_depth, float exit_depth, float transmittance) {
-  fom_add_segment(entry_depth, exit_depth, transmittance, int(pc.technique_size), pc.near_depth, pc.facing_point.w);
+  fom_add_segment(entry_depth, exit_depth, transmittance, int(fixed_technique_size()), pc.near_depth, pc.facing_point.w);
 }
 
-void fixed_store(uint texel_index) { fom_store(texel_index, int(pc.technique_size)); }
+void fixed_store(uint texel_index) { fom_store(texel_index, int(fixed_technique_size())); }

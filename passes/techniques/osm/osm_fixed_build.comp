@@ -8,7 +8,7 @@
 void fixed_clear() { osm_clear(); }
 
 void fixed_take(float entry_depth, float exit_depth, float transmittance) {
-  osm_add_segment(entry_depth, exit_depth, transmittance, int(pc.technique_size), pc.near_depth, pc.facing_point.w);
+  osm_add_segment(entry_depth, exit_depth, transmittance, int(fixed_technique_size()), pc.near_depth, pc.facing_point.w);
 }
 
-void fixed_store(uint texel_index) { osm_store(texel_index, int(pc.technique_size)); }
+void fixed_store(uint texel_index) { osm_store(texel_index, int(fixed_technique_size())); }

@@ -4,12 +4,11 @@
 
 // The exact curve of one texel's capture list: the product of its segments.
 float uncompressed_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
-  uint slot = s.slot;
-  uint node = shadow_list_head(slot, texel);
+  uint node = shadow_list_head(s, texel);
   float t = 1.0;
   uint previous = 0xffffffffu;
   while (node < previous) {  // indices fall along a list; kListEnd ends it
-    CaptureSegment n = shadow_list_node(slot, node);
+    CaptureSegment n = shadow_list_node(s, node);
     t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
     previous = node;
     node = n.next;
@@ -23,8 +22,8 @@ float uncompressed_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
 float uncompressed_first_opaque_depth(GpuShadow s, ivec2 texel) {
   float nearest = s.texel_camera.z;
   uint previous = 0xffffffffu;
-  for (uint node = shadow_list_head(s.slot, texel); node < previous; node = shadow_list_node(s.slot, node).next) {
-    CaptureSegment n = shadow_list_node(s.slot, node);
+  for (uint node = shadow_list_head(s, texel); node < previous; node = shadow_list_node(s, node).next) {
+    CaptureSegment n = shadow_list_node(s, node);
     if (n.exit_trans <= kShadowOpaque) nearest = min(nearest, n.entry);
     previous = node;
   }

@@ -153,9 +153,11 @@ void Executor::record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& 
       images.push_back(avsm::gpu::make_image_barrier(images_[b.resource]->handle(), range, b.old_layout,
                                                      b.new_layout, src, dst));
     } else {
-      VkBufferMemoryBarrier2 barrier = avsm::gpu::make_buffer_barrier(buffers_[b.resource]->handle(), src, dst);
-      barrier.offset = b.range.offset;
-      barrier.size = b.range.size;  // kWholeSize is VK_WHOLE_SIZE
+      const avsm::gpu::Buffer& buffer = *buffers_[b.resource];
+      VkBufferMemoryBarrier2 barrier = avsm::gpu::make_buffer_barrier(buffer.handle(), src, dst);
+      barrier.offset = buffer.offset() + b.range.offset;  // a region() starts inside its handle
+      // kWholeSize is VK_WHOLE_SIZE, which would run past a region's end.
+      barrier.size = b.range.size == VK_WHOLE_SIZE && buffer.offset() != 0 ? buffer.size() - b.range.offset : b.range.size;
       buffers.push_back(barrier);
     }
   }

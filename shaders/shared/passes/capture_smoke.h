@@ -10,7 +10,7 @@ GPU_NAMESPACE_BEGIN
   F(uint, resolution)                                                    \
   F(uint, volume_count)                                                  \
   F(uint, samples_per_segment)                                           \
-  F(float, pad)
+  F(uint, volume_mask)           /* VolumeCasters::volume_mask */
 GPU_PUSH_CONSTANTS(CaptureSmokePush, GPU_CAPTURE_SMOKE_PUSH)
 
 GPU_NAMESPACE_END

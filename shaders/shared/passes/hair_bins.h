@@ -8,6 +8,7 @@ GPU_NAMESPACE_BEGIN
   F(mat4, view_projection)   /* light clip from world */                          \
   F(vec4, facing_point)      /* xyz: where ribbons turn to (the light) */         \
   F(uint, resolution)        /* map texels per side */                            \
+  F(uint, first_segment)     /* segments [first, first + count) are binned */     \
   F(uint, segment_count)                                                          \
   F(uint, tiles_per_row)                                                          \
   F(uint, entry_capacity)    /* entries the bin buffer holds */

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "passes/shadow_casters.h"
+#include "passes/shadow_clusters.h"
 #include "passes/shadow_inputs.h"
 #include "scene/bounds.h"
 
@@ -83,17 +84,25 @@ struct ShaderLocation {
   static ShaderLocation of_package();
 };
 
-enum class LightType { directional, spot };
+enum class LightType { directional, spot, point };
 enum class ShadowFilter { point, bilinear, trilinear };
 
-// A shadowed light. Directional lights fit an orthographic map around the casters'
-// bounds; spot lights a perspective map of their outer cone.
+// A shadowed light. Directional lights fit an orthographic map to what the camera sees
+// of the casters (fit_to_view) or around all of them; spot lights a perspective map of
+// their outer cone, narrowed to the casters in it; point lights a cube of six maps.
 struct Light {
   std::string name;
   LightType type = LightType::directional;
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here)
-  glm::vec3 position{0.0f};                // spot only
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here); not for point
+  glm::vec3 position{0.0f};                // spot and point
   float outer_cone_radians = 0.5f;         // spot only: half angle of the cone
+  float range = 0.0f;                      // spot and point: shadows (and light) end there; 0: no limit
+  bool fit_to_view = false;                // directional: fit the map to the Camera's view (fill its forward, up, planes)
+  float shadow_distance = 0.0f;            // directional, fit_to_view: how far shadows reach (0: camera far)
+  uint32_t cascades = 1;                   // directional: 1 to 4 maps split along the view
+  // Clustered maps (seed 004): up to this many maps, each fitted to a group of the
+  // CasterObjects given to set_lights (0 or 1: off).
+  uint32_t clusters = 0;
   uint32_t nodes = 8;                      // AVSM nodes per texel: 4, 8, 12 or 16
   uint32_t resolution = 512;               // map texels per side
   ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
@@ -109,6 +118,11 @@ struct Camera {
   glm::vec3 position{0.0f};
   float vertical_fov_radians = 1.0f;
   uint32_t height_pixels = 1;
+  // Where it looks: what directional maps fitted to the view (and cascades) follow.
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float aspect = 16.0f / 9.0f;  // width / height
+  float near_plane = 0.1f, far_plane = 100.0f;
 };
 
 // One light's figures for the frame that finish_frame() closed.
@@ -122,11 +136,15 @@ struct LightStats {
   bool overflowed = false;          // segments were dropped: lighter shadows this frame
   bool grew = false;                // the capture buffer grew: the next frame fits
   uint64_t fixed_build_bytes = 0;   // fixed build: its depth image and hair bins this frame
+  uint32_t maps = 1;                // point: 6 faces; cascades; clusters
 };
+
+// What clustered maps group: one caster's bounds and which draws, strand segments or
+// volumes of ShadowCasters it is.
+using passes::CasterObject;
 
 class Shadows {
  public:
-  static constexpr uint32_t kMaxLights = passes::kMaxShadowedLights;
 
   // Pipelines are built here, from `shaders`, on `context` (owned or adopted; it must outlive this).
   Shadows(gpu::Context& context, const ShaderLocation& shaders);
@@ -134,10 +152,13 @@ class Shadows {
   Shadows(const Shadows&) = delete;
   Shadows& operator=(const Shadows&) = delete;
 
-  // The lights that cast (at most kMaxLights), their maps fitted around `casters_bounds`
-  // (everything that casts or receives). Light i is light_index i in the shader.
-  // Throws std::invalid_argument for an unusable light (bad node count, resolution, direction).
-  void set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds);
+  // The lights that cast (any number; all maps share one buffer of at most the device's
+  // storage buffer range), their maps fitted around `casters_bounds` (everything that
+  // casts or receives). Light i is light_index i in the shader. `objects` are what
+  // lights with clusters group. Throws std::invalid_argument for an unusable light (bad
+  // node count, resolution, direction) and for maps over the budget, naming the lights.
+  void set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
+                  const std::vector<CasterObject>& objects = {});
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
 
   // Declares this frame's passes for every light in `graph` (capture, sort, resolve,
