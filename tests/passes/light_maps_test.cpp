@@ -1,0 +1,409 @@
+// Every kind of light and map ShadowMaps builds, against transmittance integrated on the
+// CPU through constant-density boxes: point lights (a cube of six faces, and a ring of
+// receivers across a face seam), sixteen mixed lights in one scene, the map budget,
+// directional maps fitted to the camera (stable under sub-texel camera motion),
+// cascades and clustered maps (seed 004).
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <rendergraph/vulkan/executor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "passes/light_view.h"
+#include "passes/shadow_maps.h"
+#include "passes/view.h"
+#include "renderer/scene_renderer.h"
+#include "scene/scene.h"
+#include "support/gpu_test.h"
+#include "support/test_volumes.h"
+
+namespace avsm {
+namespace {
+
+using LightMapsTest = testing::GpuTest;
+
+constexpr uint32_t kFrameWidth = 64, kFrameHeight = 36;
+
+// A box of density 1 over voxels [0, n)^3 of size kVoxel, offset to `origin`: its
+// trilinear density is 1 inside the voxel centres and ramps to 0 over one voxel.
+constexpr float kVoxel = 0.1f;
+constexpr float kSigma = 0.5f;  // extinction per unit density per world unit
+
+struct Box {
+  glm::vec3 origin{0.0f};  // world position of voxel (0, 0, 0)'s centre
+  int voxels = 16;
+  glm::vec3 low() const { return origin; }
+  glm::vec3 high() const { return origin + glm::vec3(float(voxels - 1) * kVoxel); }
+  glm::vec3 centre() const { return 0.5f * (low() + high()); }
+  // The trilinear density at p: per axis 1 between the voxel centres, 0 a voxel beyond.
+  float density(const glm::vec3& p) const {
+    float d = 1.0f;
+    for (int a = 0; a < 3; ++a) {
+      const float inside = std::min(p[a] - (low()[a] - kVoxel), (high()[a] + kVoxel) - p[a]) / kVoxel;
+      d *= std::clamp(inside, 0.0f, 1.0f);
+    }
+    return d;
+  }
+};
+
+// exp(-sigma * integral of the boxes' density along the segment from `from` to `to`).
+float reference_transmittance(const std::vector<Box>& boxes, const glm::vec3& from, const glm::vec3& to) {
+  constexpr int kSteps = 4000;
+  const float length = glm::length(to - from);
+  double optical = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const glm::vec3 p = from + (to - from) * ((float(i) + 0.5f) / float(kSteps));
+    for (const Box& box : boxes) optical += double(box.density(p)) * double(length) / kSteps;
+  }
+  return float(std::exp(-double(kSigma) * optical));
+}
+
+scene::Scene box_scene(const std::vector<Box>& boxes) {
+  scene::Scene scene;
+  scene.file = "light maps test scene (built in the test)";
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    scene::VolumeOptions options;
+    options.extinction_scale = kSigma;
+    options.transform = glm::translate(glm::mat4(1.0f), boxes[i].origin);
+    const int n = boxes[i].voxels - 1;
+    scene.volumes.push_back(testing::load_grid(
+        testing::constant_box_grid(openvdb::Coord(0), openvdb::Coord(n), 1.0f, kVoxel), options));
+    scene.volumes.back().name = "box " + std::to_string(i);
+    scene.bounds.extend(scene.volumes.back().world_bounds);
+  }
+  scene::Camera camera;
+  camera.position = scene.bounds.center() + glm::vec3(0.0f, 2.0f, 12.0f);
+  camera.target = scene.bounds.center();
+  scene.cameras.push_back(camera);
+  return scene;
+}
+
+scene::Light make_light(const std::string& name, scene::LightType type, int resolution,
+                        const std::string& technique = "avsm") {
+  scene::Light light;
+  light.name = name;
+  light.type = type;
+  light.shadow.technique = technique;
+  light.shadow.nodes = 8;
+  light.shadow.resolution = resolution;
+  return light;
+}
+
+// Renders frames and returns the last one's probes, [light][point].
+std::vector<std::vector<float>> render_probes(gpu::Context& ctx, renderer::SceneRenderer& renderer,
+                                              const scene::Camera& camera, int frames = 2) {
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
+  for (int frame = 0; frame < frames; ++frame) {
+    rg::Graph graph = renderer.build_frame(passes::make_view(camera, kFrameWidth, kFrameHeight));
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+    renderer.finish_frame();
+  }
+  return renderer.probe_results();
+}
+
+// Where a light shines from at p: its position, or far back along its direction.
+glm::vec3 light_origin(const scene::Light& light, const glm::vec3& p) {
+  return light.type == scene::LightType::directional ? p - glm::normalize(light.direction) * 100.0f : light.position;
+}
+
+struct ProbeError {
+  float mean = 0.0f, max = 0.0f;
+  int shadowed = 0;  // probes whose reference is below 0.95
+};
+
+ProbeError probe_error(const std::vector<Box>& boxes, const scene::Light& light, const std::vector<glm::vec3>& points,
+                       const std::vector<float>& got) {
+  ProbeError e;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const float want = reference_transmittance(boxes, light_origin(light, points[i]), points[i]);
+    const float error = std::abs(got.at(i) - want);
+    e.mean += error / float(points.size());
+    e.max = std::max(e.max, error);
+    e.shadowed += want < 0.95f;
+  }
+  return e;
+}
+
+// ---- Point lights ----
+
+// A point light among six boxes, one on each side: every face of its cube shadows what
+// lies behind its box, built from lists and in fixed memory.
+TEST_F(LightMapsTest, PointLightShadowsEveryFaceOfItsCube) {
+  const glm::vec3 light_position(0.0f);
+  std::vector<Box> boxes;
+  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::vec3& axis : axes) {
+    Box box;
+    box.origin = axis * 1.5f - glm::vec3(0.75f);  // 1.5 m from the light, 1.5 m wide
+    boxes.push_back(box);
+  }
+  for (scene::ShadowBuild build : {scene::ShadowBuild::lists, scene::ShadowBuild::fixed}) {
+    scene::Scene scene = box_scene(boxes);
+    scene::Light point = make_light("point", scene::LightType::point, 64);
+    point.position = light_position;
+    point.shadow.build = build;
+    scene.lights.push_back(point);
+    std::vector<glm::vec3> probes;
+    for (const glm::vec3& axis : axes)  // behind each box, and off-axis through its side
+      for (const glm::vec3& offset : {glm::vec3(0.0f), glm::vec3(0.2f, 0.3f, -0.25f)}) probes.push_back(axis * 3.0f + offset);
+    renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+    renderer.set_probes(probes);
+    const std::vector<std::vector<float>> results = render_probes(ctx(), renderer, scene.cameras.front());
+    const passes::LightShadowStats& stats = renderer.shadows().frame_stats().at(0);
+    EXPECT_EQ(stats.maps, 6u);
+    EXPECT_EQ(stats.map_kind, "cube");
+    EXPECT_FALSE(stats.lost_shadowing());
+    const ProbeError e = probe_error(boxes, point, probes, results.at(0));
+    std::cout << "[ point cube  ] " << scene::to_string(build) << ": mean error " << e.mean << ", max " << e.max
+              << " over " << probes.size() << " probes (" << e.shadowed << " shadowed)\n";
+    EXPECT_EQ(e.shadowed, int(probes.size()));  // not vacuous: every probe lies behind a box
+    EXPECT_LT(e.max, 0.03f) << scene::to_string(build);
+  }
+}
+
+// A ring of receivers around the light crossing the +x/+z face seam behind one box that
+// straddles it: the transmittance follows the integrated one on both faces and across
+// the seam, with no crack (a jump to 1, or a step) where the lookup changes faces.
+TEST_F(LightMapsTest, PointLightLookupsDoNotCrackAtAFaceSeam) {
+  Box box;
+  box.voxels = 24;
+  const float half = 0.5f * float(box.voxels - 1) * kVoxel;
+  const glm::vec3 seam_direction = glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f));
+  box.origin = seam_direction * 2.0f - glm::vec3(half);  // centred on the seam, 2 m out
+  scene::Scene scene = box_scene({box});
+  scene::Light point = make_light("point", scene::LightType::point, 64);
+  point.position = glm::vec3(0.0f);
+  point.shadow.filter = scene::ShadowFilter::bilinear;
+  scene.lights.push_back(point);
+  // 121 receivers 4 m out, from 25 to 65 degrees around y (the seam is at 45), two heights.
+  std::vector<glm::vec3> ring;
+  for (float y : {0.0f, 0.35f})
+    for (int i = 0; i <= 60; ++i) {
+      const float angle = glm::radians(25.0f + 40.0f * float(i) / 60.0f);
+      ring.emplace_back(4.0f * std::cos(angle), y, 4.0f * std::sin(angle));
+    }
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer.set_probes(ring);
+  const std::vector<float> got = render_probes(ctx(), renderer, scene.cameras.front()).at(0);
+  float max_error = 0.0f, max_step_at_seam = 0.0f, max_step_elsewhere = 0.0f;
+  int shadowed = 0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const float want = reference_transmittance({box}, point.position, ring[i]);
+    max_error = std::max(max_error, std::abs(got[i] - want));
+    shadowed += want < 0.9f;
+    if (i % 61 == 0) continue;
+    // The step between neighbours against the reference's own step there.
+    const float step = std::abs((got[i] - got[i - 1]) -
+                                (want - reference_transmittance({box}, point.position, ring[i - 1])));
+    const bool at_seam = std::abs(int(i % 61) - 30) <= 2;
+    (at_seam ? max_step_at_seam : max_step_elsewhere) = std::max(at_seam ? max_step_at_seam : max_step_elsewhere, step);
+  }
+  std::cout << "[ cube seam   ] max error " << max_error << ", step error at the seam " << max_step_at_seam
+            << ", elsewhere " << max_step_elsewhere << " (" << shadowed << " of " << ring.size() << " shadowed)\n";
+  EXPECT_GT(shadowed, int(ring.size()) / 2);  // the box covers the seam: the test sees it
+  EXPECT_LT(max_error, 0.03f);
+  EXPECT_LT(max_step_at_seam, 0.02f);
+}
+
+// ---- Many lights ----
+
+// Sixteen shadowed lights of all three kinds around one box: each light shadows the
+// point behind the box from it, and leaves a point beside it lit.
+TEST_F(LightMapsTest, SixteenMixedLightsAllCast) {
+  Box box;
+  box.origin = glm::vec3(-0.75f);
+  const std::vector<Box> boxes = {box};
+  scene::Scene scene = box_scene(boxes);
+  std::vector<glm::vec3> probes;
+  for (int i = 0; i < 16; ++i) {
+    const float angle = glm::two_pi<float>() * float(i) / 16.0f;
+    const glm::vec3 around(std::cos(angle), 0.3f * float(i % 3) - 0.3f, std::sin(angle));
+    const scene::LightType type = i % 3 == 0 ? scene::LightType::directional
+                                 : i % 3 == 1 ? scene::LightType::spot
+                                              : scene::LightType::point;
+    scene::Light light = make_light("light " + std::to_string(i), type, 32, i % 4 == 3 ? "uncompressed" : "avsm");
+    light.position = box.centre() + around * 4.0f;
+    light.direction = glm::normalize(box.centre() - light.position);
+    light.outer_cone_angle = glm::radians(30.0f);
+    light.inner_cone_angle = glm::radians(20.0f);
+    if (i % 5 == 4) light.shadow.build = scene::ShadowBuild::fixed;
+    scene.lights.push_back(light);
+    probes.push_back(box.centre() - around * 1.6f);  // behind the box from light i
+  }
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer.set_probes(probes);
+  const std::vector<std::vector<float>> results = render_probes(ctx(), renderer, scene.cameras.front());
+  ASSERT_EQ(results.size(), 16u);
+  for (uint32_t i = 0; i < 16; ++i) {
+    const scene::Light& light = scene.lights[i];
+    const float want = reference_transmittance(boxes, light_origin(light, probes[i]), probes[i]);
+    EXPECT_LT(want, 0.6f) << light.name;
+    EXPECT_NEAR(results[i][i], want, 0.03f) << light.name << " (" << scene::to_string(light.type) << ")";
+    EXPECT_FALSE(renderer.shadows().frame_stats()[i].lost_shadowing()) << light.name;
+  }
+  std::cout << "[ 16 lights   ] atlas " << renderer.shadows().atlas_bytes() << " bytes\n";
+}
+
+// ---- The map budget ----
+
+TEST_F(LightMapsTest, MapsOverTheBudgetAreAnErrorNamingTheLightsOrAreLowered) {
+  Box box;
+  scene::Scene scene = box_scene({box});
+  for (int i = 0; i < 3; ++i) scene.lights.push_back(make_light("sun" + std::to_string(i), scene::LightType::directional, 512));
+  passes::ShadowMaps maps(ctx(), shaders());
+  passes::ShadowOptions options;
+  options.map_budget_bytes = 4ull << 20;  // three AVSM-8 512^2 maps take 8 MiB each
+  try {
+    maps.set_scene(scene, options);
+    FAIL() << "no error for maps over the budget";
+  } catch (const passes::ShadowBudgetError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(scene.file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("light 1 'sun1' 8.00 MiB"), std::string::npos) << message;
+    EXPECT_NE(message.find("over the budget of 4.00 MiB"), std::string::npos) << message;
+    EXPECT_NE(message.find("budget_mib"), std::string::npos) << message;
+  }
+  options.fit_budget = true;
+  maps.set_scene(scene, options);
+  EXPECT_LE(maps.atlas_bytes(), options.map_budget_bytes);
+  uint32_t lowered = 0;
+  for (uint32_t i = 0; i < 3; ++i) lowered += maps.map_layout(i).resolution < 512;
+  EXPECT_GE(lowered, 2u);  // 3 x 512^2 -> fits only with most lowered to 256^2
+}
+
+// ---- Directional maps fitted to the view ----
+
+// A wide scene seen from close by: the map covers only what the camera sees (finer
+// texels than a whole-scene map), and moving the camera by fractions of a texel gives
+// the same transmittance at fixed receivers (whole-texel snapping: no shimmer).
+TEST_F(LightMapsTest, ViewFittedMapIsFinerAndStableUnderSubTexelCameraMotion) {
+  std::vector<Box> boxes;
+  for (int i = 0; i < 5; ++i) {
+    Box box;
+    box.origin = glm::vec3(-16.0f + 8.0f * float(i), 0.0f, -0.75f);  // a 34 m row
+    boxes.push_back(box);
+  }
+  scene::Scene scene = box_scene(boxes);
+  scene::Light sun = make_light("sun", scene::LightType::directional, 128);
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  sun.shadow.distance = 6.0f;
+  scene.lights.push_back(sun);
+  const Box& middle = boxes[2];
+  // Receivers under the middle box (the camera looks at it): nine in its shadow, then
+  // 21 across the edge of its shadow, where a map that moved by part of a texel would
+  // filter differently (what shimmers on screen).
+  std::vector<glm::vec3> probes;
+  for (int i = 0; i < 9; ++i)
+    probes.push_back(middle.centre() + sun.direction * (1.4f + 0.05f * float(i)) + glm::vec3(0.05f * float(i - 4), 0, 0));
+  const glm::vec3 edge = middle.centre() + sun.direction * 1.4f - glm::vec3(middle.centre().x - middle.low().x, 0, 0);
+  for (int i = 0; i <= 20; ++i) probes.push_back(edge + glm::vec3(0.02f * float(i - 10), 0, 0));
+  scene::Camera camera;
+  camera.position = middle.centre() + glm::vec3(0.0f, 1.5f, 4.0f);
+  camera.target = middle.centre();
+  camera.far_plane = 50.0f;
+  scene.cameras = {camera};
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer.set_probes(probes);
+  const std::vector<float> first = render_probes(ctx(), renderer, camera).at(0);
+  const passes::LightView fitted = renderer.shadows().light_views().at(0);
+  const passes::LightView whole = passes::make_light_view(sun, scene.bounds, 128);
+  EXPECT_LT(fitted.texel_size_base, 0.5f * whole.texel_size_base);
+  const std::vector<glm::vec3> inside(probes.begin(), probes.begin() + 9);
+  const ProbeError e = probe_error(boxes, sun, inside, first);
+  EXPECT_LT(e.max, 0.03f);
+  EXPECT_EQ(e.shadowed, 9);
+  float worst = 0.0f;
+  for (float texels : {0.3f, 0.7f, 2.4f}) {
+    scene::Camera moved = camera;
+    const glm::vec3 shift = glm::vec3(1.0f, 0.0f, 0.5f) * (texels * fitted.texel_size_base);
+    moved.position += shift;
+    moved.target += shift;
+    const std::vector<float> again = render_probes(ctx(), renderer, moved, 1).at(0);
+    for (size_t i = 0; i < probes.size(); ++i) worst = std::max(worst, std::abs(again[i] - first[i]));
+  }
+  std::cout << "[ view fit    ] texel " << fitted.texel_size_base << " m (whole scene: " << whole.texel_size_base
+            << " m); mean error " << e.mean << ", largest change under camera motion " << worst << "\n";
+  EXPECT_LT(worst, 1e-4f);
+}
+
+// Three cascades along the view: finer near the camera, and receivers near and far
+// both in shadow as integrated.
+TEST_F(LightMapsTest, CascadesSplitTheViewAndShadowNearAndFar) {
+  std::vector<Box> boxes;
+  for (int i = 0; i < 3; ++i) {
+    Box box;
+    box.origin = glm::vec3(-0.75f, 0.0f, -2.0f - 9.0f * float(i));  // 2, 11 and 20 m in front of the camera
+    boxes.push_back(box);
+  }
+  scene::Scene scene = box_scene(boxes);
+  scene::Light sun = make_light("sun", scene::LightType::directional, 64);
+  sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  sun.shadow.cascades = 3;
+  sun.shadow.distance = 30.0f;
+  scene.lights.push_back(sun);
+  scene::Camera camera;
+  camera.position = glm::vec3(0.0f, 1.0f, 1.0f);
+  camera.target = glm::vec3(0.0f, 0.5f, -20.0f);
+  camera.far_plane = 40.0f;
+  scene.cameras = {camera};
+  std::vector<glm::vec3> probes;
+  for (const Box& box : boxes) probes.push_back(box.centre() + sun.direction * 1.5f);
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+  renderer.set_probes(probes);
+  const std::vector<float> got = render_probes(ctx(), renderer, camera).at(0);
+  const std::vector<passes::LightView> cascades = renderer.shadows().map_views(0);
+  ASSERT_EQ(cascades.size(), 3u);
+  EXPECT_LT(cascades[0].texel_size_base, cascades[2].texel_size_base);
+  EXPECT_EQ(renderer.shadows().frame_stats().at(0).map_kind, "cascades");
+  const ProbeError e = probe_error(boxes, sun, probes, got);
+  std::cout << "[ cascades    ] texels " << cascades[0].texel_size_base << ", " << cascades[1].texel_size_base << ", "
+            << cascades[2].texel_size_base << " m; max error " << e.max << "\n";
+  EXPECT_EQ(e.shadowed, 3);
+  EXPECT_LT(e.max, 0.03f);
+}
+
+// ---- Clustered maps ----
+
+// Two boxes 20 m apart under one sun: two clusters, each map fitted to its box (texels
+// far finer than a map around both), the product of the two matching the integrated
+// transmittance behind either box, built from lists and in fixed memory.
+TEST_F(LightMapsTest, ClustersFitAMapToEachGroupOfCasters) {
+  Box left, right;
+  left.origin = glm::vec3(-10.0f, 0.0f, -0.75f);
+  right.origin = glm::vec3(10.0f, 0.0f, -0.75f);
+  const std::vector<Box> boxes = {left, right};
+  for (scene::ShadowBuild build : {scene::ShadowBuild::lists, scene::ShadowBuild::fixed}) {
+    scene::Scene scene = box_scene(boxes);
+    scene::Light sun = make_light("sun", scene::LightType::directional, 64);
+    sun.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.15f));
+    sun.shadow.fit = scene::ShadowFit::scene;
+    sun.shadow.clusters = 4;
+    sun.shadow.build = build;
+    scene.lights.push_back(sun);
+    std::vector<glm::vec3> probes;
+    for (const Box& box : boxes)
+      for (float t : {1.3f, 1.6f}) probes.push_back(box.centre() + sun.direction * t + glm::vec3(0.1f * t, 0, 0));
+    renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+    renderer.set_probes(probes);
+    const std::vector<float> got = render_probes(ctx(), renderer, scene.cameras.front()).at(0);
+    const passes::LightShadowStats& stats = renderer.shadows().frame_stats().at(0);
+    EXPECT_EQ(stats.map_kind, "clusters");
+    EXPECT_EQ(stats.maps, 2u);
+    const std::vector<passes::LightView> clusters = renderer.shadows().map_views(0);
+    const passes::LightView single = passes::make_light_view(sun, scene.bounds, 64);
+    for (const passes::LightView& view : clusters) EXPECT_LT(view.texel_size_base, 0.2f * single.texel_size_base);
+    const ProbeError e = probe_error(boxes, sun, probes, got);
+    std::cout << "[ clusters    ] " << scene::to_string(build) << ": texel " << clusters[0].texel_size_base
+              << " m (one map: " << single.texel_size_base << " m); max error " << e.max << "\n";
+    EXPECT_EQ(e.shadowed, int(probes.size()));
+    EXPECT_LT(e.max, 0.03f) << scene::to_string(build);
+  }
+}
+
+}  // namespace
+}  // namespace avsm
