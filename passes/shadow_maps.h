@@ -1,15 +1,20 @@
 #pragma once
 // Adaptive volumetric shadow maps for every light of a scene, as frame-graph
-// passes (Salvi et al., EGSR 2010). Per light and frame:
+// passes (Salvi et al., EGSR 2010). A light has one map, or several: a point light
+// six cube faces, a cascaded directional light one per split of the camera's view, a
+// clustered light one per group of casters (seed 004). Per map and frame:
 //   clear lists -> capture opaque -> capture hair -> capture smoke -> [sort lists]
 //   -> the light's technique's build passes (passes/techniques/: avsm resolve and
 //      mips, osm, fom or dsm builds), or none: the exact reference (uncompressed)
-//      reads the capture lists themselves.
-// All techniques share the capture. The lists are transient graph resources, so
-// lights alias each other's capture memory; the map and the capture counter are
-// persistent and imported.
+//      reads the capture lists themselves (copied for the lookups, "copy lists").
+// The fixed-memory build replaces the lists with a build straight from the casters.
+// All techniques share the capture. The lists are transient graph resources, so maps
+// alias each other's capture memory. Every map is a region of one persistent atlas
+// buffer, which the lookups address by each record's offset (shaders/shared/shadow.h),
+// so any number of lights needs the same four bindings; its size is checked against
+// a budget before anything is allocated.
 //
-// Capture overflow: the node buffer of each light holds a fixed number of
+// Capture overflow: the node buffer of each map holds a fixed number of
 // segments. Segments beyond it are counted and dropped (never written out of
 // bounds), so an overflowed frame has lighter shadows where the dropped segments
 // were; frame_stats() reports it, and the next frame's buffer grows to fit (25%
@@ -17,7 +22,6 @@
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>

@@ -94,6 +94,21 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
   return grew;
 }
 
+// The lights whose maps the budget made smaller (shadows.fit_budget): the capture
+// says which, so that a farm run's figures are not mistaken for the asked resolution.
+void report_lowered_resolutions(const renderer::SceneRenderer& frame, const scene::Scene& scene) {
+  const passes::ShadowMaps& shadows = frame.shadows();
+  for (uint32_t i = 0; i < shadows.light_count() && i < scene.lights.size(); ++i) {
+    const int asked = scene.lights[i].shadow.resolution;
+    const uint32_t got = shadows.map_layout(i).resolution;
+    if (got < uint32_t(asked))
+      std::fprintf(stderr,
+                   "avsm-capture: warning: light '%s': shadow resolution lowered from %d to %u to fit the map budget "
+                   "(shadows.budget_mib)\n",
+                   scene.lights[i].name.c_str(), asked, got);
+  }
+}
+
 std::string describe(const scene::VolumeShading& shading) {
   return std::string(scene::to_string(shading.mode)) + ", resolution divisor " +
          std::to_string(shading.resolution_divisor) + ", step " + std::to_string(shading.step_voxels) + " voxels";
@@ -194,6 +209,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     throw std::runtime_error(what.starts_with(prefix) ? what : prefix + what);
   }
   renderer::SceneRenderer& frame = *renderer_storage;
+  report_lowered_resolutions(frame, scene);
   if (!probe_points.empty()) frame.set_probes(probe_points);
   if (options.compare_to_uncompressed) frame.enable_quality();
   if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));

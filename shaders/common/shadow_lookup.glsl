@@ -144,7 +144,8 @@ float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal,
   float result = product ? 1.0 : 0.0;
   for (uint k = 0u; k < kMaxViewsPerLight; ++k) {
     if (k >= count) break;
-    GpuShadow v = shadows[first + k];
+    GpuShadow v = s;  // a light with one map: its record is the map's
+    if (s.views != kViewsSingle) v = shadows[first + k];
     vec3 q = surface ? shadow_surface_point(v, p, normal, to_light) : p;
     float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance(v, q);
     result = product ? result * t : result + (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend)) * t;
