@@ -13,6 +13,7 @@
 // non-zero when they disagree. Any validation message also fails the run.
 //
 //   host_embed [--out DIR] [--size PIXELS] [--validation] [--check] [--no-shadows] [--fixed-memory-build]
+//              [--point-light]
 // --validation (or AVSM_VALIDATION=1) enables VK_LAYER_KHRONOS_validation with
 // synchronization validation. --no-shadows binds unshadowed inputs instead of the maps:
 // the checks must then fail (the test uses it to show that they can).
@@ -56,8 +57,16 @@ const glm::vec3 kLightTravel = glm::normalize(glm::vec3(1.0f, -2.0f, 0.0f));
 constexpr float kHairHeight = 1.5f;
 constexpr float kHairMinX = -2.6f, kHairMaxX = -1.4f, kHairMinZ = -2.6f, kHairMaxZ = -1.4f;
 
-// Where a point at height h lands on the ground along the light.
-float ground_shift(float height) { return -kLightTravel.x / kLightTravel.y * height; }
+// --point-light: a point light up and to the -x side, whose rays cross the box at about
+// the sun's slant, so the same checks hold with its own projection.
+const glm::vec3 kPointLight{-4.0f, 8.0f, 0.0f};
+bool g_point_light = false;
+
+// Where a point at (x, height) in the plane z = 0 lands on the ground along the light.
+float ground_landing(float x, float height) {
+  if (g_point_light) return kPointLight.x + (x - kPointLight.x) * kPointLight.y / (kPointLight.y - height);
+  return x - kLightTravel.x / kLightTravel.y * height;
+}
 
 VKAPI_ATTR VkBool32 VKAPI_CALL count_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* user_data) {
@@ -310,7 +319,8 @@ class GroundShading {
           shadows.bind(bindings, c);
           bindings.push(c.cmd());
           pipeline_.push_constants(c.cmd(), GroundPush{{-kGroundHalf, -kGroundHalf, 2 * kGroundHalf, 2 * kGroundHalf},
-                                                       glm::vec4(-kLightTravel, 0.0f)});
+                                                       g_point_light ? glm::vec4(kPointLight, 1.0f)
+                                                                     : glm::vec4(-kLightTravel, 0.0f)});
           pipeline_.dispatch_threads(c.cmd(), size, size);
         });
   }
@@ -353,6 +363,7 @@ struct Options {
   uint32_t size = 128;
   bool validation = false, check = false, shadows = true;
   bool fixed_memory_build = false;  // build the map straight from the casters (avsm::Light)
+  bool point_light = false;         // a point light (a cube of six maps) instead of the sun
 };
 
 Options parse_options(int argc, char** argv) {
@@ -367,8 +378,10 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--check") options.check = true;
     else if (arg == "--no-shadows") options.shadows = false;
     else if (arg == "--fixed-memory-build") options.fixed_memory_build = true;
+    else if (arg == "--point-light") options.point_light = true;
     else throw std::invalid_argument("unknown option '" + arg +
-                                     "' (--out DIR --size N --validation --check --no-shadows --fixed-memory-build)");
+                                     "' (--out DIR --size N --validation --check --no-shadows --fixed-memory-build "
+                                     "--point-light)");
   }
   return options;
 }
@@ -414,12 +427,12 @@ struct Checker {
 // the slanted light passes, everything does; the hair lets part of it through.
 int check_against_geometry(const avsm::gpu::ImageRGBA32F& image) {
   Checker c;
-  const float shadow_begin = kBoxMin.x + ground_shift(kBoxMin.y);  // the box's lower -x edge
-  const float shadow_end = kBoxMax.x + ground_shift(kBoxMax.y);    // its upper +x edge
+  const float shadow_begin = ground_landing(kBoxMin.x, kBoxMin.y);  // the box's lower -x edge
+  const float shadow_end = ground_landing(kBoxMax.x, kBoxMax.y);    // its upper +x edge
   const float in_shadow = transmittance_at(image, 0.5f * (shadow_begin + shadow_end), 0.0f);
   const float beside = transmittance_at(image, shadow_end + 0.8f, 0.0f);
   const float under_box = transmittance_at(image, kBoxMin.x + 0.2f, 0.0f);  // the light passes under the box here
-  const float hair_x = 0.5f * (kHairMinX + kHairMaxX) + ground_shift(kHairHeight + 0.05f);
+  const float hair_x = ground_landing(0.5f * (kHairMinX + kHairMaxX), kHairHeight + 0.05f);
   const float under_hair = transmittance_at(image, hair_x, 0.5f * (kHairMinZ + kHairMaxZ));
   char line[160];
   std::snprintf(line, sizeof(line), "box shadow at x=%.2f: T=%.3f (expected < 0.1)", 0.5f * (shadow_begin + shadow_end), in_shadow);
@@ -448,6 +461,7 @@ int check_against_geometry(const avsm::gpu::ImageRGBA32F& image) {
 }
 
 int run(const Options& options) {
+  g_point_light = options.point_light;
   HostDevice host(options.validation);
   int failures = 0;
   {
@@ -460,6 +474,12 @@ int run(const Options& options) {
     avsm::Light sun;
     sun.name = "sun";
     sun.direction = kLightTravel;
+    if (options.point_light) {
+      sun.name = "point";
+      sun.type = avsm::LightType::point;
+      sun.position = kPointLight;
+      sun.range = 30.0f;
+    }
     sun.nodes = 8;
     sun.resolution = 256;
     sun.fixed_memory_build = options.fixed_memory_build;
@@ -488,8 +508,8 @@ int run(const Options& options) {
       ground.add_to_graph(graph, maps);
       submit_frame(host, cmd, graph, executor);
       for (const avsm::LightStats& s : shadows.finish_frame())
-        std::printf("frame %d light '%s': %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, %llu bytes of "
-                    "fixed build\n", frame, s.name.c_str(), s.nodes, s.resolution, s.resolution,
+        std::printf("frame %d light '%s': %u map(s) of %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, "
+                    "%llu bytes of fixed build\n", frame, s.name.c_str(), s.maps, s.nodes, s.resolution, s.resolution,
                     (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
                     s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
     }

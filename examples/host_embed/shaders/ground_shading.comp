@@ -16,7 +16,7 @@ void main() {
   vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
   vec3 p = vec3(pc.ground.x + uv.x * pc.ground.z, 0.0, pc.ground.y + uv.y * pc.ground.w);
   vec3 n = vec3(0.0, 1.0, 0.0);
-  vec3 l = pc.to_light.xyz;
+  vec3 l = pc.to_light.w > 0.5 ? normalize(pc.to_light.xyz - p) : pc.to_light.xyz;
   float transmittance = surface_light_transmittance(0u, p, n, l);
   // A faint checker so the picture shows the ground's scale.
   ivec2 cell = ivec2(floor(p.xz * 2.0));

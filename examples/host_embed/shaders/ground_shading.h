@@ -8,7 +8,7 @@ GPU_NAMESPACE_BEGIN
 
 #define GPU_GROUND_PUSH(F, A)                                                         \
   F(vec4, ground)   /* xy: world x, z of the image's corner; zw: world size along x, z */ \
-  F(vec4, to_light) /* xyz: unit vector towards the light */
+  F(vec4, to_light) /* w 0: xyz the unit vector towards the light; w 1: xyz a point light's position */
 GPU_PUSH_CONSTANTS(GroundPush, GPU_GROUND_PUSH)
 
 GPU_NAMESPACE_END
