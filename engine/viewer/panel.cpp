@@ -278,7 +278,7 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
       draw_light_switches(light, o, requests);
       draw_light_placement(light, o, requests);
       draw_light_fitting(light, scene.shadows, o, requests);
-      if (light_stats) ImGui::TextUnformatted(map_summary(*light_stats).c_str());
+      if (light_stats) ImGui::TextWrapped("%s", map_summary(*light_stats).c_str());
       if (i < view.light_maps.size()) draw_light_map(view.light_maps[i], uint32_t(i), light, light_stats, requests);
       ImGui::TreePop();
     }
