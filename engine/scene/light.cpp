@@ -45,6 +45,11 @@ std::string_view to_string(LightType type) {
   return "?";
 }
 std::string_view to_string(ShadowFit fit) { return fit == ShadowFit::view ? "view" : "scene"; }
+std::optional<ShadowFit> shadow_fit_from_string(std::string_view text) {
+  if (text == "view") return ShadowFit::view;
+  if (text == "scene") return ShadowFit::scene;
+  return std::nullopt;
+}
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
   return value_of<ShadowFilter>(kFilters, text);
 }
@@ -56,6 +61,7 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (filter) settings.filter = *filter;
   if (sort) settings.sort = *sort;
   if (build) settings.build = *build;
+  if (fit) settings.fit = *fit;
   if (cascades) settings.cascades = *cascades;
   if (clusters) settings.clusters = *clusters;
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;

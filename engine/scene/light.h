@@ -61,6 +61,7 @@ struct ShadowOverrides {
   std::optional<ShadowFilter> filter;
   std::optional<bool> sort;
   std::optional<ShadowBuild> build;
+  std::optional<ShadowFit> fit;
   std::optional<int> cascades;
   std::optional<int> clusters;
   std::map<std::string, double> parameters;  // set on top of the light's own
@@ -98,5 +99,6 @@ std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
 std::string_view to_string(ShadowBuild build);
 std::optional<ShadowBuild> shadow_build_from_string(std::string_view text);
 std::string_view to_string(ShadowFit fit);
+std::optional<ShadowFit> shadow_fit_from_string(std::string_view text);
 
 }  // namespace avsm::scene

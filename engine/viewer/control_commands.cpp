@@ -24,6 +24,16 @@ int parse_whole(const std::string& text, const std::string& what) {
   return int(value);
 }
 
+// A whole number in [low, high]: the scene file's range for the field, so a bad value is
+// refused here, with the range, rather than later by the renderer.
+int parse_whole_in(const std::string& text, const std::string& what, int low, int high) {
+  const int value = parse_whole(text, what);
+  if (value < low || value > high)
+    throw std::invalid_argument(what + " expects " + std::to_string(low) + " to " + std::to_string(high) + ", got '" +
+                                text + "'");
+  return value;
+}
+
 bool parse_on_off(const std::string& text, const std::string& what) {
   if (text == "on") return true;
   if (text == "off") return false;
@@ -92,10 +102,18 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
     const std::optional<scene::ShadowBuild> build = scene::shadow_build_from_string(value);
     if (!build) throw std::invalid_argument(what + ": unknown build '" + value + "' (lists, fixed)");
     o.build = *build;
+  } else if (field == "fit") {
+    const std::optional<scene::ShadowFit> fit = scene::shadow_fit_from_string(value);
+    if (!fit) throw std::invalid_argument(what + ": unknown fit '" + value + "' (view, scene)");
+    o.fit = *fit;
+  } else if (field == "cascades") {
+    o.cascades = parse_whole_in(value, what, 1, 4);
+  } else if (field == "clusters") {
+    o.clusters = parse_whole_in(value, what, 0, 8);
   } else if (field == "on") {
     o.enabled = parse_on_off(value, what);
   } else {
-    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, on)");
+    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, fit, cascades, clusters, on)");
   }
 }
 

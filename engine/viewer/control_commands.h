@@ -6,7 +6,9 @@
 //   inspect X,Y              click pixel (X, Y) (x right, y down): plot its texel curves
 //   screenshot DIR           write one avsm-capture frame's outputs and window.png
 //   light I FIELD VALUE      set a panel field of light I: technique (avsm, ...), nodes,
-//                            resolution, filter (point, ...), sort (on/off), on (on/off)
+//                            resolution, filter (point, ...), sort (on/off), build (lists,
+//                            fixed), fit (view, scene), cascades (1-4), clusters (0-8, 0 and
+//                            1 off), on (on/off)
 //   exposure V               the tonemapper's exposure
 //   quit                     stop (the exit status still reports validation messages)
 #include <glm/glm.hpp>

@@ -18,6 +18,8 @@ constexpr std::array kFilters{scene::ShadowFilter::point, scene::ShadowFilter::b
                               scene::ShadowFilter::trilinear};
 constexpr std::array kNodeCounts{4, 8, 12, 16};
 constexpr std::array kResolutions{64, 128, 256, 512, 1024, 2048};
+constexpr std::array kCascadeCounts{1, 2, 3, 4};
+constexpr std::array kClusterCounts{0, 2, 3, 4, 5, 6, 7, 8};
 
 const ImVec4 kErrorColour{1.0f, 0.35f, 0.3f, 1.0f};
 const ImU32 kReferenceColour = IM_COL32(235, 235, 235, 255);
@@ -97,7 +99,107 @@ void plot_curve(const TexelCurve& curve) {
   }
 }
 
+// On/off, sort, build, technique, nodes, resolution and filter: what every light has.
+void draw_light_switches(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
+  const scene::ShadowSettings& shadow = light.shadow;
+  bool on = o.enabled.value_or(true);
+  if (ImGui::Checkbox("on", &on)) o.enabled = on, requests.scene_edited = true;
+  ImGui::SameLine();
+  bool sort = shadow.sort;
+  if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
+  ImGui::SameLine();
+  bool fixed = shadow.build == scene::ShadowBuild::fixed;
+  if (ImGui::Checkbox("fixed-memory build", &fixed))
+    o.build = fixed ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists, requests.scene_edited = true;
+  if (auto t = choose("technique", shadow.technique, technique_names(), technique_name))
+    o.technique = *t, requests.scene_edited = true;
+  if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;
+  if (auto r = choose("map resolution", shadow.resolution, kResolutions, number_name))
+    o.resolution = *r, requests.scene_edited = true;
+  if (auto f = choose("filter", shadow.filter, kFilters, filter_name)) o.filter = *f, requests.scene_edited = true;
+}
+
+// Direction (directional, spot), position (spot, point) and a point light's range.
+void draw_light_placement(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
+  if (light.type != scene::LightType::point) {
+    glm::vec3 direction = light.direction;
+    if (ImGui::DragFloat3("direction", &direction.x, 0.01f, -1.0f, 1.0f))
+      o.direction = direction, requests.scene_edited = true;
+  }
+  if (light.type != scene::LightType::directional) {
+    glm::vec3 position = light.position;
+    if (ImGui::DragFloat3("position", &position.x, 0.02f)) o.position = position, requests.scene_edited = true;
+  }
+  if (light.type == scene::LightType::point) {
+    if (light.range > 0.0f)
+      ImGui::Text("range %.2f (light and shadows end there)", light.range);
+    else
+      ImGui::TextUnformatted("range: none (inverse-square falloff, shadowed over the scene)");
+  }
+}
+
+// Shadow fit, cascades and clusters. The renderer refuses some combinations (cascades
+// follow the camera, so they need fit view and exclude clusters); the panel disables
+// the controls that would make one rather than let an edit fail.
+void draw_light_fitting(const scene::Light& light, const scene::SceneShadows& scene_shadows, LightOverride& o,
+                        PanelRequests& requests) {
+  if (light.type == scene::LightType::point) return;  // a cube covers every way: nothing to fit
+  const scene::ShadowSettings& shadow = light.shadow;
+  const bool cascaded = shadow.cascades > 1, clustered = shadow.clusters > 1;
+
+  int fit = shadow.fit == scene::ShadowFit::view ? 0 : 1;
+  if (ImGui::RadioButton("fit view", &fit, 0)) o.fit = scene::ShadowFit::view, requests.scene_edited = true;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(cascaded);
+  if (ImGui::RadioButton("fit scene", &fit, 1)) o.fit = scene::ShadowFit::scene, requests.scene_edited = true;
+  ImGui::EndDisabled();
+  if (cascaded && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("cascades follow the camera: set cascades to 1 first");
+
+  if (light.type == scene::LightType::directional) {
+    ImGui::BeginDisabled(clustered || shadow.fit == scene::ShadowFit::scene);
+    if (auto c = choose("cascades", shadow.cascades, kCascadeCounts, number_name))
+      o.cascades = *c, requests.scene_edited = true;
+    ImGui::EndDisabled();
+  }
+  // 0 leaves the light to the scene's "shadows": {"clusters": N}, which the renderer
+  // applies to lights without cascades.
+  const auto cluster_name = [&](int n) {
+    if (n == 0 && scene_shadows.clusters > 1) return "scene's (" + std::to_string(scene_shadows.clusters) + ")";
+    return n <= 1 ? std::to_string(n) + " (off)" : std::to_string(n);
+  };
+  ImGui::BeginDisabled(cascaded);
+  if (auto c = choose("clusters", shadow.clusters, kClusterCounts, cluster_name))
+    o.clusters = *c, requests.scene_edited = true;
+  ImGui::EndDisabled();
+}
+
+// The light's first map as the light sees it; a click on a texel plots its curve.
+// Row 0 of the picture is the map's top row (texel y = resolution - 1).
+void draw_light_map(ImTextureID texture, uint32_t light_index, const scene::Light& light,
+                    const passes::LightShadowStats* stats, PanelRequests& requests) {
+  const float side = std::min(ImGui::GetContentRegionAvail().x, 256.0f);
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  ImGui::Image(texture, ImVec2(side, side));
+  if (!ImGui::IsItemClicked(ImGuiMouseButton_Left)) return;
+  // The map's own resolution: the budget may have lowered it below the settings'.
+  const float res = float(stats && stats->resolution ? int(stats->resolution) : light.shadow.resolution);
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const uint32_t x = uint32_t(std::clamp((mouse.x - corner.x) / side * res, 0.0f, res - 1.0f));
+  const uint32_t row = uint32_t(std::clamp((mouse.y - corner.y) / side * res, 0.0f, res - 1.0f));
+  requests.inspect_light_texel = {{light_index, glm::uvec2(x, uint32_t(res) - 1 - row)}};
+}
+
 }  // namespace
+
+std::string map_summary(const passes::LightShadowStats& stats) {
+  std::string text = stats.maps == 1 ? stats.map_kind + " map"
+                                      : stats.map_kind + ": " + std::to_string(stats.maps) + " maps";
+  text += ", " + std::to_string(stats.resolution) + "^2";
+  if (stats.lowered_from)
+    text += " (lowered from " + std::to_string(stats.lowered_from) + " to fit the map budget)";
+  return text;
+}
 
 double FrameStats::gpu_ms() const {
   double total = 0;
@@ -161,50 +263,23 @@ void Panel::draw_scene_file(PanelRequests& requests) {
 
 void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
   const scene::Scene& scene = view.live.scene();
+  const std::vector<passes::LightShadowStats>& stats = view.live.renderer().shadows().frame_stats();
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const scene::Light& light = scene.lights[i];
-    const scene::ShadowSettings& shadow = light.shadow;
     ImGui::PushID(int(i));
     const std::string title = "light " + std::to_string(i) + " '" + light.name + "' (" +
                               std::string(scene::to_string(light.type)) + ")";
     if (ImGui::TreeNode(title.c_str())) {
       LightOverride& o = settings.overrides.light(i);
-      bool on = o.enabled.value_or(true);
-      if (ImGui::Checkbox("on", &on)) o.enabled = on, requests.scene_edited = true;
-      ImGui::SameLine();
-      bool sort = shadow.sort;
-      if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
-      ImGui::SameLine();
-      bool fixed = shadow.build == scene::ShadowBuild::fixed;
-      if (ImGui::Checkbox("fixed-memory build", &fixed))
-        o.build = fixed ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists, requests.scene_edited = true;
-      if (auto t = choose("technique", shadow.technique, technique_names(), technique_name))
-        o.technique = *t, requests.scene_edited = true;
-      if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;
-      if (auto r = choose("map resolution", shadow.resolution, kResolutions, number_name))
-        o.resolution = *r, requests.scene_edited = true;
-      if (auto f = choose("filter", shadow.filter, kFilters, filter_name)) o.filter = *f, requests.scene_edited = true;
-      glm::vec3 direction = light.direction;
-      if (ImGui::DragFloat3("direction", &direction.x, 0.01f, -1.0f, 1.0f))
-        o.direction = direction, requests.scene_edited = true;
-      if (light.type == scene::LightType::spot) {
-        glm::vec3 position = light.position;
-        if (ImGui::DragFloat3("position", &position.x, 0.02f)) o.position = position, requests.scene_edited = true;
-      }
-      if (i < view.light_maps.size()) {
-        // The map as the light sees it; click a texel to plot its curve. Row 0 of the
-        // picture is the map's top row (texel y = resolution - 1).
-        const float side = std::min(ImGui::GetContentRegionAvail().x, 256.0f);
-        const ImVec2 corner = ImGui::GetCursorScreenPos();
-        ImGui::Image(view.light_maps[i], ImVec2(side, side));
-        if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
-          const ImVec2 mouse = ImGui::GetIO().MousePos;
-          const float res = float(shadow.resolution);
-          const uint32_t x = uint32_t(std::clamp((mouse.x - corner.x) / side * res, 0.0f, res - 1.0f));
-          const uint32_t row = uint32_t(std::clamp((mouse.y - corner.y) / side * res, 0.0f, res - 1.0f));
-          requests.inspect_light_texel = {{uint32_t(i), glm::uvec2(x, uint32_t(res) - 1 - row)}};
-        }
-      }
+      // Stats are per light of the last frame; after an edit that added or removed
+      // lights they may not line up yet, so match them by name.
+      const passes::LightShadowStats* light_stats =
+          i < stats.size() && stats[i].light == light.name ? &stats[i] : nullptr;
+      draw_light_switches(light, o, requests);
+      draw_light_placement(light, o, requests);
+      draw_light_fitting(light, scene.shadows, o, requests);
+      if (light_stats) ImGui::TextWrapped("%s", map_summary(*light_stats).c_str());
+      if (i < view.light_maps.size()) draw_light_map(view.light_maps[i], uint32_t(i), light, light_stats, requests);
       ImGui::TreePop();
     }
     ImGui::PopID();
@@ -298,8 +373,8 @@ void Panel::draw_memory(const PanelView& view) {
               bytes_text(memory.transient_bytes_aliased).c_str(), (unsigned long long)memory.heap_count,
               bytes_text(memory.transient_bytes_unaliased).c_str());
   for (const passes::LightShadowStats& light : memory.lights) {
-    ImGui::Text("%s: %s %ux%u, map %s, capture %s", light.light.c_str(), light.technique.c_str(),
-                light.resolution, light.resolution, bytes_text(light.map_bytes).c_str(), bytes_text(light.capture_bytes).c_str());
+    ImGui::Text("%s: %s, %s; maps %s, capture %s", light.light.c_str(), light.technique.c_str(),
+                map_summary(light).c_str(), bytes_text(light.map_bytes).c_str(), bytes_text(light.capture_bytes).c_str());
     ImGui::Text("  segments %llu of %llu%s", (unsigned long long)light.capture_requested,
                 (unsigned long long)light.capture_capacity, light.overflowed ? " (overflowed: buffer grows)" : "");
     if (light.dsm_pool)

@@ -1,6 +1,8 @@
 #pragma once
 // The viewer's Dear ImGui panel: the scene file, per light technique / node count /
-// map resolution / filter / sort / on-off and placement, volume extinction and
+// map resolution / filter / sort / on-off, placement (a point light's position and
+// range), fit / cascades / clusters and the maps the last frame made of it (kind,
+// count, budget lowering), volume extinction and
 // albedo, hair opacity and width, exposure; the last frame's per-pass GPU timings,
 // memory figures and frame-graph plan; reload errors; the light maps and the
 // inspected texel's transmittance curves. It edits ViewerSettings and returns what
@@ -20,6 +22,10 @@
 #include "viewer/texel_inspector.h"
 
 namespace avsm::viewer {
+
+// A light's maps as the panel shows them: "single map, 1024^2", "cube: 6 maps, 256^2",
+// "cascades: 3 maps, 1024^2 (lowered from 2048 to fit the map budget)".
+std::string map_summary(const passes::LightShadowStats& stats);
 
 // What the user set in the panel.
 struct ViewerSettings {

@@ -1,5 +1,6 @@
 // The viewer's CPU-side logic, without a window: camera control, picking, the
-// light texel a point falls in, scene overrides and the --control commands.
+// light texel a point falls in, scene overrides, the --control commands and the
+// panel's map summary.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "passes/view.h"
 #include "viewer/camera_controller.h"
 #include "viewer/control_commands.h"
+#include "viewer/panel.h"
 #include "viewer/scene_overrides.h"
 #include "viewer/scene_picking.h"
 #include "viewer/texel_inspector.h"
@@ -165,6 +167,11 @@ TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(light.light, 1u);
   EXPECT_EQ(light.field, "technique");
   EXPECT_EQ(light.value, "dsm");
+  const ControlCommand cascades = parse_control_command("light 0 cascades 3");
+  EXPECT_EQ(cascades.kind, ControlCommand::Kind::light);
+  EXPECT_EQ(cascades.field, "cascades");
+  EXPECT_EQ(cascades.value, "3");
+  EXPECT_EQ(parse_control_command("light 2 clusters 4").field, "clusters");
   EXPECT_FLOAT_EQ(parse_control_command("exposure 0.5").exposure, 0.5f);
   EXPECT_EQ(parse_control_command("quit").kind, ControlCommand::Kind::quit);
 }
@@ -179,6 +186,46 @@ TEST(ControlCommands, RejectsMalformedLinesWithAReason) {
   EXPECT_THROW(set_light_field(overrides, 0, "colour", "red"), std::invalid_argument);
   set_light_field(overrides, 0, "sort", "off");
   EXPECT_EQ(overrides.lights[0].sort, false);
+  // The scene file's ranges: cascades 1 to 4, clusters 0 (off) to 8.
+  for (const char* bad : {"0", "5", "2.5", "many"})
+    EXPECT_THROW(set_light_field(overrides, 0, "cascades", bad), std::invalid_argument) << bad;
+  for (const char* bad : {"9", "-1", "all"})
+    EXPECT_THROW(set_light_field(overrides, 0, "clusters", bad), std::invalid_argument) << bad;
+  EXPECT_THROW(set_light_field(overrides, 0, "fit", "camera"), std::invalid_argument);
+  EXPECT_FALSE(overrides.lights[0].cascades);  // a refused value sets nothing
+  EXPECT_FALSE(overrides.lights[0].clusters);
+}
+
+TEST(ControlCommands, CascadesClustersAndFitReachTheLight) {
+  SceneOverrides overrides;
+  set_light_field(overrides, 0, "cascades", "3");
+  set_light_field(overrides, 1, "clusters", "4");
+  set_light_field(overrides, 1, "fit", "scene");
+  scene::Scene scene;
+  scene.lights.resize(2);
+  scene.lights[1].shadow.cascades = 2;  // untouched by light 1's edits
+  overrides.apply(scene);
+  EXPECT_EQ(scene.lights[0].shadow.cascades, 3);
+  EXPECT_EQ(scene.lights[0].shadow.clusters, 0);
+  EXPECT_EQ(scene.lights[0].shadow.fit, scene::ShadowFit::view);
+  EXPECT_EQ(scene.lights[1].shadow.clusters, 4);
+  EXPECT_EQ(scene.lights[1].shadow.cascades, 2);
+  EXPECT_EQ(scene.lights[1].shadow.fit, scene::ShadowFit::scene);
+  set_light_field(overrides, 0, "clusters", "0");  // 0 is a value (off), not "unset"
+  overrides.apply(scene);
+  EXPECT_EQ(overrides.lights[0].clusters, 0);
+}
+
+TEST(Panel, MapSummaryNamesKindCountAndBudgetLowering) {
+  passes::LightShadowStats single;
+  single.resolution = 1024;
+  EXPECT_EQ(map_summary(single), "single map, 1024^2");
+  passes::LightShadowStats cube;
+  cube.maps = 6, cube.map_kind = "cube", cube.resolution = 256;
+  EXPECT_EQ(map_summary(cube), "cube: 6 maps, 256^2");
+  passes::LightShadowStats cascades;
+  cascades.maps = 3, cascades.map_kind = "cascades", cascades.resolution = 512, cascades.lowered_from = 2048;
+  EXPECT_EQ(map_summary(cascades), "cascades: 3 maps, 512^2 (lowered from 2048 to fit the map budget)");
 }
 
 }  // namespace
