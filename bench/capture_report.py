@@ -39,10 +39,35 @@ class Timings:  # timings.json
     device: str
     passes: List[PassTiming]
     frame_gpu_ms: Spread
+    frame_wall_ms: Optional[Spread] = None
 
     @staticmethod
     def from_json(j):
-        return Timings(j["device"], [PassTiming.from_json(p) for p in j["passes"]], Spread.from_json(j["frame_gpu_ms"]))
+        return Timings(j["device"], [PassTiming.from_json(p) for p in j["passes"]], Spread.from_json(j["frame_gpu_ms"]),
+                       Spread.from_json(j["frame_wall_ms"]))
+
+
+@dataclass
+class FrameCpu:  # one frame's CPU slices in trace.json
+    build_graph_ms: float  # SceneRenderer::build_frame: the frame graph declared
+    record_ms: float       # Executor::record: the graph compiled (or reused) and every pass recorded
+    submit_wait_ms: float  # submit to completion
+
+
+def frame_cpu(folder) -> List[FrameCpu]:
+    """Every frame's CPU slices from trace.json (the warm-up frame first), in frame order."""
+    trace = json.loads((Path(folder) / "trace.json").read_text())
+    events = trace["traceEvents"]
+    tracks = {e["tid"]: e["args"]["name"] for e in events if e.get("ph") == "M" and e["name"] == "thread_name"}
+    frames: List[Dict[str, float]] = []
+    for e in events:
+        if e.get("ph") != "X" or tracks.get(e["tid"]) != "CPU":
+            continue
+        if e.get("cat") == "frame":
+            frames.append({})
+        elif frames:
+            frames[-1][e["name"]] = e["dur"] / 1000.0  # trace durations are microseconds
+    return [FrameCpu(f.get("build graph", 0.0), f.get("record", 0.0), f.get("submit + wait", 0.0)) for f in frames]
 
 
 @dataclass
@@ -55,14 +80,23 @@ class LightShadowStats:
     # The fixed-memory build's depth image + hair bins; None for the lists build.
     fixed_transient_bytes: Optional[int] = None
     inserted_segments: Optional[int] = None  # fixed build: segments that went into curves
+    resolution: int = 0             # of each of its maps
+    maps: int = 1                   # point lights: 6 faces; cascades; clusters
+    map_kind: str = "single"        # single, cube, cascades or clusters
+    lowered_from: int = 0           # the resolution asked for, when the map budget lowered it
+    capture_overflowed: bool = False
 
     @staticmethod
     def from_json(j):
         fixed = j.get("fixed_build")
+        # Files written before lights had several maps lack maps, map_kind and lowered_from.
         return LightShadowStats(j["light"], j["technique"], j["map_bytes"], j["capture_bytes"],
                                 j["capture_requested_segments"],
                                 fixed["transient_bytes"] if fixed else None,
-                                fixed["inserted_segments"] if fixed else None)
+                                fixed["inserted_segments"] if fixed else None,
+                                resolution=j["resolution"], maps=j.get("maps", 1),
+                                map_kind=j.get("map_kind", "single"), lowered_from=j.get("lowered_from", 0),
+                                capture_overflowed=j["capture_overflowed"])
 
 
 @dataclass

@@ -172,7 +172,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
 
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
-  for (scene::Light& light : scene.lights) options.shadow.apply(light.shadow);
+  for (scene::Light& light : scene.lights) options.shadow.apply(light);
   options.volume_shading.apply(scene.volume_shading);
   const std::vector<glm::vec3> probe_points =
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);

@@ -28,7 +28,8 @@ struct CaptureOptions {
   std::string device;  // see gpu::ContextDesc::device
   bool progress = true;  // progress lines on stderr
 
-  // Shadow overrides applied to every light (unset: the scene's own settings).
+  // Shadow overrides applied to every light (unset: the scene's own settings; cascades
+  // only to directional lights, clusters not to point lights: ShadowOverrides::apply(Light&)).
   // Technique parameters (dsm error, osm slices, fom terms, depth_bias) go in shadow.parameters.
   scene::ShadowOverrides shadow;
   // Volume shading overrides (unset: the scene's volume_shading).

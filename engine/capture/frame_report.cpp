@@ -80,6 +80,13 @@ scene::ShadowBuild build_from_json(const json& object) {
   throw std::runtime_error("unknown shadow build '" + name + "'");
 }
 
+std::string map_kind_from_json(const json& object) {
+  const std::string kind = value_of<std::string>(object, "map_kind");
+  if (kind != "single" && kind != "cube" && kind != "cascades" && kind != "clusters")
+    throw std::runtime_error("unknown map kind '" + kind + "' (single, cube, cascades or clusters)");
+  return kind;
+}
+
 json vec3_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 // Components written as null (an empty box's infinities) keep `v`'s own.
@@ -125,6 +132,9 @@ json to_json(const passes::LightShadowStats& s) {
               {"nodes", s.nodes},
               {"resolution", s.resolution},
               {"mip_levels", s.mip_levels},
+              {"map_kind", s.map_kind},
+              {"maps", s.maps},
+              {"lowered_from", s.lowered_from},
               {"map_bytes", s.map_bytes},
               {"capture_bytes", s.capture_bytes},
               {"capture_capacity_segments", s.capture_capacity},
@@ -156,6 +166,10 @@ passes::LightShadowStats light_stats_from_json(const json& in) {
   s.nodes = value_of<uint32_t>(in, "nodes");
   s.resolution = value_of<uint32_t>(in, "resolution");
   s.mip_levels = value_of<uint32_t>(in, "mip_levels");
+  // Reports written before lights had several maps: one map, never lowered.
+  if (in.contains("map_kind")) s.map_kind = map_kind_from_json(in);
+  if (in.contains("maps")) s.maps = value_of<uint32_t>(in, "maps");
+  if (in.contains("lowered_from")) s.lowered_from = value_of<uint32_t>(in, "lowered_from");
   s.map_bytes = value_of<uint64_t>(in, "map_bytes");
   s.capture_bytes = value_of<uint64_t>(in, "capture_bytes");
   s.capture_capacity = value_of<uint64_t>(in, "capture_capacity_segments");

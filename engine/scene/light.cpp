@@ -67,4 +67,11 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;
 }
 
+void ShadowOverrides::apply(Light& light) const {
+  ShadowOverrides fitting = *this;
+  if (light.type != LightType::directional) fitting.cascades.reset();
+  if (light.type == LightType::point) fitting.clusters.reset();
+  fitting.apply(light.shadow);
+}
+
 }  // namespace avsm::scene

@@ -52,6 +52,8 @@ struct ShadowSettings {
   }
 };
 
+struct Light;
+
 // Shadow settings written over a light's own (the capture's flags, the viewer's
 // edits): unset fields keep what the scene file says.
 struct ShadowOverrides {
@@ -67,6 +69,10 @@ struct ShadowOverrides {
   std::map<std::string, double> parameters;  // set on top of the light's own
 
   void apply(ShadowSettings& settings) const;
+  // As apply(light.shadow), but only with the settings the light's type has, so that one
+  // set of overrides fits a scene of mixed lights: cascades only onto directional lights,
+  // clusters not onto point lights (as the scene's "shadows".clusters is applied).
+  void apply(Light& light) const;
 };
 
 enum class LightType { directional, spot, point };

@@ -47,6 +47,7 @@ passes::LightShadowStats sample_light(const std::string& name, const std::string
   s.capture_bytes = 8650752;
   s.next_capture_capacity = 524288;
   if (technique == "dsm") s.dsm_pool = passes::DsmPoolStats{70000, 65536, true};
+  if (technique == "avsm") s.maps = 4, s.map_kind = "clusters", s.lowered_from = 512;  // not the defaults
   return s;
 }
 

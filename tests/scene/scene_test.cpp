@@ -69,6 +69,43 @@ TEST(Scene, DefaultSceneLoadsWithEveryKindOfContent) {
   EXPECT_TRUE(inside(Bounds{glm::vec3(-4.1f, -0.1f, -4.1f), glm::vec3(4.1f, 3.5f, 4.1f)}, scene.bounds, 0.0f));
 }
 
+// bench/avsm/lights.py's scenes: the sparse one's caster groups lie far apart over a
+// ground much larger than them; the many-lights one's every first 4k lights hold the
+// same mix of types (so that N lights measure N times the cost of one).
+TEST(Scene, SparseBenchSceneSpreadsItsCastersOverALargeGround) {
+  const Scene scene = load_scene(testing::default_content("bench_sparse.scene.json"));
+  ASSERT_EQ(scene.volumes.size(), 2u);
+  ASSERT_EQ(scene.hair.size(), 1u);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, LightType::directional);
+  EXPECT_GT(glm::min(scene.bounds.size().x, scene.bounds.size().z), 90.0f);
+  const std::vector<Bounds> groups = {scene.volumes[0].world_bounds, scene.volumes[1].world_bounds,
+                                      scene.hair[0].bounds};
+  for (size_t a = 0; a < groups.size(); ++a)
+    for (size_t b = a + 1; b < groups.size(); ++b) {
+      const glm::vec3 apart = groups[a].center() - groups[b].center();
+      EXPECT_GT(glm::length(glm::vec2(apart.x, apart.z)), 19.0f) << "caster groups " << a << " and " << b;
+    }
+}
+
+TEST(Scene, ManyLightsBenchSceneMixesLightTypesEvenly) {
+  const Scene scene = load_scene(testing::default_content("bench_many_lights.scene.json"));
+  ASSERT_EQ(scene.lights.size(), 16u);
+  for (size_t first = 0; first < 16; first += 4) {
+    int directional = 0, spot = 0, point = 0;
+    for (size_t i = first; i < first + 4; ++i) {
+      const Light& light = scene.lights[i];
+      directional += light.type == LightType::directional;
+      spot += light.type == LightType::spot;
+      point += light.type == LightType::point;
+      EXPECT_EQ(light.shadow.resolution, 256) << light.name;
+    }
+    EXPECT_EQ(directional, 1) << "lights " << first << " to " << first + 3;
+    EXPECT_EQ(spot, 2) << "lights " << first << " to " << first + 3;
+    EXPECT_EQ(point, 1) << "lights " << first << " to " << first + 3;
+  }
+}
+
 TEST(Scene, RealAssetsSitTogetherInsideTheCornellBox) {
   for (const char* asset : {"smoke1/smoke.vdb", "ponytail/ponytail_all.hair", "cornell_box/CornellBox.glb"})
     AVSM_REQUIRE_FILE(testing::shared_content(asset));

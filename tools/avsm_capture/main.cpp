@@ -42,7 +42,11 @@ const char* kUsage =
     "  --build lists|fixed  how AVSM maps are built: per-texel fragment lists then a\n"
     "                   resolve, or straight from the casters in fixed memory\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
-    "  --shadow-res R   transmittance map texels per side\n"
+    "  --shadow-res R   transmittance map texels per side (of each map: cube face, cascade, cluster)\n"
+    "  --cascades N     directional lights (only): maps split along the camera's view, 1 to 4\n"
+    "  --clusters N     directional and spot lights (not point): casters grouped by their\n"
+    "                   light-space bounds, at most N maps (up to 8) of the shadow resolution\n"
+    "                   each; 1: off; 0: the scene's \"shadows\" clusters. Not with --cascades > 1\n"
     "  --shadow-param NAME=NUMBER   (repeatable) a technique parameter (listed at the end)\n"
     "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
     "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
@@ -65,6 +69,18 @@ std::string usage() {
 [[noreturn]] void usage_error(const std::string& message) {
   std::fprintf(stderr, "avsm-capture: %s\n%s", message.c_str(), usage().c_str());
   std::exit(2);
+}
+
+// A whole number in [lo, hi], or a usage error naming the flag and the range.
+int parse_in_range(const std::string& flag, const std::string& value, int lo, int hi) {
+  try {
+    size_t used = 0;
+    const long long n = std::stoll(value, &used);
+    if (used == value.size() && n >= lo && n <= hi) return int(n);
+  } catch (const std::exception&) {
+  }
+  usage_error(flag + " expects a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" +
+              value + "'");
 }
 
 uint32_t parse_count(const std::string& flag, const std::string& value) {
@@ -166,6 +182,10 @@ int main(int argc, char** argv) {
       const uint32_t r = parse_count(arg, value());
       if (r > 16384) usage_error("--shadow-res expects at most 16384");
       options.shadow.resolution = int(r);
+    } else if (arg == "--cascades") {
+      options.shadow.cascades = parse_in_range(arg, value(), 1, 4);
+    } else if (arg == "--clusters") {
+      options.shadow.clusters = parse_in_range(arg, value(), 0, 8);
     } else if (arg == "--interpolation") {
       const std::string name = value();
       if (name != "linear" && name != "exponential")
@@ -201,6 +221,9 @@ int main(int argc, char** argv) {
       usage_error("unknown option '" + arg + "'");
     }
   }
+  // A light is either cascaded or clustered (both split it into maps of their own kind).
+  if (options.shadow.cascades.value_or(1) > 1 && options.shadow.clusters.value_or(0) > 1)
+    usage_error("--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
   try {
     avsm::capture::CaptureOutputs out = avsm::capture::run_capture(options);
     std::printf("image:   %s\nhdr:     %s\ntimings: %s\n", out.png.c_str(), out.exr.c_str(), out.timings.c_str());
