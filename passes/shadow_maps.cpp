@@ -235,9 +235,24 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
 
 // The maps' bytes against the budget: an error naming the lights, or (fit_budget) the
 // largest lights' resolutions halved until everything fits.
+uint64_t ShadowMaps::map_budget() const {
+  const uint64_t range = ctx_.info().max_storage_buffer_range;
+  return options_.map_budget_bytes == 0 ? range : std::min(options_.map_budget_bytes, range);
+}
+
+uint64_t ShadowMaps::atlas_bytes_needed() const {
+  uint64_t bytes = 0;
+  for (const MapState& map : maps_) {
+    const LightState& light = lights_[map.light];
+    if (light.technique->has_map())
+      bytes += round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
+  }
+  return bytes;
+}
+
 void ShadowMaps::fit_to_budget() {
   const uint64_t range = ctx_.info().max_storage_buffer_range;
-  const uint64_t budget = options_.map_budget_bytes == 0 ? range : std::min(options_.map_budget_bytes, range);
+  const uint64_t budget = map_budget();
   auto light_bytes = [&](const LightState& light) {
     uint64_t bytes = 0;
     for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m)
@@ -669,11 +684,17 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
 void ShadowMaps::finish_frame() {
   bool grew = false;
   std::vector<LightShadowStats> per_light(lights_.size());
+  std::vector<TechniqueMapState> before;
+  for (const MapState& map : maps_) before.push_back(map.map_state);
   for (MapState& map : maps_) {
     map.stats = finish_map(map);
     grew = grew || map.stats.grew;
     add_map_stats(per_light[map.light], map.stats);
   }
+  // Maps that grew (deep shadow map pools) stay within the budget: past it they keep
+  // their size, and the frames go on reporting what did not fit.
+  if (atlas_bytes_needed() > map_budget())
+    for (size_t m = 0; m < maps_.size(); ++m) maps_[m].map_state = before[m];
   if (grew) {  // the frame completed: make the buffers again for the next one
     create_list_buffers();
     create_atlas();
