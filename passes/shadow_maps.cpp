@@ -50,6 +50,9 @@ void check_settings(const scene::Light& light, size_t index) {
                                 "set shadow.clusters to 0");
   if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
     throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
+  if (s.kernel_radius < 1 || s.kernel_radius > int(shared::kMaxKernelRadius))
+    throw std::invalid_argument(who + ": shadow kernel radius " + std::to_string(s.kernel_radius) + " texels; use 1 to " +
+                                std::to_string(shared::kMaxKernelRadius));
   if (s.resolution < 1 || s.resolution > 16384)
     throw std::invalid_argument(who + ": shadow resolution " + std::to_string(s.resolution) + " is outside 1..16384");
   check_shadow_settings(s, who);
@@ -411,6 +414,10 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
   g.resolution = map.map_state.layout.resolution;
   g.mip_count = map.map_state.layout.levels;
   g.filter_mode = filter_code(settings.filter);
+  g.kernel = settings.kernel == scene::ShadowKernel::box        ? shared::kKernelBox
+             : settings.kernel == scene::ShadowKernel::gaussian ? shared::kKernelGaussian
+                                                                : shared::kKernelNone;
+  g.kernel_radius = uint32_t(settings.kernel_radius);
   g.exponential = options_.exponential_interpolation ? 1u : 0u;
   g.map_offset = uint32_t(map.atlas_offset / sizeof(glm::vec4));
   g.list_heads_offset = uint32_t(map.list_heads_offset / sizeof(uint32_t));

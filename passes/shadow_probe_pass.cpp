@@ -14,17 +14,34 @@ namespace avsm::passes {
 ShadowProbePass::ShadowProbePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx), pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/shadow_probe.comp"), "shadow probes")) {}
 
-void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t light_count) {
-  std::vector<glm::vec4> padded;
-  for (const glm::vec3& p : points) padded.emplace_back(p, 1.0f);
-  if (padded.empty()) padded.emplace_back(0.0f);  // a buffer cannot be empty
-  point_count_ = uint32_t(points.size());
+void ShadowProbePass::upload_points(std::vector<glm::vec4> packed, uint32_t count, uint32_t light_count, Mode mode) {
+  if (packed.empty()) packed.emplace_back(0.0f);  // a buffer cannot be empty
+  point_count_ = count;
   light_count_ = light_count;
-  mode_ = Mode::points;
-  points_ = gpu::create_buffer_from(ctx_, std::move(padded), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
+  mode_ = mode;
+  points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
   results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
                                         "probe results"});
+}
+
+void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t light_count) {
+  std::vector<glm::vec4> packed;
+  for (const glm::vec3& p : points) packed.emplace_back(p, 1.0f);
+  upload_points(std::move(packed), uint32_t(points.size()), light_count, Mode::points);
+}
+
+void ShadowProbePass::set_surface_points(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals,
+                                         uint32_t light_count) {
+  if (normals.size() != points.size())
+    throw std::invalid_argument("ShadowProbePass: " + std::to_string(points.size()) + " surface points but " +
+                                std::to_string(normals.size()) + " normals");
+  std::vector<glm::vec4> packed;
+  for (size_t i = 0; i < points.size(); ++i) {
+    packed.emplace_back(points[i], 1.0f);
+    packed.emplace_back(glm::normalize(normals[i]), 0.0f);
+  }
+  upload_points(std::move(packed), uint32_t(points.size()), light_count, Mode::surface_points);
 }
 
 void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples) {
@@ -79,7 +96,7 @@ std::vector<TexelSampleResult> ShadowProbePass::texel_results() const {
 }
 
 std::vector<std::vector<float>> ShadowProbePass::results() const {
-  if (mode_ != Mode::points) return {};
+  if (mode_ == Mode::texel_curves) return {};
   std::vector<std::vector<float>> out(light_count_, std::vector<float>(point_count_));
   const auto* values = static_cast<const float*>(results_.mapped());
   for (uint32_t light = 0; light < light_count_; ++light)

@@ -40,6 +40,10 @@ class ShadowProbePass {
 
   // Points to probe (uploaded now) for `light_count` lights.
   void set_points(const std::vector<glm::vec3>& points, uint32_t light_count);
+  // Surface points with their normals, looked up as the opaque pass does (normal
+  // offset, soft-shadow kernels); results() as for points.
+  void set_surface_points(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals,
+                          uint32_t light_count);
   // Switches this pass to texel curves: the samples are uploaded now. Texels must
   // lie inside their light's level-0 map and lights be the scene's (texels of a light's first map).
   void set_texel_samples(const std::vector<TexelSample>& samples);
@@ -52,7 +56,12 @@ class ShadowProbePass {
   std::vector<TexelSampleResult> texel_results() const;
 
  private:
-  enum class Mode : uint32_t { points = shared::kProbePoints, texel_curves = shared::kProbeTexelCurves };
+  enum class Mode : uint32_t {
+    points = shared::kProbePoints,
+    texel_curves = shared::kProbeTexelCurves,
+    surface_points = shared::kProbeSurfacePoints,
+  };
+  void upload_points(std::vector<glm::vec4> packed, uint32_t count, uint32_t light_count, Mode mode);
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Buffer points_, results_;

@@ -50,7 +50,8 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   shadows_.set_scene(scene, shadow_options);
 
   // Output passes enabled before follow the new lights.
-  if (probes_) probes_->set_points(probe_points_, light_count_);
+  if (probes_ && probe_normals_.empty()) probes_->set_points(probe_points_, light_count_);
+  if (probes_ && !probe_normals_.empty()) probes_->set_surface_points(probe_points_, probe_normals_, light_count_);
   if (light_images_) light_images_->set_lights(shadows_);
   if (quality_ && shadows_.has_reference()) {
     enable_quality();
@@ -143,7 +144,15 @@ rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
   if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
   probe_points_ = points;
+  probe_normals_.clear();
   probes_->set_points(points, light_count_);
+}
+
+void SceneRenderer::set_surface_probes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals) {
+  if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  probes_->set_surface_points(points, normals, light_count_);
+  probe_points_ = points;
+  probe_normals_ = normals;
 }
 
 std::string SceneRenderer::texel_sample_problem(const passes::TexelSample& sample) const {

@@ -69,6 +69,8 @@ class SceneRenderer {
   // Probes every light's transmittance at these points in each frame (after the
   // camera passes); results in probe_results() once the frame completed.
   void set_probes(const std::vector<glm::vec3>& points);
+  // Surface points with normals, looked up as the opaque pass does (probe_results()).
+  void set_surface_probes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals);
   std::vector<std::vector<float>> probe_results() const;
 
   // Evaluates single texels' curves (technique and exact reference) at chosen light
@@ -118,6 +120,7 @@ class SceneRenderer {
   uint32_t width_, height_;
   float exposure_ = 1.0f;
   std::vector<glm::vec3> probe_points_;
+  std::vector<glm::vec3> probe_normals_;  // set: the probes are surface points
   std::vector<passes::TexelSample> texel_samples_;
   gpu::Buffer lights_;
   uint32_t light_count_ = 0;

@@ -346,6 +346,13 @@ ShadowSettings read_shadow(const Reader& reader, const json& value, const std::s
                                        {{"point", ShadowFilter::point},
                                         {"bilinear", ShadowFilter::bilinear},
                                         {"trilinear", ShadowFilter::trilinear}});
+  shadow.kernel = choice<ShadowKernel>(object, "kernel", shadow.kernel,
+                                       {{"none", ShadowKernel::none},
+                                        {"box", ShadowKernel::box},
+                                        {"gaussian", ShadowKernel::gaussian}});
+  shadow.kernel_radius = object.integer_or("kernel_radius", shadow.kernel_radius);
+  object.check(shadow.kernel_radius >= 1 && shadow.kernel_radius <= 4, "kernel_radius",
+               "must be 1 to 4 texels, got " + std::to_string(shadow.kernel_radius));
   shadow.sort = object.boolean_or("sort", shadow.sort);
   shadow.build = choice<ShadowBuild>(object, "build", shadow.build,
                                      {{"lists", ShadowBuild::lists}, {"fixed", ShadowBuild::fixed}});

@@ -31,8 +31,18 @@ constexpr std::array<std::pair<ShadowBuild, std::string_view>, 2> kBuilds = {{
     {ShadowBuild::fixed, "fixed"},
 }};
 
+constexpr std::array<std::pair<ShadowKernel, std::string_view>, 3> kKernels = {{
+    {ShadowKernel::none, "none"},
+    {ShadowKernel::box, "box"},
+    {ShadowKernel::gaussian, "gaussian"},
+}};
+
 }  // namespace
 
+std::string_view to_string(ShadowKernel kernel) { return name_of(kKernels, kernel); }
+std::optional<ShadowKernel> shadow_kernel_from_string(std::string_view text) {
+  return value_of<ShadowKernel>(kKernels, text);
+}
 std::string_view to_string(ShadowBuild build) { return name_of(kBuilds, build); }
 std::optional<ShadowBuild> shadow_build_from_string(std::string_view text) { return value_of<ShadowBuild>(kBuilds, text); }
 std::string_view to_string(ShadowFilter filter) { return name_of(kFilters, filter); }
@@ -59,6 +69,8 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (nodes) settings.nodes = *nodes;
   if (resolution) settings.resolution = *resolution;
   if (filter) settings.filter = *filter;
+  if (kernel) settings.kernel = *kernel;
+  if (kernel_radius) settings.kernel_radius = *kernel_radius;
   if (sort) settings.sort = *sort;
   if (build) settings.build = *build;
   if (fit) settings.fit = *fit;

@@ -11,6 +11,11 @@ namespace avsm::scene {
 
 enum class ShadowFilter { point, bilinear, trilinear };
 
+// Soft shadow edges on surfaces: their lookups filtered over a kernel of texel curves
+// (`box`: 2r + 1 texels wide; `gaussian`: sigma r / 2), each tap one curve evaluation.
+// Volume and hair lookups keep the filter above.
+enum class ShadowKernel { none, box, gaussian };
+
 // How a light's map is built. `lists`: every caster fragment goes into per-texel lists
 // (memory grows with depth complexity), optionally sorted, then resolved. `fixed`: the
 // map is built straight from the casters in primitive order (the paper's fixed memory
@@ -32,6 +37,8 @@ struct ShadowSettings {
   int nodes = 8;                 // 4, 8, 12 or 16
   int resolution = 1024;         // shadow map texels per side, 16 to 16384
   ShadowFilter filter = ShadowFilter::bilinear;
+  ShadowKernel kernel = ShadowKernel::none;
+  int kernel_radius = 1;         // texels, 1 to 4
   bool sort = true;              // sort fragments before compression (lists build)
   ShadowBuild build = ShadowBuild::lists;
   ShadowFit fit = ShadowFit::view;
@@ -61,6 +68,8 @@ struct ShadowOverrides {
   std::optional<int> nodes;
   std::optional<int> resolution;
   std::optional<ShadowFilter> filter;
+  std::optional<ShadowKernel> kernel;
+  std::optional<int> kernel_radius;
   std::optional<bool> sort;
   std::optional<ShadowBuild> build;
   std::optional<ShadowFit> fit;
@@ -105,6 +114,8 @@ std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text);
 std::string_view to_string(ShadowBuild build);
 std::optional<ShadowBuild> shadow_build_from_string(std::string_view text);
 std::string_view to_string(ShadowFit fit);
+std::string_view to_string(ShadowKernel kernel);
+std::optional<ShadowKernel> shadow_kernel_from_string(std::string_view text);
 std::optional<ShadowFit> shadow_fit_from_string(std::string_view text);
 
 }  // namespace avsm::scene

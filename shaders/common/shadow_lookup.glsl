@@ -46,13 +46,34 @@ const float kShadowOpaque = 1e-4;
 // build generates (cmake/ShadowTechniques.cmake).
 #include "techniques_lookup.glsl"
 
+// The taps of the soft-shadow kernel (GpuShadow::kernel) at level 0: texel centres
+// over a window of 2r + 2 texels per side around x (the point in texel units).
+const int kMaxKernelTaps = int(2u * kMaxKernelRadius + 2u) * int(2u * kMaxKernelRadius + 2u);
+
+// Tap `tap`'s texel and weight: a box of 2r + 1 texels weighs each texel by how much of
+// it the box covers (so the weights move smoothly with x); a Gaussian by its value at
+// the texel centre.
+float shadow_kernel_tap(GpuShadow s, vec2 x, int tap, out ivec2 texel) {
+  float radius = float(s.kernel_radius);
+  int n = 2 * int(s.kernel_radius) + 2;
+  float half_width = radius + 0.5;
+  texel = ivec2(floor(x - half_width)) + ivec2(tap % n, tap / n);
+  if (s.kernel == kKernelBox) {
+    vec2 covered = clamp(min(vec2(texel) + 1.0, x + half_width) - max(vec2(texel), x - half_width), 0.0, 1.0);
+    return covered.x * covered.y;
+  }
+  vec2 offset = (vec2(texel) + 0.5 - x) / (0.5 * radius);
+  return exp(-0.5 * dot(offset, offset));
+}
+
 // Transmittance from the light `s` describes to world point p. Point: the nearest
 // texel of level 0. Bilinear: the four nearest curves evaluated at the point's
 // depth and their results weighted (curves cannot be blended). Trilinear: bilinear
 // in the two mip levels around the level of detail, blended. The taps run in one
 // loop so the texel evaluation is compiled once: inlined per tap, it made the
 // shaders that call this (the smoke march above all) several times slower on lavapipe.
-float shadow_transmittance(GpuShadow s, vec3 p) {
+// `soft`: a surface lookup, filtered over the light's kernel (at level 0) when it has one.
+float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
   if (s.technique == kShadowNone) return 1.0;
   vec4 clip = s.light_from_world * vec4(p, 1.0);
   if (clip.w <= 0.0) return 1.0;  // behind a spot light: it does not shine there
@@ -64,7 +85,8 @@ float shadow_transmittance(GpuShadow s, vec3 p) {
   uint level = 0u;
   int levels = 1;
   float level_blend = 0.0;
-  if (s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
+  bool kernel = soft && s.kernel != kKernelNone;  // at level 0: the kernel is the filter
+  if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
     // Level of detail: a camera pixel's footprint at p over a light texel's size there.
     float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
     float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
@@ -81,18 +103,32 @@ float shadow_transmittance(GpuShadow s, vec3 p) {
     vec2 x = bilinear ? uv * float(size) - 0.5 : uv * float(size);
     ivec2 base = ivec2(floor(x));
     vec2 f = bilinear ? x - vec2(base) : vec2(0.0);
-    int taps = bilinear ? 4 : 1;
-    float level_value = 0.0;
-    for (int tap = 0; tap < taps; ++tap) {
-      ivec2 offset = ivec2(tap & 1, tap >> 1);
-      vec2 w = mix(1.0 - f, f, vec2(offset));
-      ivec2 texel = clamp(base + offset, ivec2(0), ivec2(size - 1));
-      level_value += w.x * w.y * shadow_texel_transmittance(s, current, texel, d);
+    int n = 2 * int(s.kernel_radius) + 2;
+    int taps = kernel ? n * n : (bilinear ? 4 : 1);
+    float level_value = 0.0, weights = 0.0;
+    for (int tap = 0; tap < kMaxKernelTaps; ++tap) {  // a constant bound: lavapipe miscompiles per-lane ones
+      if (tap >= taps) break;
+      ivec2 texel;
+      float w;
+      if (kernel) {
+        w = shadow_kernel_tap(s, uv * float(size), tap, texel);
+      } else {
+        ivec2 offset = ivec2(tap & 1, tap >> 1);
+        vec2 w2 = mix(1.0 - f, f, vec2(offset));
+        w = w2.x * w2.y;
+        texel = base + offset;
+      }
+      texel = clamp(texel, ivec2(0), ivec2(size - 1));
+      if (w > 0.0) level_value += w * shadow_texel_transmittance(s, current, texel, d);
+      weights += w;
     }
+    level_value /= max(weights, 1e-20);
     result += (levels == 1 ? 1.0 : (l == 0 ? 1.0 - level_blend : level_blend)) * level_value;
   }
   return result;
 }
+
+float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_filtered(s, p, false); }
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
@@ -147,7 +183,7 @@ float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal,
     GpuShadow v = s;  // a light with one map: its record is the map's
     if (s.views != kViewsSingle) v = shadows[first + k];
     vec3 q = surface ? shadow_surface_point(v, p, normal, to_light) : p;
-    float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance(v, q);
+    float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance_filtered(v, q, surface);
     result = product ? result * t : result + (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend)) * t;
   }
   return result;

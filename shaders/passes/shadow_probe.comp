@@ -32,6 +32,12 @@ void main() {
       results[2u * point + uint(i)] = shadow_texel_transmittance(shadows[entries[i]], 0u, texel, sample_.z);
     return;
   }
+  if (pc.mode == kProbeSurfacePoints) {  // as the opaque pass looks surfaces up (soft kernels included)
+    vec3 p = points[2u * point].xyz, n = points[2u * point + 1u].xyz;
+    for (uint light = 0u; light < pc.light_count; ++light)
+      results[light * pc.point_count + point] = surface_light_transmittance(light, p, n, n);
+    return;
+  }
   for (uint light = 0u; light < pc.light_count; ++light)
     results[light * pc.point_count + point] = light_transmittance(light, points[point].xyz);
 }

@@ -17,6 +17,12 @@ GPU_CONST(uint, kFilterBilinear, 1u)
 GPU_CONST(uint, kFilterTrilinear, 2u)
 // GpuShadow::reference when the light has no exact-reference entry
 GPU_CONST(uint, kNoReference, 0xffffffffu)
+// GpuShadow::kernel: surface lookups filtered over a kernel of texel curves (soft
+// shadow edges); volume and hair lookups stay bilinear (they run per march step).
+GPU_CONST(uint, kKernelNone, 0u)
+GPU_CONST(uint, kKernelBox, 1u)       // a box 2r + 1 texels wide, each texel weighted by its overlap
+GPU_CONST(uint, kKernelGaussian, 2u)  // a Gaussian of sigma r / 2 over the same taps
+GPU_CONST(uint, kMaxKernelRadius, 4u)
 // GpuShadow::views: how a light's record finds its maps.
 GPU_CONST(uint, kViewsSingle, 0u)    // the record is the light's one map
 GPU_CONST(uint, kViewsCube, 1u)      // a point light: six face maps, +x -x +y -y +z -z
@@ -51,9 +57,9 @@ GPU_CONST(uint, kMaxViewsPerLight, 8u)
   F(uint, first_view)       /* kViewsCube..Clusters: the light's maps are records first_view ..              \
                                first_view + view_count - 1 */                                                  \
   F(uint, view_count)                                                                                          \
-  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */            \
-  F(uint, padding1)                                                                                            \
-  F(uint, padding2)
+  F(uint, kernel)           /* kKernel*: the soft-shadow kernel of surface lookups */                          \
+  F(uint, kernel_radius)    /* its radius in level-0 texels, 1 to kMaxKernelRadius */                         \
+  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */
 GPU_STRUCT(GpuShadow, GPU_SHADOW)
 
 GPU_NAMESPACE_END

@@ -395,6 +395,67 @@ TEST_F(LightMapsTest, CascadesSplitTheViewAndShadowNearAndFar) {
   EXPECT_LT(e.max, 0.03f);
 }
 
+// ---- Soft surface shadows ----
+
+// A box's shadow edge on receivers across its edge: without a kernel
+// the surface lookups step from texel to texel; box and Gaussian kernels turn the edge
+// into a ramp as wide as the kernel, whose values rise steadily, and leave the fully
+// shadowed and fully lit receivers as they are.
+TEST_F(LightMapsTest, SurfaceKernelsTurnAShadowEdgeIntoARamp) {
+  Box box;
+  box.voxels = 24;
+  const std::vector<Box> boxes = {box};
+  struct Case {
+    scene::ShadowKernel kernel;
+    int radius;
+  };
+  const Case cases[] = {{scene::ShadowKernel::none, 1}, {scene::ShadowKernel::box, 2}, {scene::ShadowKernel::gaussian, 2}};
+  std::vector<std::vector<float>> edges;
+  for (const Case& c : cases) {
+    scene::Scene scene = box_scene(boxes);
+    scene::Light sun = make_light("sun", scene::LightType::directional, 32);
+    sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    sun.shadow.fit = scene::ShadowFit::scene;
+    sun.shadow.filter = scene::ShadowFilter::point;  // the steps the kernels must remove
+    sun.shadow.kernel = c.kernel;
+    sun.shadow.kernel_radius = c.radius;
+    scene.lights.push_back(sun);
+    // Receivers on a floor below the box, facing up, across its x = low edge.
+    std::vector<glm::vec3> points, normals;
+    for (int i = 0; i <= 80; ++i) {
+      points.emplace_back(box.low().x - 0.6f + 1.2f * float(i) / 80.0f, box.low().y - 0.5f, box.centre().z);
+      normals.emplace_back(0.0f, 1.0f, 0.0f);
+    }
+    renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
+    renderer.set_surface_probes(points, normals);
+    edges.push_back(render_probes(ctx(), renderer, scene.cameras.front()).at(0));
+  }
+  const float texel = passes::make_light_view(make_light("sun", scene::LightType::directional, 32), box_scene(boxes).bounds, 32)
+                          .texel_size_base;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const std::vector<float>& t = edges[k];
+    int distinct_steps = 0;  // jumps between neighbours larger than a tenth of the edge
+    float largest_jump = 0.0f;
+    for (size_t i = 1; i < t.size(); ++i) {
+      const float jump = std::abs(t[i] - t[i - 1]);
+      largest_jump = std::max(largest_jump, jump);
+      distinct_steps += jump > 0.1f * (t.front() - t.back());
+      EXPECT_LE(t[i], t[i - 1] + 1e-4f) << "kernel " << k << ": the edge rises at receiver " << i;
+    }
+    std::cout << "[ kernel      ] " << scene::to_string(cases[k].kernel) << " r" << cases[k].radius << ": lit " << t.front()
+              << ", shadowed " << t.back() << ", largest jump between receivers 1.5 cm apart " << largest_jump
+              << " (texel " << texel << " m)\n";
+    EXPECT_NEAR(t.front(), 1.0f, 1e-3f);
+    EXPECT_NEAR(t.back(), std::exp(-kSigma * float(box.voxels) * kVoxel), 0.01f);  // through the whole box
+    if (k == 0) {
+      EXPECT_GT(largest_jump, 0.3f);  // point lookups: the edge is one step
+    } else {
+      EXPECT_LT(largest_jump, 0.1f);  // a ramp over the kernel's width
+      EXPECT_EQ(distinct_steps, 0);
+    }
+  }
+}
+
 // ---- Clustered maps ----
 
 // Two boxes 20 m apart under one sun: two clusters, each map fitted to its box (texels

@@ -42,6 +42,8 @@ const char* kUsage =
     "  --build lists|fixed  how AVSM maps are built: per-texel fragment lists then a\n"
     "                   resolve, or straight from the casters in fixed memory\n"
     "  --filter F       point | bilinear | trilinear (trilinear builds the mip chain)\n"
+    "  --kernel K       none | box | gaussian: soft surface shadows over curves at texel centres\n"
+    "  --kernel-radius R  the kernel's radius in texels, 1 to 4 (box: 2R + 1 wide; gaussian: sigma R / 2)\n"
     "  --shadow-res R   transmittance map texels per side (of each map: cube face, cascade, cluster)\n"
     "  --cascades N     directional lights (only): maps split along the camera's view, 1 to 4\n"
     "  --clusters N     directional and spot lights (not point): casters grouped by their\n"
@@ -178,6 +180,14 @@ int main(int argc, char** argv) {
       const std::string name = value();
       options.shadow.filter = avsm::scene::shadow_filter_from_string(name);
       if (!options.shadow.filter) usage_error("--filter expects point, bilinear or trilinear, got '" + name + "'");
+    } else if (arg == "--kernel") {
+      const std::string name = value();
+      options.shadow.kernel = avsm::scene::shadow_kernel_from_string(name);
+      if (!options.shadow.kernel) usage_error("--kernel expects none, box or gaussian, got '" + name + "'");
+    } else if (arg == "--kernel-radius") {
+      const uint32_t r = parse_count(arg, value());
+      if (r < 1 || r > 4) usage_error("--kernel-radius expects 1 to 4 texels");
+      options.shadow.kernel_radius = int(r);
     } else if (arg == "--shadow-res") {
       const uint32_t r = parse_count(arg, value());
       if (r > 16384) usage_error("--shadow-res expects at most 16384");

@@ -260,7 +260,8 @@ void write_scene_json(const std::filesystem::path& file) {
       "name": "sun", "type": "directional",
       "direction": [0.35, -1.0, 0.25],
       "color": [1.0, 0.96, 0.9], "intensity": 3.0,
-      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "bilinear", "sort": true }
+      "shadow": { "technique": "avsm", "nodes": 8, "resolution": 256, "filter": "bilinear", "sort": true,
+                  "kernel": "gaussian", "kernel_radius": 2 }
     },
     {
       "name": "key_spot", "type": "spot",
