@@ -121,7 +121,8 @@ TEST(SceneDescription, MatrixTransformIsColumnMajor) {
 TEST(SceneDescriptionErrors, UnknownKeyNamesThePathAndSuggests) {
   EXPECT_THAT(error_of(full_scene(R"("nodes": 16)", R"("nodez": 16)")),
               StartsWith("/scenes/test/scene.json: lights[1].shadow.nodez: unknown key (did you mean 'nodes'?); allowed here: "
-                         "technique, nodes, resolution, filter, sort, build, fit, distance, cascades, cascade_blend, "
+                         "technique, nodes, resolution, filter, kernel, kernel_radius, sort, build, fit, distance, cascades, "
+                         "cascade_blend, "
                          "clusters, parameters"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 1, "colour": 2,)")),
               HasSubstr("scene.json: colour: unknown key"));
