@@ -186,7 +186,6 @@ LightView ShadowMaps::initial_view(const MapState& map) const {
 void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, const std::vector<CasterObject>& objects) {
   LightState& light = lights_[index];
   const scene::Light& l = light.light;
-  const uint32_t resolution = uint32_t(l.shadow.resolution);
   const std::string name = "light " + std::to_string(index);
   // Each map's name, what it is fitted to, and (clusters) which casters it takes.
   std::vector<MapState> maps;
@@ -219,11 +218,7 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   light.map_count = uint32_t(maps.size());
   for (MapState& map : maps) {
     map.record = light.views == shared::kViewsSingle ? index : record_count_++;
-    map.map_state.layout.resolution = resolution;
-    map.map_state.layout.nodes = uint32_t(l.shadow.nodes);
-    // Techniques without mips look trilinear up as bilinear.
-    map.map_state.layout.levels = light.technique->mip_levels(l.shadow, resolution);
-    light.technique->prepare(map.map_state);
+    map.map_state = initial_map_state(light);
     map.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                              gpu::MemoryLocation::HostReadback, map.prefix + " capture counter"});
     if (l.shadow.build == scene::ShadowBuild::fixed)
@@ -243,13 +238,28 @@ uint64_t ShadowMaps::map_budget() const {
   return options_.map_budget_bytes == 0 ? range : std::min(options_.map_budget_bytes, range);
 }
 
+// A map's state before its first frame, at its light's (possibly lowered) resolution.
+TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
+  const uint32_t resolution = uint32_t(light.light.shadow.resolution);
+  TechniqueMapState state;
+  state.layout.resolution = resolution;
+  state.layout.nodes = uint32_t(light.light.shadow.nodes);
+  // Techniques without mips look trilinear up as bilinear.
+  state.layout.levels = light.technique->mip_levels(light.light.shadow, resolution);
+  light.technique->prepare(state);
+  return state;
+}
+
+// What a map takes of the atlas: its bytes, aligned as the atlas places it (0: no map).
+uint64_t ShadowMaps::atlas_bytes(const MapState& map) const {
+  const LightState& light = lights_[map.light];
+  if (!light.technique->has_map()) return 0;
+  return round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
+}
+
 uint64_t ShadowMaps::atlas_bytes_needed() const {
   uint64_t bytes = 0;
-  for (const MapState& map : maps_) {
-    const LightState& light = lights_[map.light];
-    if (light.technique->has_map())
-      bytes += round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
-  }
+  for (const MapState& map : maps_) bytes += atlas_bytes(map);
   return bytes;
 }
 
@@ -258,16 +268,10 @@ void ShadowMaps::fit_to_budget() {
   const uint64_t budget = map_budget();
   auto light_bytes = [&](const LightState& light) {
     uint64_t bytes = 0;
-    for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m)
-      if (light.technique->has_map())
-        bytes += round_up(light.technique->map_bytes(light.light.shadow, maps_[m].map_state), kAtlasAlignment);
+    for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) bytes += atlas_bytes(maps_[m]);
     return bytes;
   };
-  auto total = [&] {
-    uint64_t sum = 0;
-    for (const LightState& light : lights_) sum += light_bytes(light);
-    return sum;
-  };
+  auto total = [&] { return atlas_bytes_needed(); };
   while (total() > budget) {
     if (!options_.fit_budget) {
       std::string lights;
@@ -288,14 +292,9 @@ void ShadowMaps::fit_to_budget() {
                               mib(budget) + "; raise the budget (shadows.budget_mib) or shadow fewer lights");
     if (largest->lowered_from == 0) largest->lowered_from = uint32_t(largest->light.shadow.resolution);
     largest->light.shadow.resolution /= 2;
-    const uint32_t resolution = uint32_t(largest->light.shadow.resolution);
     for (uint32_t m = largest->first_map; m < largest->first_map + largest->map_count; ++m) {
       MapState& map = maps_[m];
-      map.map_state = {};
-      map.map_state.layout.resolution = resolution;
-      map.map_state.layout.nodes = uint32_t(largest->light.shadow.nodes);
-      map.map_state.layout.levels = largest->technique->mip_levels(largest->light.shadow, resolution);
-      largest->technique->prepare(map.map_state);
+      map.map_state = initial_map_state(*largest);
       map.view = initial_view(map);
     }
   }
@@ -305,10 +304,8 @@ void ShadowMaps::fit_to_budget() {
 void ShadowMaps::create_atlas() {
   uint64_t offset = 0;
   for (MapState& map : maps_) {
-    const LightState& light = lights_[map.light];
     map.atlas_offset = offset;
-    if (light.technique->has_map())
-      offset += round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
+    offset += atlas_bytes(map);
   }
   for (MapState& map : maps_) map.map = {};
   atlas_ = {};

@@ -172,6 +172,8 @@ class ShadowMaps {
   void add_light_maps(uint32_t light, const scene::Bounds& casters, const std::vector<CasterObject>& objects);
   LightView initial_view(const MapState& map) const;
   uint64_t map_budget() const;          // ShadowOptions::map_budget_bytes, at most the storage range
+  TechniqueMapState initial_map_state(const LightState& light) const;
+  uint64_t atlas_bytes(const MapState& map) const;  // aligned as the atlas places it
   uint64_t atlas_bytes_needed() const;  // every map, aligned as the atlas places them
   void fit_to_budget();
   void create_atlas();
