@@ -86,11 +86,17 @@ tinygltf::Model parse_model(std::span<const std::byte> bytes, const std::filesys
   std::string error;
   const std::string base_dir = name.parent_path().string();
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const bool ok = has_glb_magic
-                      ? loader.LoadBinaryFromMemory(&model, &error, &warning, data,
-                                                    static_cast<unsigned int>(bytes.size()), base_dir)
-                      : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(data),
-                                                   static_cast<unsigned int>(bytes.size()), base_dir);
+  bool ok = false;
+  try {
+    ok = has_glb_magic ? loader.LoadBinaryFromMemory(&model, &error, &warning, data,
+                                                     static_cast<unsigned int>(bytes.size()), base_dir)
+                       : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(data),
+                                                    static_cast<unsigned int>(bytes.size()), base_dir);
+  } catch (const std::exception& e) {
+    // tinygltf indexes some arrays with .at() before checking them (a GLB whose buffer
+    // is declared empty, found by the fuzz target): a malformed file, not a crash.
+    throw LoadError(name, std::string("invalid glTF: tinygltf failed reading it (") + e.what() + ")");
+  }
   if (!ok) throw LoadError(name, "invalid glTF: " + (error.empty() ? std::string("tinygltf refused it") : trim(error)));
   return model;
 }

@@ -304,6 +304,14 @@ TEST(GltfErrors, UnsupportedRequiredExtension) {
   EXPECT_THAT(load_error_of([&] { load_gltf(file); }), HasSubstr("requires extension KHR_draco_mesh_compression"));
 }
 
+// A GLB the fuzz target found (a buffer declared empty, views reaching into it) on
+// which tinygltf throws std::out_of_range: a LoadError naming the file, never a crash.
+TEST(GltfErrors, WhatTinygltfThrowsOnIsALoadError) {
+  const std::filesystem::path file = std::filesystem::path(AVSM_SCENE_TEST_DATA_DIR) / "tinygltf_throws.glb";
+  EXPECT_THAT(load_error_of([&] { load_gltf(file); }),
+              AllOf(HasSubstr("tinygltf_throws.glb: invalid glTF: tinygltf failed reading it")));
+}
+
 TEST(GltfErrors, MissingOrUndecodableTexture) {
   TempDir dir;
   auto with_texture = [](const std::string& uri) {
