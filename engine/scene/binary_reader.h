@@ -66,6 +66,13 @@ class ByteReader {
     return values;
   }
 
+  // Steps over count elements of element_size bytes, failing as read_array
+  // would if they are not all there (for arrays a loader checks but does not keep).
+  void skip_array(std::uint64_t count, std::size_t element_size, std::string_view what) {
+    require(count, element_size, what);
+    position_ += static_cast<std::size_t>(count * element_size);
+  }
+
  private:
   // Fails unless count elements of element_size bytes remain (overflow-safe).
   void require(std::uint64_t count, std::size_t element_size, std::string_view what) const {

@@ -1,6 +1,6 @@
 #pragma once
 // Hair as the renderer wants it: one point array, strands as ranges of it, and
-// one width / opacity / colour per strand. Readers for TressFX 3 (.tfx) and
+// one width / opacity / colour per strand. Readers for TressFX 3 and 4 (.tfx) and
 // Cem Yuksel's cyHair (.hair); glTF line primitives come from gltf.h.
 #include "scene/bounds.h"
 
@@ -46,14 +46,23 @@ struct HairGroom {
 // accidental multi-gigabyte reads.
 inline constexpr std::uint64_t kMaxHairFileBytes = 1ull << 31;
 
-// TressFX 3 (.tfx, "TressFXFileObject"): a 296-byte header (version 3.x,
-// strand count, vertices per strand, then byte offsets), float3 positions, and
-// optional per-strand thickness factors and per-vertex RGBA colours.
+// TressFX (.tfx), the layout chosen by the header's float version:
+// 3.x "TressFXFileObject": a 296-byte header (strand count, vertices per
+//   strand, byte offsets), float3 positions, optional per-strand thickness
+//   factors and per-vertex RGBA colours;
+// 4.x "TressFXTFXFileHeader": a 160-byte header with the same counts and the
+//   offsets of float4 positions (w, the simulation's inverse mass, is ignored),
+//   per-strand and per-vertex UVs (checked to lie in the file, not kept),
+//   per-strand thickness factors and per-vertex RGBA colours.
+// Colours are averaged per strand; missing thickness is 1, missing colour
+// kDefaultStrandColor.
 HairGroom load_tfx(const std::filesystem::path& file);
 HairGroom parse_tfx(std::span<const std::byte> bytes, const std::filesystem::path& name);
+enum class TfxVersion { v3, v4 };
 // Writes positions (and the thickness factors if not all 1). Every strand must
-// have the same number of points, 2 to 64.
-std::vector<std::byte> encode_tfx(const HairGroom& groom);
+// have the same number of points, 2 to 64. Version 4 positions get w = 0 on
+// each strand's root and 1 elsewhere (TressFX's pinned root).
+std::vector<std::byte> encode_tfx(const HairGroom& groom, TfxVersion version = TfxVersion::v3);
 
 // cyHair (.hair): a 128-byte header "HAIR" with counts, a bit field of present
 // arrays and defaults, then segments (uint16 per strand), points (float3),

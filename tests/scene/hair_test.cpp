@@ -4,6 +4,7 @@
 #include "scene/hair.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace avsm::scene {
@@ -88,6 +89,86 @@ TEST(Tfx, RoundTripKeepsPositionsAndThickness) {
   EXPECT_EQ(loaded.name, "g");
 }
 
+// Appends `values` on an 8-byte boundary (TressFX aligns its arrays so) and
+// returns the offset they start at.
+template <class T>
+std::uint32_t append_array(std::vector<std::byte>& bytes, const std::vector<T>& values) {
+  while (bytes.size() % 8 != 0) bytes.push_back(std::byte{0});
+  const auto offset = static_cast<std::uint32_t>(bytes.size());
+  bytes.resize(offset + values.size() * sizeof(T));
+  std::memcpy(bytes.data() + offset, values.data(), values.size() * sizeof(T));
+  return offset;
+}
+
+// TressFX 4 header fields (TressFXTFXFileHeader).
+constexpr std::size_t kTfx4Strands = 4, kTfx4VerticesPerStrand = 8, kTfx4Positions = 12, kTfx4StrandUv = 16,
+                      kTfx4VertexUv = 20, kTfx4Thickness = 24, kTfx4Color = 28;
+
+TEST(Tfx4, SintelHasTheDocumentedCountsAndBounds) {
+  const auto file = testing::shared_content("sintel/sintel_hair.tfx");
+  AVSM_REQUIRE_FILE(file);
+  const HairGroom groom = load_tfx(file);
+  ASSERT_EQ(groom.strand_count(), 228u);  // shared/content/README.md
+  for (std::size_t s = 0; s < groom.strand_count(); ++s) ASSERT_EQ(groom.strand_size(s), 32u);
+  EXPECT_EQ(groom.points.size(), 7296u);
+  // The first float4 of the file (offset 160), read with Python's struct: xyz kept, w (0) dropped.
+  EXPECT_EQ(groom.points[0], glm::vec3(-8.315415382385254f, 34.9295539855957f, -2.681877851486206f));
+  // Bounds of all 7,296 xyz triples, also from Python: about 20 x 27 x 25 units.
+  EXPECT_NEAR(groom.bounds.min.x, -10.6175f, 1e-3f);
+  EXPECT_NEAR(groom.bounds.min.y, 20.7159f, 1e-3f);
+  EXPECT_NEAR(groom.bounds.min.z, -12.9518f, 1e-3f);
+  EXPECT_NEAR(groom.bounds.max.x, 9.8269f, 1e-3f);
+  EXPECT_NEAR(groom.bounds.max.y, 47.6863f, 1e-3f);
+  EXPECT_NEAR(groom.bounds.max.z, 11.6560f, 1e-3f);
+  // The file has no thickness or colour arrays: the same defaults as TressFX 3.
+  EXPECT_EQ(groom.width_kind, StrandWidth::relative);
+  EXPECT_EQ(groom.strand_width, std::vector<float>(228, 1.0f));
+  EXPECT_EQ(groom.strand_color, std::vector<glm::vec3>(228, kDefaultStrandColor));
+  EXPECT_EQ(groom.strand_opacity, std::vector<float>(228, kDefaultStrandOpacity));
+}
+
+TEST(Tfx4, RoundTripKeepsPositionsAndThickness) {
+  const HairGroom groom = sample_groom(true);
+  const auto bytes = encode_tfx(groom, TfxVersion::v4);
+  EXPECT_EQ(bytes.size(), 160u + 20 * 16 + 5 * 4);
+  const HairGroom loaded = parse_tfx(bytes, "g.tfx");
+  EXPECT_EQ(loaded.points, groom.points);
+  EXPECT_EQ(loaded.strand_offsets, groom.strand_offsets);
+  EXPECT_EQ(loaded.strand_width, groom.strand_width);
+  EXPECT_EQ(loaded.strand_color, std::vector<glm::vec3>(5, kDefaultStrandColor));
+}
+
+TEST(Tfx4, OffsetsAreHonouredNotAssumedContiguous) {
+  const HairGroom groom = sample_groom(true);
+  const auto plain = encode_tfx(groom, TfxVersion::v4);
+  // Header, 24 bytes of NaNs (read as positions only by a loader that ignores
+  // offsetVertexPosition), the thickness factors, then the positions.
+  std::vector<std::byte> bytes(plain.begin(), plain.begin() + 160);
+  append_array(bytes, std::vector<float>(6, std::numeric_limits<float>::quiet_NaN()));
+  const std::uint32_t thickness = append_array(bytes, groom.strand_width);
+  const std::uint32_t positions = append_array(bytes, std::vector<std::byte>(plain.begin() + 160, plain.begin() + 160 + 320));
+  put(bytes, kTfx4Positions, positions);
+  put(bytes, kTfx4Thickness, thickness);
+  ASSERT_GT(positions, thickness);
+  const HairGroom loaded = parse_tfx(bytes, "reordered.tfx");
+  EXPECT_EQ(loaded.points, groom.points);
+  EXPECT_EQ(loaded.strand_width, groom.strand_width);
+}
+
+TEST(Tfx4, UvsAreCheckedAndColoursAveragedPerStrand) {
+  auto bytes = encode_tfx(sample_groom(true), TfxVersion::v4);
+  put(bytes, kTfx4StrandUv, append_array(bytes, std::vector<glm::vec2>(5, glm::vec2(0.25f, 0.5f))));
+  put(bytes, kTfx4VertexUv, append_array(bytes, std::vector<glm::vec2>(20, glm::vec2(0.75f))));
+  std::vector<glm::vec4> rgba(20, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
+  for (int v = 0; v < 4; ++v) rgba[v] = glm::vec4(0.1f * v, 0.0f, 1.0f, 1.0f);  // strand 0: red 0, .1, .2, .3
+  put(bytes, kTfx4Color, append_array(bytes, rgba));
+  const HairGroom loaded = parse_tfx(bytes, "uv.tfx");
+  EXPECT_NEAR(loaded.strand_color[0].r, 0.15f, 1e-6f);
+  EXPECT_EQ(loaded.strand_color[0].b, 1.0f);
+  EXPECT_EQ(loaded.strand_color[4], glm::vec3(0.2f, 0.4f, 0.6f));
+  EXPECT_EQ(loaded.points, sample_groom(true).points);
+}
+
 TEST(Tfx, EncodeRefusesUnequalStrands) {
   EXPECT_THROW(encode_tfx(sample_groom(false)), std::invalid_argument);
 }
@@ -152,6 +233,8 @@ class HairErrors : public ::testing::Test {
     return load_error_of([&] { load_cyhair(dir_ / "bad.hair"); });
   }
   std::vector<std::byte> good_tfx() { return encode_tfx(sample_groom(true)); }
+  // 5 strands x 4 points: header 160, positions 160..480, thickness 480..500.
+  std::vector<std::byte> good_tfx4() { return encode_tfx(sample_groom(true), TfxVersion::v4); }
   std::vector<std::byte> good_hair() { return encode_cyhair(sample_groom(false)); }
   TempDir dir_;
 };
@@ -169,12 +252,24 @@ TEST_F(HairErrors, TfxTruncatedPositions) {
                                       HasSubstr("only 120 bytes remain")));
 }
 
-TEST_F(HairErrors, TfxWrongVersionIsNotTressFx3) {
+TEST_F(HairErrors, TfxVersionOtherThan3Or4) {
+  auto bytes = good_tfx();
+  put(bytes, 0, 5.0f);
+  EXPECT_THAT(tfx_error(bytes),
+              HasSubstr("bad.tfx: not a TressFX 3 or 4 file: header version is 5.000000 (expected 3.x or 4.x)"));
+  put(bytes, 0, 2.0f);
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("header version is 2.000000"));
+  put(bytes, 0, std::numeric_limits<float>::quiet_NaN());
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("not a TressFX 3 or 4 file"));
+  EXPECT_THAT(tfx_error({bytes.begin(), bytes.begin() + 3}),
+              HasSubstr("file is truncated: a TressFX header needs at least 160 bytes, the file has 3"));
+}
+
+TEST_F(HairErrors, Tfx3HeaderReadAsTfx4IsAClearError) {
+  // A TressFX 3 file whose version says 4: its 3.x offset table is not where 4.x looks.
   auto bytes = good_tfx();
   put(bytes, 0, 4.0f);
-  EXPECT_THAT(tfx_error(bytes), HasSubstr("not a TressFX 3 file: header version is 4"));
-  put(bytes, 0, std::numeric_limits<float>::quiet_NaN());
-  EXPECT_THAT(tfx_error(bytes), HasSubstr("not a TressFX 3 file"));
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("bad.tfx: vertex data offset 0 points into the 160-byte header"));
 }
 
 TEST_F(HairErrors, TfxHugeCountsAreBoundedByTheFileSize) {
@@ -210,6 +305,76 @@ TEST_F(HairErrors, TfxNanPosition) {
   auto bytes = good_tfx();
   put(bytes, 296 + 12 * 5 + 4, std::numeric_limits<float>::quiet_NaN());
   EXPECT_THAT(tfx_error(bytes), AllOf(HasSubstr("point 5 (strand 1) is not finite"), HasSubstr("nan")));
+}
+
+TEST_F(HairErrors, Tfx4Truncated) {
+  auto bytes = good_tfx4();
+  EXPECT_THAT(tfx_error({bytes.begin(), bytes.begin() + 100}),
+              HasSubstr("bad.tfx: file is truncated: a TressFX 4 header needs 160 bytes, the file has 100"));
+  bytes.resize(160 + 16 * 10);  // 10 of 20 float4 positions
+  EXPECT_THAT(tfx_error(bytes), AllOf(HasSubstr("bad.tfx: file is truncated: vertex positions needs 20 x 16 bytes at byte 160"),
+                                      HasSubstr("only 160 bytes remain")));
+  bytes = good_tfx4();
+  bytes.resize(bytes.size() - 1);  // the last thickness factor
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("file is truncated: strand thickness needs 5 x 4 bytes"));
+}
+
+TEST_F(HairErrors, Tfx4NoStrandsAndBadVertexCounts) {
+  auto bytes = good_tfx4();
+  put(bytes, kTfx4Strands, std::uint32_t{0});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("bad.tfx: header declares no strands"));
+  bytes = good_tfx4();
+  put(bytes, kTfx4VerticesPerStrand, std::uint32_t{1});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("header declares 1 vertices per strand (TressFX allows 2 to 64)"));
+  put(bytes, kTfx4VerticesPerStrand, std::uint32_t{0xffffffff});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("header declares 4294967295 vertices per strand"));
+}
+
+TEST_F(HairErrors, Tfx4HugeCountsAreBoundedByTheFileSize) {
+  auto bytes = good_tfx4();
+  put(bytes, kTfx4Strands, std::uint32_t{0xffffffff});  // 4 G strands x 4 points x 16 bytes: would overflow 32 bits
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("file is truncated: vertex positions needs 17179869180 x 16 bytes"));
+  bytes = good_tfx4();
+  put(bytes, kTfx4Strands, std::uint32_t{6});  // one strand more than the file holds
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("vertex positions needs 24 x 16 bytes"));
+}
+
+TEST_F(HairErrors, Tfx4OffsetsIntoTheHeaderOrPastTheEnd) {
+  auto bytes = good_tfx4();
+  put(bytes, kTfx4Positions, std::uint32_t{0});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("bad.tfx: vertex data offset 0 points into the 160-byte header"));
+  put(bytes, kTfx4Positions, std::uint32_t(bytes.size() + 8));
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("vertex data starts at byte 508, past the end of the file (500 bytes)"));
+  bytes = good_tfx4();
+  put(bytes, kTfx4Thickness, std::uint32_t{40});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("thickness offset 40 points into the header"));
+  bytes = good_tfx4();
+  put(bytes, kTfx4Color, std::uint32_t{200});  // inside the positions: 20 x 16 colour bytes run past the end
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("file is truncated: vertex colours needs 20 x 16 bytes at byte 200"));
+}
+
+TEST_F(HairErrors, Tfx4TexcoordsOutsideTheFile) {
+  auto bytes = good_tfx4();
+  put(bytes, kTfx4StrandUv, std::uint32_t(bytes.size() + 100));
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("strand texcoords starts at byte 600, past the end of the file"));
+  bytes = good_tfx4();
+  put(bytes, kTfx4VertexUv, std::uint32_t{480});  // 20 bytes before the end; 20 x 8 needed
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("file is truncated: vertex texcoords needs 20 x 8 bytes at byte 480"));
+  put(bytes, kTfx4VertexUv, std::uint32_t{8});
+  EXPECT_THAT(tfx_error(bytes), HasSubstr("vertex texcoord offset 8 points into the header"));
+}
+
+TEST_F(HairErrors, Tfx4NanOrInfinitePosition) {
+  auto bytes = good_tfx4();
+  put(bytes, 160 + 16 * 6 + 8, std::numeric_limits<float>::quiet_NaN());  // point 6's z
+  EXPECT_THAT(tfx_error(bytes), AllOf(HasSubstr("bad.tfx: point 6 (strand 1) is not finite"), HasSubstr("nan")));
+  bytes = good_tfx4();
+  put(bytes, 160 + 16 * 19, -std::numeric_limits<float>::infinity());  // the last point's x
+  EXPECT_THAT(tfx_error(bytes), AllOf(HasSubstr("point 19 (strand 4) is not finite"), HasSubstr("inf")));
+  // w is the simulation's inverse mass: ignored, so a NaN there is no error.
+  bytes = good_tfx4();
+  put(bytes, 160 + 16 * 3 + 12, std::numeric_limits<float>::quiet_NaN());
+  EXPECT_EQ(parse_tfx(bytes, "w.tfx").points, sample_groom(true).points);
 }
 
 TEST_F(HairErrors, CyHairWrongMagic) {

@@ -4,6 +4,9 @@
 
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <limits>
+
 namespace avsm::scene {
 namespace {
 
@@ -124,6 +127,40 @@ TEST(Scene, RealAssetsSitTogetherInsideTheCornellBox) {
   EXPECT_EQ(scene.lights.size(), 2u);
   // Cameras stand outside the open front of the box and look into it.
   for (const Camera& camera : scene.cameras) EXPECT_TRUE(room.contains(camera.target)) << camera.name;
+}
+
+const HairGroom& groom_named(const Scene& scene, const std::string& name) {
+  for (const HairGroom& groom : scene.hair)
+    if (groom.name == name) return groom;
+  throw std::runtime_error("no groom named " + name);
+}
+
+TEST(Scene, HairFormatsExampleHasSintelsHairOnHerHeadAndPonytailsBeside) {
+  for (const char* asset : {"sintel/sintel_hair.tfx", "sintel/sintel_head.glb", "ponytail/back.tfx",
+                            "ponytail/ponytail_all.hair"})
+    AVSM_REQUIRE_FILE(testing::shared_content(asset));
+  const Scene scene = load_scene(testing::project_content("examples/hair_formats.scene.json"));
+  const auto head = std::find_if(scene.meshes.begin(), scene.meshes.end(),
+                                 [](const Mesh& mesh) { return mesh.name.starts_with("sintel_head/"); });
+  ASSERT_NE(head, scene.meshes.end());
+  const HairGroom& sintel = groom_named(scene, "sintel");
+  ASSERT_EQ(sintel.strand_count(), 228u);
+  // Every root sits on the scalp: within 3 cm of a head vertex (the farthest is
+  // 2.3 units in the files' own units, before the scene's scale of 0.01).
+  float farthest_root = 0.0f;
+  for (std::size_t s = 0; s < sintel.strand_count(); ++s) {
+    const glm::vec3 root = sintel.points[sintel.strand_offsets[s]];
+    float nearest = std::numeric_limits<float>::infinity();
+    for (const glm::vec3& vertex : head->positions) nearest = std::min(nearest, glm::distance(root, vertex));
+    farthest_root = std::max(farthest_root, nearest);
+  }
+  EXPECT_LT(farthest_root, 0.03f);
+  EXPECT_GT(sintel.bounds.max.y, head->bounds.max.y);  // the hair covers the crown
+  // The TressFX 3 parts to the left, the cyHair ponytail to the right, clear of the head.
+  for (const char* part : {"tfx3_back", "tfx3_front_top", "tfx3_side", "tfx3_tail"})
+    EXPECT_LT(groom_named(scene, part).bounds.max.x, head->bounds.min.x) << part;
+  EXPECT_GT(groom_named(scene, "cyhair_ponytail").bounds.min.x, head->bounds.max.x);
+  for (const HairGroom& groom : scene.hair) EXPECT_GT(groom.bounds.min.y, -0.001f) << groom.name << " is below the floor";
 }
 
 TEST(Scene, EveryExampleSceneLoads) {

@@ -1,5 +1,6 @@
 // avsm_fuzz_make_seeds OUT_DIR CONTENT_DIR: small valid inputs for every fuzz
 // target, one folder per target, so that fuzzing starts from real structure.
+#include "scene/binary_reader.h"
 #include "scene/hair.h"
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,24 @@ HairGroom small_groom(bool thick) {
     groom.strand_color.emplace_back(0.2f, 0.3f, 0.4f);
   }
   return groom;
+}
+
+// A TressFX 4 file with every array: positions and thickness from encode_tfx,
+// then per-strand UVs, per-vertex UVs and per-vertex colours appended and
+// their offsets (header bytes 16, 20, 28) set.
+std::vector<std::byte> tfx4_with_uvs_and_colours() {
+  const HairGroom groom = small_groom(true);
+  auto bytes = avsm::scene::encode_tfx(groom, avsm::scene::TfxVersion::v4);
+  auto append_floats = [&](std::size_t header_field, std::size_t floats, float value) {
+    while (bytes.size() % 8 != 0) bytes.push_back(std::byte{0});
+    const auto offset = std::uint32_t(bytes.size());
+    std::memcpy(bytes.data() + header_field, &offset, 4);
+    for (std::size_t i = 0; i < floats; ++i) avsm::scene::detail::append_bytes(bytes, value);
+  };
+  append_floats(16, 2 * groom.strand_count(), 0.5f);  // float2 per strand
+  append_floats(20, 2 * groom.points.size(), 0.25f);  // float2 per vertex
+  append_floats(28, 4 * groom.points.size(), 0.75f);  // float4 per vertex
+  return bytes;
 }
 
 std::string base64(const std::string& bytes) {
@@ -143,6 +162,8 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1], content = argv[2];
   write(out / "tfx" / "plain.tfx", avsm::scene::encode_tfx(small_groom(false)));
   write(out / "tfx" / "thickness.tfx", avsm::scene::encode_tfx(small_groom(true)));
+  write(out / "tfx" / "v4_plain.tfx", avsm::scene::encode_tfx(small_groom(false), avsm::scene::TfxVersion::v4));
+  write(out / "tfx" / "v4_all_arrays.tfx", tfx4_with_uvs_and_colours());
   write(out / "cyhair" / "all_arrays.hair", avsm::scene::encode_cyhair(small_groom(true)));
   auto defaults_only = avsm::scene::encode_cyhair(small_groom(false));
   defaults_only.resize(128 + 6 + 12 * 12);
