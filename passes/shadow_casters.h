@@ -2,9 +2,9 @@
 // What casts into the shadow maps, as plain views of GPU buffers: no scene format,
 // no ownership. The camera passes produce them for a loaded scene (OpaquePass::casters(),
 // HairPass::casters(), VolumePass::casters()); a host renderer fills them from its own
-// buffers. The buffers must hold their data before the frame is submitted and stay
-// unchanged and alive until it completes: the captures read them as static data, outside
-// the frame graph's synchronisation.
+// buffers. The buffers (and the draws' alpha textures) must hold their data before the
+// frame is submitted and stay unchanged and alive until it completes: the captures read
+// them as static data, outside the frame graph's synchronisation.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
