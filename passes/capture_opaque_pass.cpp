@@ -12,7 +12,17 @@ using Push = shared::CaptureOpaquePush;  // shaders/shared/passes/capture_opaque
 
 }  // namespace
 
-CaptureOpaquePass::CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
+void CaptureOpaquePass::bind(VkCommandBuffer cmd, rg::PassContext& c, const CaptureLists& lists,
+                             const MeshCasters& meshes, const MeshDraw& draw) const {
+  gpu::Bindings bindings(ctx_, pipeline_);
+  bindings.buffer("Vertices", meshes.vertices);
+  bind_capture_lists(bindings, c, lists);
+  alpha_.bind(bindings, draw);
+  bindings.push(cmd);
+}
+
+CaptureOpaquePass::CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), alpha_(ctx) {
   gpu::GraphicsPipelineDesc desc;
   desc.name = "capture opaque";
   desc.vertex = shaders.load("shaders/passes/capture_opaque.vert");
@@ -31,15 +41,20 @@ CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string
         VkCommandBuffer cmd = c.cmd();
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
         pipeline_.bind(cmd);
-        gpu::Bindings bindings(ctx_, pipeline_);
-        bindings.buffer("Vertices", meshes.vertices);
-        bind_capture_lists(bindings, c, d);
-        bindings.push(cmd);
-        pipeline_.push_constants(cmd, Push{light.light_from_world, light.depth_plane,
-                                           {light.texel_size_base, light.texel_size_per_depth}});
         vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
+        Push push{light.light_from_world, light.depth_plane, {light.texel_size_base, light.texel_size_per_depth}};
+        // Opaque draws first, under one binding; then each draw that tests alpha with its texture.
+        bind(cmd, c, d, meshes, MeshDraw{});
+        pipeline_.push_constants(cmd, push);
         for (const MeshDraw& draw : meshes.draws)
-          vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+          if (!draw.tests_alpha()) draw_mesh(cmd, draw);
+        for (const MeshDraw& draw : meshes.draws) {
+          if (!draw.tests_alpha()) continue;
+          bind(cmd, c, d, meshes, draw);
+          CasterAlphaTextures::set_push(push, draw);
+          pipeline_.push_constants(cmd, push);
+          draw_mesh(cmd, draw);
+        }
         vkCmdEndRendering(cmd);
       });
 }

@@ -1,11 +1,13 @@
 #pragma once
-// Light-space capture of opaque meshes: every fragment the light sees appends a
-// short dense segment (transmittance to 0 over one texel's world size) to its
-// texel's list. Rasterised at the map resolution with no attachments; both faces.
+// Light-space capture of meshes: every fragment the light sees appends a short dense
+// segment (over one texel's world size) to its texel's list, taking transmittance to 0,
+// or to 1 - alpha for blended materials; masked ones add nothing below their cutoff
+// (passes/caster_alpha.h). Rasterised at the map resolution with no attachments; both faces.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
+#include "passes/caster_alpha.h"
 #include "passes/capture_lists.h"
 #include "passes/light_view.h"
 #include "passes/shadow_casters.h"
@@ -20,8 +22,13 @@ class CaptureOpaquePass {
                             const LightView& light, const MeshCasters& meshes) const;
 
  private:
+  // Pushes the pass's bindings with `draw`'s alpha texture.
+  void bind(VkCommandBuffer cmd, rg::PassContext& c, const CaptureLists& lists, const MeshCasters& meshes,
+            const MeshDraw& draw) const;
+
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
+  CasterAlphaTextures alpha_;
 };
 
 }  // namespace avsm::passes

@@ -7,15 +7,26 @@
 
 namespace avsm::passes {
 
-LightDepthPass::LightDepthPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
+namespace {
+
+gpu::Pipeline light_depth_pipeline(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, bool alpha_tested) {
   gpu::GraphicsPipelineDesc desc;
-  desc.name = "light depth";
+  desc.name = alpha_tested ? "light depth, alpha tested" : "light depth";
   desc.vertex = shaders.load("shaders/passes/light_depth.vert");
-  desc.depth_format = kFormat;
+  if (alpha_tested) desc.fragment = shaders.load("shaders/passes/light_depth.frag");
+  desc.depth_format = LightDepthPass::kFormat;
   desc.depth_test = desc.depth_write = true;
   desc.cull_mode = VK_CULL_MODE_NONE;
-  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+  return gpu::Pipeline::graphics(ctx, desc);
 }
+
+}  // namespace
+
+LightDepthPass::LightDepthPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx),
+      depth_only_(light_depth_pipeline(ctx, shaders, false)),
+      alpha_tested_(light_depth_pipeline(ctx, shaders, true)),
+      alpha_(ctx) {}
 
 rg::TextureHandle LightDepthPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const LightView& light,
                                                const MeshCasters& meshes) const {
@@ -31,17 +42,35 @@ rg::TextureHandle LightDepthPass::add_to_graph(rg::Graph& graph, const std::stri
         VkCommandBuffer cmd = c.cmd();
         const gpu::DepthTarget depth{c.view(d.depth), c.layout(d.depth), 1.0f, /*store=*/true};
         gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {}, &depth);
-        if (!meshes.empty()) {
-          pipeline_.bind(cmd);
-          gpu::Bindings(ctx_, pipeline_).buffer("Vertices", meshes.vertices).push(cmd);
-          pipeline_.push_constants(cmd, shared::LightDepthPush{light.light_from_world});
-          vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
-          for (const MeshDraw& draw : meshes.draws)
-            vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
-        }
+        if (!meshes.empty()) record(cmd, light, meshes);
         vkCmdEndRendering(cmd);
       })
       .depth;
+}
+
+// Opaque draws first, depth only; then each draw that tests alpha with its texture.
+void LightDepthPass::record(VkCommandBuffer cmd, const LightView& light, const MeshCasters& meshes) const {
+  vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
+  shared::LightDepthPush push{light.light_from_world};
+  depth_only_.bind(cmd);
+  gpu::Bindings(ctx_, depth_only_).buffer("Vertices", meshes.vertices).push(cmd);
+  depth_only_.push_constants(cmd, push);
+  for (const MeshDraw& draw : meshes.draws)
+    if (!draw.tests_alpha()) draw_mesh(cmd, draw);
+
+  bool bound = false;
+  for (const MeshDraw& draw : meshes.draws) {
+    if (!draw.tests_alpha()) continue;
+    if (!bound) alpha_tested_.bind(cmd);
+    bound = true;
+    gpu::Bindings bindings(ctx_, alpha_tested_);
+    bindings.buffer("Vertices", meshes.vertices);
+    alpha_.bind(bindings, draw);
+    bindings.push(cmd);
+    CasterAlphaTextures::set_push(push, draw);
+    alpha_tested_.push_constants(cmd, push);
+    draw_mesh(cmd, draw);
+  }
 }
 
 }  // namespace avsm::passes

@@ -1,11 +1,16 @@
 #pragma once
-// The nearest opaque caster per light texel: the light's meshes rasterised depth-only
-// at the map resolution (both faces), for the fixed-memory AVSM build, which enters
-// it into each texel's curve as one blocking segment. Shader: shaders/passes/light_depth.vert.
+// The nearest blocking caster per light texel: the light's meshes rasterised depth-only
+// at the map resolution (both faces), for the fixed-memory AVSM build, which enters it
+// into each texel's curve as one blocking segment. Draws that test alpha go through a
+// fragment stage that keeps only fragments letting no light through (masked texels at or
+// above the cutoff, blended texels of alpha 1; passes/caster_alpha.h), so a blended
+// caster is never a full blocker where it is translucent: the fixed build has no place
+// for a partial one and leaves it out there. Shaders: shaders/passes/light_depth.vert, .frag.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
+#include "passes/caster_alpha.h"
 #include "passes/light_view.h"
 #include "passes/shadow_casters.h"
 
@@ -23,8 +28,12 @@ class LightDepthPass {
                                  const MeshCasters& meshes) const;
 
  private:
+  void record(VkCommandBuffer cmd, const LightView& light, const MeshCasters& meshes) const;
+
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline depth_only_;    // opaque draws: no fragment stage
+  gpu::Pipeline alpha_tested_;  // draws that test alpha
+  CasterAlphaTextures alpha_;
 };
 
 }  // namespace avsm::passes

@@ -5,6 +5,7 @@
 #include "gpu/context.h"
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
+#include "passes/caster_alpha.h"
 #include "passes/shadow_maps.h"
 #include "shared/passes/opaque.h"
 #include "passes/frame_inputs.h"
@@ -18,19 +19,6 @@ using shared::GpuMaterial;      // shaders/shared/mesh.h
 using OpaquePush = shared::OpaquePush;  // shaders/shared/passes/opaque.h
 
 constexpr glm::vec4 kSkyColor{0.35f, 0.45f, 0.6f, 1.0f};
-
-gpu::Image upload_texture(gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
-                          const std::string& name) {
-  gpu::ImageDesc desc;
-  desc.width = width;
-  desc.height = height;
-  desc.format = VK_FORMAT_R8G8B8A8_SRGB;  // glTF base colour textures are sRGB
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = name;
-  gpu::Image image = gpu::Image::create(ctx, desc);
-  gpu::upload_image(ctx, image, rgba8, VkDeviceSize(width) * height * 4, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  return image;
-}
 
 }  // namespace
 
@@ -46,7 +34,7 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
   desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
   pipeline_ = gpu::Pipeline::graphics(ctx, desc);
   const uint8_t white[4] = {255, 255, 255, 255};
-  white_ = upload_texture(ctx, 1, 1, white, "white texture");
+  white_ = upload_base_color_texture(ctx, 1, 1, white, "white texture");
 }
 
 void OpaquePass::set_scene(const scene::Scene& scene) {
@@ -66,6 +54,7 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   }
   std::vector<GpuMaterial> materials;
   material_textures_.clear();
+  scene_materials_ = scene.materials;
   for (const scene::Material& m : scene.materials) {
     materials.push_back({m.base_color_factor, m.alpha_mode == scene::AlphaMode::mask ? 1u : 0u, m.alpha_cutoff,
                          m.base_color_texture >= 0 ? 1u : 0u, 0.0f});
@@ -77,12 +66,21 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   materials_ = gpu::create_buffer_from(ctx_, std::move(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
   textures_.clear();
   for (const scene::Texture& t : scene.textures)
-    textures_.push_back(upload_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));
+    textures_.push_back(upload_base_color_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));
 }
 
 MeshCasters OpaquePass::casters() const {
   MeshCasters casters{vertices_.handle(), indices_.handle(), {}};
-  for (const Draw& draw : draws_) casters.draws.push_back({draw.first_index, draw.index_count, draw.vertex_offset});
+  for (const Draw& draw : draws_) {
+    const MeshDraw range{draw.first_index, draw.index_count, draw.vertex_offset};
+    if (draw.material >= scene_materials_.size()) {
+      casters.draws.push_back(range);  // the grey default material: opaque
+      continue;
+    }
+    const int texture = material_textures_[draw.material];
+    casters.draws.push_back(with_material_alpha(range, scene_materials_[draw.material],
+                                                texture >= 0 ? texture_view(texture) : VK_NULL_HANDLE));
+  }
   return casters;
 }
 

@@ -56,6 +56,7 @@ class OpaquePass {
   gpu::Image white_;
   std::vector<Draw> draws_;
   std::vector<int> material_textures_;
+  std::vector<scene::Material> scene_materials_;  // for their alpha as casters (casters())
 };
 
 }  // namespace avsm::passes

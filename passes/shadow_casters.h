@@ -2,9 +2,9 @@
 // What casts into the shadow maps, as plain views of GPU buffers: no scene format,
 // no ownership. The camera passes produce them for a loaded scene (OpaquePass::casters(),
 // HairPass::casters(), VolumePass::casters()); a host renderer fills them from its own
-// buffers. The buffers must hold their data before the frame is submitted and stay
-// unchanged and alive until it completes: the captures read them as static data, outside
-// the frame graph's synchronisation.
+// buffers. The buffers (and the draws' alpha textures) must hold their data before the
+// frame is submitted and stay unchanged and alive until it completes: the captures read
+// them as static data, outside the frame graph's synchronisation.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -15,18 +15,36 @@
 
 namespace avsm::passes {
 
-// One vertex as the opaque shaders read it (shaders/shared/mesh.h): the capture uses
-// the position only, the camera passes the rest.
+// One vertex as the opaque shaders read it (shaders/shared/mesh.h): the captures use
+// the position, and the uv for draws that test alpha; the camera passes the rest.
 using shared::CasterVertex;
 
-// A vkCmdDrawIndexed range of the shared index buffer.
+// How a draw's material alpha casts (glTF's alphaMode; content/README.md "Alpha"):
+// opaque blocks all light; mask blocks where alpha >= the cutoff and lets all light
+// through elsewhere; blend lets 1 - alpha through, a translucent occluder like a hair
+// fragment (in the fixed build, which keeps only the nearest blocker per texel, a blend
+// caster blocks only where its alpha is 1).
+enum class CasterAlpha : uint32_t {
+  opaque = shared::kCasterAlphaOpaque,
+  mask = shared::kCasterAlphaMask,
+  blend = shared::kCasterAlphaBlend,
+};
+
+// A vkCmdDrawIndexed range of the shared index buffer, and its material's alpha.
+// Alpha is alpha_factor times the alpha of `alpha_texture` at the vertices' uv
+// (sampled linearly, repeating); without a texture, alpha_factor alone.
 struct MeshDraw {
   uint32_t first_index = 0;
   uint32_t index_count = 0;
   int32_t vertex_offset = 0;
+  CasterAlpha alpha = CasterAlpha::opaque;
+  float alpha_cutoff = 0.5f;                   // mask only
+  float alpha_factor = 1.0f;                   // the base colour factor's alpha
+  VkImageView alpha_texture = VK_NULL_HANDLE;  // the base-colour texture, SHADER_READ_ONLY_OPTIMAL; mask, blend
+  bool tests_alpha() const { return alpha != CasterAlpha::opaque; }
 };
 
-// Opaque triangle meshes, world space, drawn from both sides.
+// Triangle meshes, world space, drawn from both sides.
 struct MeshCasters {
   VkBuffer vertices = VK_NULL_HANDLE;  // CasterVertex[]; usage STORAGE_BUFFER
   VkBuffer indices = VK_NULL_HANDLE;   // uint32 triangle list; usage INDEX_BUFFER

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -107,6 +108,27 @@ void report_lowered_resolutions(const renderer::SceneRenderer& frame, const scen
                    "(shadows.budget_mib)\n",
                    scene.lights[i].name.c_str(), asked, got);
   }
+}
+
+// The fixed build keeps one blocker per light texel, so a blended (alphaMode BLEND)
+// caster cannot be translucent there: it blocks only where its alpha is 1 and lets all
+// light through elsewhere (passes/light_depth_pass.h). Says so for every light built
+// that way while the scene has such casters; the lists build casts them translucently.
+void report_blend_casters_in_fixed_builds(const scene::Scene& scene) {
+  std::set<std::string> blended;
+  for (const scene::Mesh& mesh : scene.meshes)
+    if (mesh.material < scene.materials.size() && scene.materials[mesh.material].alpha_mode == scene::AlphaMode::blend)
+      blended.insert("'" + scene.materials[mesh.material].name + "'");
+  if (blended.empty()) return;
+  std::string names;
+  for (const std::string& name : blended) names += (names.empty() ? "" : ", ") + name;
+  for (const scene::Light& light : scene.lights)
+    if (light.shadow.build == scene::ShadowBuild::fixed)
+      std::fprintf(stderr,
+                   "avsm-capture: warning: light '%s' builds its map in fixed memory (shadow.build \"fixed\"), "
+                   "where blended materials (alphaMode BLEND: %s) cast no shadow except where their alpha is 1; "
+                   "shadow.build \"lists\" casts them as translucent occluders\n",
+                   light.name.c_str(), names.c_str());
 }
 
 std::string describe(const scene::VolumeShading& shading) {
@@ -210,6 +232,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   }
   renderer::SceneRenderer& frame = *renderer_storage;
   report_lowered_resolutions(frame, scene);
+  report_blend_casters_in_fixed_builds(scene);
   if (!probe_points.empty()) frame.set_probes(probe_points);
   if (options.compare_to_uncompressed) frame.enable_quality();
   if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));

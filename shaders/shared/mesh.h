@@ -17,5 +17,17 @@ GPU_STRUCT(CasterVertex, GPU_CASTER_VERTEX)
   F(float, pad)
 GPU_STRUCT(GpuMaterial, GPU_MATERIAL)
 
+// How a mesh caster's base-colour alpha casts into the shadow maps (glTF alphaMode;
+// passes/shadow_casters.h, shaders/common/caster_alpha.glsl): opaque blocks, mask blocks
+// where alpha >= cutoff, blend lets 1 - alpha through.
+GPU_CONST(uint, kCasterAlphaOpaque, 0u)
+GPU_CONST(uint, kCasterAlphaMask, 1u)
+GPU_CONST(uint, kCasterAlphaBlend, 2u)
+// The members a light capture's push constants carry per draw for that (see caster_alpha.glsl).
+#define GPU_CASTER_ALPHA_PUSH(F, A)                          \
+  F(uint, alpha_mode)    /* kCasterAlpha* */                 \
+  F(float, alpha_cutoff) /* mask: blocks where alpha >= it */ \
+  F(float, alpha_factor) /* the base colour factor's alpha */
+
 GPU_NAMESPACE_END
 #endif

@@ -9,6 +9,10 @@ fresh clone). Deterministic: running it again gives the same bytes.
   curtain.gltf  hair: 240 wavy strands of 14 points hanging 1 m down from a 1.2 m
                 rod along X at y = 1, as one LINES primitive (consecutive segments
                 that share an index form one strand); needs 'width' in the scene
+  screens.gltf  two upright 1 m squares in the XY plane facing +Z, centred at x = -0.7
+                and x = 0.7: 'screen', alphaMode MASK (cutoff 0.5) with a texture of
+                4 x 4 round holes (alpha 0 inside, 1 outside); 'pane', alphaMode BLEND,
+                alpha 0.3, untextured (a tinted glass)
 
 Usage: content/examples/assets/make_assets.py   (writes next to itself)
 """
@@ -17,6 +21,7 @@ import json
 import math
 import os
 import struct
+import zlib
 
 
 def gltf(name, positions, normals, indices, mode, colour):
@@ -105,9 +110,81 @@ def curtain(strands=240, points=14):
     return gltf("curtain", positions, None, indices, 1, [0.55, 0.33, 0.16])
 
 
+def png(width, height, pixel):
+    """An RGBA8 PNG of pixel(x, y) -> (r, g, b, a), rows top to bottom, unfiltered."""
+    rows = b"".join(b"\x00" + b"".join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)  # 8 bits, RGBA
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows, 9)) +
+            chunk(b"IEND", b""))
+
+
+def hole_pattern(size=128, holes=4, radius=0.34):
+    """Orange with `holes` x `holes` round holes (alpha 0) of `radius` cells."""
+    cell = size / holes
+
+    def pixel(x, y):
+        dx = (x + 0.5) % cell / cell - 0.5
+        dy = (y + 0.5) % cell / cell - 0.5
+        return (230, 140, 40, 0 if dx * dx + dy * dy < radius * radius else 255)
+
+    return png(size, size, pixel)
+
+
+def screens():
+    """Two upright unit squares sharing one quad (positions, normals, uvs, indices)."""
+    positions = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.5, 0.5, 0.0], [-0.5, 0.5, 0.0]]
+    normals = [[0.0, 0.0, 1.0]] * 4
+    uvs = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]  # glTF's uv origin is the image's top left
+    indices = [0, 1, 2, 0, 2, 3]
+    pos = b"".join(struct.pack("<3f", *p) for p in positions)
+    nor = b"".join(struct.pack("<3f", *n) for n in normals)
+    tex = b"".join(struct.pack("<2f", *t) for t in uvs)
+    idx = b"".join(struct.pack("<I", i) for i in indices)
+    blob = pos + nor + tex + idx
+    views, offset = [], 0
+    for part in (pos, nor, tex, idx):
+        views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(part)})
+        offset += len(part)
+    accessors = [
+        {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-0.5, -0.5, 0.0],
+         "max": [0.5, 0.5, 0.0]},
+        {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5125, "count": 6, "type": "SCALAR"},
+    ]
+    primitive = {"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "mode": 4}
+    image = "data:image/png;base64," + base64.b64encode(hole_pattern()).decode()
+    return {
+        "asset": {"version": "2.0", "generator": "content/examples/assets/make_assets.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "screen", "mesh": 0, "translation": [-0.7, 0.0, 0.0]},
+                  {"name": "pane", "mesh": 1, "translation": [0.7, 0.0, 0.0]}],
+        "materials": [
+            {"name": "screen", "alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True,
+             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},
+            {"name": "pane", "alphaMode": "BLEND", "doubleSided": True,
+             "pbrMetallicRoughness": {"baseColorFactor": [0.3, 0.6, 0.9, 0.3]}},
+        ],
+        "meshes": [{"name": "screen", "primitives": [dict(primitive, material=0)]},
+                   {"name": "pane", "primitives": [dict(primitive, material=1)]}],
+        "textures": [{"source": 0, "sampler": 0}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9729}],
+        "images": [{"uri": image}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+    }
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    for name, asset in (("block", block()), ("ball", ball()), ("curtain", curtain())):
+    for name, asset in (("block", block()), ("ball", ball()), ("curtain", curtain()), ("screens", screens())):
         with open(os.path.join(here, name + ".gltf"), "w") as out:
             json.dump(asset, out, indent=1)
             out.write("\n")
