@@ -93,7 +93,7 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   }
   std::vector<GpuMaterial> materials;
   material_textures_.clear();
-  for (scene::Material m : scene.materials) {
+  for (const scene::Material& m : scene.materials) {
     materials.push_back(gpu_material(m));
     MaterialTextures textures;
     for (size_t i = 0; i < textures.size(); ++i) textures[i] = *m.textures()[i];

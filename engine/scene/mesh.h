@@ -50,8 +50,14 @@ struct Material {
 
   // Every texture member, in glTF's order (base colour, metallic-roughness, normal,
   // occlusion, emissive), for code that visits or renumbers them.
-  std::array<int*, 5> textures() {
-    return {&base_color_texture, &metallic_roughness_texture, &normal_texture, &occlusion_texture, &emissive_texture};
+  std::array<int*, 5> textures() { return texture_members<int>(*this); }
+  std::array<const int*, 5> textures() const { return texture_members<const int>(*this); }
+
+ private:
+  template <class Int, class Self>
+  static std::array<Int*, 5> texture_members(Self& m) {
+    return {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.occlusion_texture,
+            &m.emissive_texture};
   }
 };
 

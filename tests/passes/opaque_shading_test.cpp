@@ -99,7 +99,8 @@ constexpr float kHalfSize = 20.0f;  // the plane: y = 0, |x|, |z| < kHalfSize
 
 // The plane (normal +Y, U along +X, V along +Z; tangent +X with handedness -1), one
 // directional light and a camera, with `material`.
-scene::Scene plane_scene(const scene::Material& material, const glm::vec3& light_direction, const glm::vec3& light_value) {
+scene::Scene plane_scene(const scene::Material& material, const glm::vec3& light_direction, const glm::vec3& light_value,
+                         const glm::vec3& camera_position = {0.5f, 2.5f, 5.0f}) {
   scene::Scene scene;
   scene.file = "opaque shading test plane (built in the test)";
   scene.materials.push_back(material);
@@ -128,7 +129,7 @@ scene::Scene plane_scene(const scene::Material& material, const glm::vec3& light
   scene.lights.push_back(light);
 
   scene::Camera camera;
-  camera.position = glm::vec3(0.5f, 2.5f, 5.0f);
+  camera.position = camera_position;
   camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
   camera.vertical_fov = glm::radians(50.0f);
   camera.far_plane = 100.0f;
@@ -150,8 +151,9 @@ std::optional<glm::vec3> plane_point(const passes::View& view, uint32_t x, uint3
   const glm::vec2 ndc(2.0f * (x + 0.5f) / view.width - 1.0f, 1.0f - 2.0f * (y + 0.5f) / view.height);  // row 0 at the top
   const glm::vec4 far = view.inverse_view_projection * glm::vec4(ndc, 1.0f, 1.0f);
   const glm::vec3 direction = glm::normalize(glm::vec3(far) / far.w - view.camera_position);
-  if (direction.y > -1e-3f) return std::nullopt;
-  const glm::vec3 p = view.camera_position + direction * (-view.camera_position.y / direction.y);
+  const float distance = -view.camera_position.y / direction.y;
+  if (std::abs(direction.y) < 1e-3f || !(distance > 0.0f)) return std::nullopt;
+  const glm::vec3 p = view.camera_position + direction * distance;
   if (std::abs(p.x) > kHalfSize - 0.5f || std::abs(p.z) > kHalfSize - 0.5f) return std::nullopt;
   return p;
 }
@@ -220,9 +222,11 @@ TEST_F(OpaqueShadingTest, MetallicPlaneMatchesTheClosedForm) {
 // Every texture at a known texel: metallic-roughness (G, B), normal and occlusion (R)
 // must be read as linear values, base colour and emissive as sRGB; the normal goes
 // through the tangent frame with bitangent = cross(N, T) x w (w = -1 here).
-TEST_F(OpaqueShadingTest, TexturedPlaneReadsEachTextureInItsColourSpace) {
-  const std::array<std::uint8_t, 4> base_texel{200, 150, 100, 255}, mr_texel{0, 153, 51, 255},
-      normal_texel{166, 100, 240, 255}, occlusion_texel{128, 0, 0, 255}, emissive_texel{60, 120, 200, 255};
+constexpr std::array<std::uint8_t, 4> kBaseTexel{200, 150, 100, 255}, kMrTexel{0, 153, 51, 255},
+    kNormalTexel{166, 100, 240, 255}, kOcclusionTexel{128, 0, 0, 255}, kEmissiveTexel{60, 120, 200, 255};
+
+// The textured plane's scene, and the surface it makes seen from above.
+std::pair<scene::Scene, Surface> textured_plane(const glm::vec3& light_direction, const glm::vec3& camera_position) {
   scene::Material material;
   material.name = "textured";
   material.base_color_factor = glm::vec4(0.9f, 1.0f, 1.0f, 1.0f);
@@ -231,33 +235,45 @@ TEST_F(OpaqueShadingTest, TexturedPlaneReadsEachTextureInItsColourSpace) {
   material.normal_scale = 0.8f;
   material.occlusion_strength = 0.5f;
   material.emissive = glm::vec3(0.5f, 0.25f, 0.1f);
+  material.base_color_texture = 0;
+  material.metallic_roughness_texture = 1;
+  material.normal_texture = 2;
+  material.occlusion_texture = 3;
+  material.emissive_texture = 4;
 
-  scene::Scene scene = plane_scene(material, {-0.3f, -1.0f, -0.8f}, glm::vec3(2.5f));
+  scene::Scene scene = plane_scene(material, light_direction, glm::vec3(2.5f), camera_position);
   using scene::ColorSpace;
-  scene.textures = {flat_texture("base", base_texel, ColorSpace::srgb), flat_texture("mr", mr_texel, ColorSpace::linear),
-                    flat_texture("normal", normal_texel, ColorSpace::linear),
-                    flat_texture("occlusion", occlusion_texel, ColorSpace::linear),
-                    flat_texture("emissive", emissive_texel, ColorSpace::srgb)};
-  scene::Material& m = scene.materials[0];
-  m.base_color_texture = 0;
-  m.metallic_roughness_texture = 1;
-  m.normal_texture = 2;
-  m.occlusion_texture = 3;
-  m.emissive_texture = 4;
+  scene.textures = {flat_texture("base", kBaseTexel, ColorSpace::srgb), flat_texture("mr", kMrTexel, ColorSpace::linear),
+                    flat_texture("normal", kNormalTexel, ColorSpace::linear),
+                    flat_texture("occlusion", kOcclusionTexel, ColorSpace::linear),
+                    flat_texture("emissive", kEmissiveTexel, ColorSpace::srgb)};
 
   Surface surface;
   for (int c = 0; c < 3; ++c) {
-    surface.base[c] = material.base_color_factor[c] * srgb_to_linear(base_texel[c]);
-    surface.emissive[c] = material.emissive[c] * srgb_to_linear(emissive_texel[c]);
+    surface.base[c] = material.base_color_factor[c] * srgb_to_linear(kBaseTexel[c]);
+    surface.emissive[c] = material.emissive[c] * srgb_to_linear(kEmissiveTexel[c]);
   }
   surface.roughness = 0.9f * (153 / 255.0f);
   surface.metallic = 1.0f * (51 / 255.0f);
   surface.occlusion = 1.0f + 0.5f * (128 / 255.0f - 1.0f);
   const glm::vec3 n(0, 1, 0), t(1, 0, 0), b = glm::cross(n, t) * -1.0f;  // the plane's frame
-  glm::vec3 local = glm::vec3(normal_texel[0], normal_texel[1], normal_texel[2]) / 255.0f * 2.0f - 1.0f;
+  glm::vec3 local = glm::vec3(kNormalTexel[0], kNormalTexel[1], kNormalTexel[2]) / 255.0f * 2.0f - 1.0f;
   local.x *= 0.8f;
   local.y *= 0.8f;
   surface.normal = glm::normalize(t * local.x + b * local.y + n * local.z);
+  return {scene, surface};
+}
+
+TEST_F(OpaqueShadingTest, TexturedPlaneReadsEachTextureInItsColourSpace) {
+  const auto [scene, surface] = textured_plane({-0.3f, -1.0f, -0.8f}, {0.5f, 2.5f, 5.0f});
+  EXPECT_GT(expect_pixels_match(ctx(), shaders(), scene, surface), 60);
+}
+
+// Seen from below (lit from below too), the plane is shaded on that side: the whole
+// tangent frame turns round, so the bent normal is the one from above, negated.
+TEST_F(OpaqueShadingTest, TexturedPlaneSeenFromBelowShadesTheSideWeSee) {
+  auto [scene, surface] = textured_plane({-0.3f, 1.0f, -0.8f}, {0.5f, -2.5f, 5.0f});
+  surface.normal = -surface.normal;
   EXPECT_GT(expect_pixels_match(ctx(), shaders(), scene, surface), 60);
 }
 
