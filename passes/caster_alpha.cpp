@@ -5,12 +5,12 @@
 
 namespace avsm::passes {
 
-gpu::Image upload_base_color_texture(const gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
-                                     const std::string& name) {
+gpu::Image upload_material_texture(const gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
+                                   scene::ColorSpace color_space, const std::string& name) {
   gpu::ImageDesc desc;
   desc.width = width;
   desc.height = height;
-  desc.format = VK_FORMAT_R8G8B8A8_SRGB;  // glTF base colour textures are sRGB (their alpha is linear)
+  desc.format = color_space == scene::ColorSpace::srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = name;
   gpu::Image image = gpu::Image::create(ctx, desc);
@@ -33,7 +33,7 @@ MeshDraw with_material_alpha(MeshDraw draw, const scene::Material& material, VkI
 CasterAlphaTextures::CasterAlphaTextures(const gpu::Context& ctx)
     : sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}) {
   const uint8_t white[4] = {255, 255, 255, 255};
-  white_ = upload_base_color_texture(ctx, 1, 1, white, "caster alpha: white texture");
+  white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "caster alpha: white texture");
 }
 
 void CasterAlphaTextures::bind(gpu::Bindings& bindings, const MeshDraw& draw) const {

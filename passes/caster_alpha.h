@@ -14,9 +14,11 @@
 
 namespace avsm::passes {
 
-// A glTF base-colour texture (RGBA8, sRGB values) uploaded for sampling, in SHADER_READ_ONLY_OPTIMAL.
-gpu::Image upload_base_color_texture(const gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
-                                     const std::string& name);
+// A glTF material texture (RGBA8) uploaded for sampling, in SHADER_READ_ONLY_OPTIMAL. Colours
+// (base colour, emissive) are sRGB-encoded, data (metallic-roughness, normal, occlusion)
+// linear: the format decodes each as glTF means it (an sRGB format leaves alpha linear).
+gpu::Image upload_material_texture(const gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
+                                   scene::ColorSpace color_space, const std::string& name);
 
 // `draw` with `material`'s alpha: its mode, cutoff and factor, and `texture` (the view of
 // its base-colour texture, VK_NULL_HANDLE for none).

@@ -20,6 +20,29 @@ using OpaquePush = shared::OpaquePush;  // shaders/shared/passes/opaque.h
 
 constexpr glm::vec4 kSkyColor{0.35f, 0.45f, 0.6f, 1.0f};
 
+GpuMaterial gpu_material(const scene::Material& m) {
+  GpuMaterial g{};
+  g.base_color = m.base_color_factor;
+  g.alpha_mask = m.alpha_mode == scene::AlphaMode::mask ? 1u : 0u;
+  g.alpha_cutoff = m.alpha_cutoff;
+  g.has_texture = m.base_color_texture >= 0 ? 1u : 0u;
+  g.metallic = m.metallic_factor;
+  g.emissive = glm::vec4(m.emissive, 0.0f);
+  g.roughness = m.roughness_factor;
+  g.normal_scale = m.normal_scale;
+  g.occlusion_strength = m.occlusion_strength;
+  g.has_normal_texture = m.normal_texture >= 0 ? 1u : 0u;
+  return g;
+}
+
+// For meshes without a material: grey, rough, not metallic.
+scene::Material fallback_material() {
+  scene::Material m;
+  m.base_color_factor = glm::vec4(0.8f);
+  m.metallic_factor = 0.0f;
+  return m;
+}
+
 }  // namespace
 
 OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
@@ -34,11 +57,12 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
   desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
   pipeline_ = gpu::Pipeline::graphics(ctx, desc);
   const uint8_t white[4] = {255, 255, 255, 255};
-  white_ = upload_base_color_texture(ctx, 1, 1, white, "white texture");
+  white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
 }
 
 void OpaquePass::set_scene(const scene::Scene& scene) {
   std::vector<GpuVertex> vertices;
+  std::vector<glm::vec4> tangents;  // parallel to vertices
   std::vector<uint32_t> indices;
   draws_.clear();
   for (const scene::Mesh& mesh : scene.meshes) {
@@ -48,6 +72,7 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
       glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0);
       const glm::vec3& p = mesh.positions[v];
       vertices.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}});
+      tangents.push_back(v < mesh.tangents.size() ? mesh.tangents[v] : glm::vec4(0.0f));
     }
     indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
     if (draw.index_count > 0) draws_.push_back(draw);
@@ -56,17 +81,20 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   material_textures_.clear();
   scene_materials_ = scene.materials;
   for (const scene::Material& m : scene.materials) {
-    materials.push_back({m.base_color_factor, m.alpha_mode == scene::AlphaMode::mask ? 1u : 0u, m.alpha_cutoff,
-                         m.base_color_texture >= 0 ? 1u : 0u, 0.0f});
-    material_textures_.push_back(m.base_color_texture);
+    materials.push_back(gpu_material(m));
+    MaterialTextures textures;
+    for (size_t i = 0; i < textures.size(); ++i) textures[i] = *m.textures()[i];
+    material_textures_.push_back(textures);
   }
-  if (materials.empty()) materials.push_back({glm::vec4(0.8f), 0, 0.5f, 0, 0.0f});  // grey, for meshes without one
+  if (materials.empty()) materials.push_back(gpu_material(fallback_material()));
+  if (tangents.empty()) tangents.emplace_back(0.0f);  // no zero-sized buffers
   vertices_ = gpu::create_buffer_from(ctx_, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
+  tangents_ = gpu::create_buffer_from(ctx_, std::move(tangents), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque tangents");
   indices_ = gpu::create_buffer_from(ctx_, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
   materials_ = gpu::create_buffer_from(ctx_, std::move(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
   textures_.clear();
   for (const scene::Texture& t : scene.textures)
-    textures_.push_back(upload_base_color_texture(ctx_, t.width, t.height, t.rgba8.data(), "texture " + t.name));
+    textures_.push_back(upload_material_texture(ctx_, t.width, t.height, t.rgba8.data(), t.color_space, "texture " + t.name));
 }
 
 MeshCasters OpaquePass::casters() const {
@@ -77,8 +105,9 @@ MeshCasters OpaquePass::casters() const {
       casters.draws.push_back(range);  // the grey default material: opaque
       continue;
     }
-    const int texture = material_textures_[draw.material];
-    casters.draws.push_back(with_material_alpha(range, scene_materials_[draw.material],
+    const scene::Material& material = scene_materials_[draw.material];
+    const int texture = material.base_color_texture;
+    casters.draws.push_back(with_material_alpha(range, material,
                                                 texture >= 0 ? texture_view(texture) : VK_NULL_HANDLE));
   }
   return casters;
@@ -115,13 +144,16 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
   gpu::begin_rendering(cmd, {view.width, view.height}, {&color, 1}, &depth, /*flip_y=*/true);
   pipeline_.bind(cmd);
   vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  static constexpr const char* kTextureBindings[] = {"base_color_texture", "metallic_roughness_texture", "normal_texture",
+                                                     "occlusion_texture", "emissive_texture"};  // Material::textures() order
   for (const Draw& draw : draws_) {
-    int texture = draw.material < material_textures_.size() ? material_textures_[draw.material] : -1;
+    MaterialTextures textures;
+    textures.fill(-1);
+    if (draw.material < material_textures_.size()) textures = material_textures_[draw.material];
     gpu::Bindings bindings(ctx_, pipeline_);
-    bindings.buffer("Vertices", vertices_)
-        .buffer("Materials", materials_)
-        .buffer("Lights", lights)
-        .image("base_color_texture", texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    bindings.buffer("Vertices", vertices_).buffer("Tangents", tangents_).buffer("Materials", materials_).buffer("Lights", lights);
+    for (size_t i = 0; i < textures.size(); ++i)
+      bindings.image(kTextureBindings[i], texture_view(textures[i]), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
     shadows.bind(bindings, c);
     bindings.push(cmd);
     pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),

@@ -1,10 +1,13 @@
 #pragma once
-// Opaque glTF geometry from the camera: depth + lit HDR colour. Lighting is
-// Lambert with a sky ambient term; every light is attenuated by its
-// transmittance map (shaders/common/shadow_lookup.glsl, passes/shadow_maps.h). All meshes share one vertex and one index buffer; a draw per
-// mesh pushes its material index and texture.
+// Opaque glTF geometry from the camera: depth + lit HDR colour. Shading is glTF's
+// metallic-roughness BRDF (shaders/common/pbr_brdf.glsl) with normal, occlusion and
+// emissive textures, lit by every light attenuated by its transmittance map
+// (shaders/common/shadow_lookup.glsl, passes/shadow_maps.h), the sky, and emission.
+// All meshes share one vertex, one tangent and one index buffer; a draw per mesh
+// pushes its material index and binds its textures.
 #include <rendergraph/graph.h>
 
+#include <array>
 #include <vector>
 
 #include "gpu/pipeline.h"
@@ -51,11 +54,12 @@ class OpaquePass {
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler sampler_;
-  gpu::Buffer vertices_, indices_, materials_;
+  gpu::Buffer vertices_, tangents_, indices_, materials_;
   std::vector<gpu::Image> textures_;
   gpu::Image white_;
   std::vector<Draw> draws_;
-  std::vector<int> material_textures_;
+  using MaterialTextures = std::array<int, 5>;  // scene::Material::textures(), -1 = none
+  std::vector<MaterialTextures> material_textures_;
   std::vector<scene::Material> scene_materials_;  // for their alpha as casters (casters())
 };
 

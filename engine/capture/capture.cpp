@@ -203,6 +203,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (options.progress)
     std::fprintf(stderr, "scene %s: %zu meshes, %zu hair grooms, %zu volumes, %zu lights\n", options.scene.c_str(),
                  scene.meshes.size(), scene.hair.size(), scene.volumes.size(), scene.lights.size());
+  for (const std::string& warning : scene.warnings)  // what loaded but is not rendered as the file says
+    std::fprintf(stderr, "avsm-capture: warning: %s\n", warning.c_str());
   const scene::Camera& camera = pick_camera(scene, options.camera);
 
   gpu::ContextDesc desc;

@@ -158,21 +158,23 @@ class Loader {
   void add_mesh_instance(int mesh_index, const std::string& node_name, const glm::mat4& world);
   void count_vertices(std::size_t count, const std::string& name);
   void repair_zero_normals(Mesh& mesh, const std::string& name);
+  void finish_tangents(Mesh& mesh, const std::string& name);
   void add_triangles(const tinygltf::Primitive& primitive, const std::string& name,
                      std::vector<std::uint32_t> indices, const glm::mat4& world);
   void add_lines(const tinygltf::Primitive& primitive, const std::string& name, int mode, const std::vector<std::uint32_t>& indices,
                  const std::vector<glm::vec3>& positions);
   std::uint32_t material_index(int gltf_material);
   Material convert_material(const tinygltf::Material& source);
-  int texture_for(int gltf_texture);
-  Texture decode_texture(int image_index) const;
+  void convert_textures(const tinygltf::Material& source, const std::string& label, Material& material);
+  int texture_for(int gltf_texture, ColorSpace color_space);
+  Texture decode_texture(int image_index, ColorSpace color_space) const;
 
   const tinygltf::Model& model_;
   const std::filesystem::path& file_;
   const GltfOptions& options_;
   GltfAsset asset_;
   std::map<int, std::uint32_t> materials_;  // glTF material (-1 = default) -> ours
-  std::map<int, int> textures_;             // glTF image -> ours
+  std::map<std::pair<int, ColorSpace>, int> textures_;  // glTF image as colour or data -> ours
   std::uint64_t vertices_emitted_ = 0;
 };
 
@@ -402,6 +404,7 @@ void generate_flat_normals(Mesh& mesh) {
   for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
     flat.positions.push_back(mesh.positions[mesh.indices[corner]]);
     if (!mesh.uvs.empty()) flat.uvs.push_back(mesh.uvs[mesh.indices[corner]]);
+    if (!mesh.tangents.empty()) flat.tangents.push_back(mesh.tangents[mesh.indices[corner]]);
   }
   flat.indices.resize(mesh.indices.size());
   std::iota(flat.indices.begin(), flat.indices.end(), 0u);
@@ -411,6 +414,7 @@ void generate_flat_normals(Mesh& mesh) {
   }
   mesh.positions = std::move(flat.positions);
   mesh.uvs = std::move(flat.uvs);
+  mesh.tangents = std::move(flat.tangents);
   mesh.indices = std::move(flat.indices);
   mesh.normals = std::move(flat.normals);
 }
@@ -424,9 +428,33 @@ void generate_smooth_normals(Mesh& mesh) {
   for (glm::vec3& n : mesh.normals) n = safe_normalize(n);
 }
 
+// A material's textures in glTF's order (Material::textures(); the first picks the UV set), with how each one's bytes
+// are encoded.
+struct TextureUse {
+  const char* name;  // as glTF names the property
+  int index;
+  int texcoord;
+  const tinygltf::ExtensionMap* extensions;
+  ColorSpace color_space;
+};
+
+std::vector<TextureUse> texture_uses(const tinygltf::Material& m) {
+  const auto& pbr = m.pbrMetallicRoughness;
+  return {{"baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions, ColorSpace::srgb},
+          {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+           &pbr.metallicRoughnessTexture.extensions, ColorSpace::linear},
+          {"normalTexture", m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions, ColorSpace::linear},
+          {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions, ColorSpace::linear},
+          {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions, ColorSpace::srgb}};
+}
+
+// The one UV set a material's textures are read through: that of its first texture
+// (texture_uses order); textures on another set are dropped (convert_material warns).
 int texcoord_set(const tinygltf::Model& model, int material) {
   if (material < 0 || std::size_t(material) >= model.materials.size()) return 0;
-  return std::max(0, model.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord);
+  for (const TextureUse& use : texture_uses(model.materials[material]))
+    if (use.index >= 0) return std::max(0, use.texcoord);
+  return 0;
 }
 
 // Meshes are named after their node (instances of one glTF mesh differ), else the glTF mesh.
@@ -500,6 +528,72 @@ void Loader::repair_zero_normals(Mesh& mesh, const std::string& name) {
   asset_.warnings.push_back(name + ": " + std::to_string(zero) + " zero-length normals replaced by smooth normals");
 }
 
+// Per-vertex tangents from UV derivatives (Lengyel, "Computing Tangent Space Basis
+// Vectors for an Arbitrary Mesh", 2001), not MikkTSpace: each triangle's dP/dU and
+// dP/dV summed at its corners, the sum made orthogonal to the vertex normal and unit
+// length. The handedness compares cross(normal, tangent) with -dP/dV, the image's up
+// (glTF's V runs down the image; normal textures' +Y points up it). Returns how many
+// vertices had no usable UV derivatives; they get some tangent in the surface.
+std::size_t generate_tangents(Mesh& mesh) {
+  std::vector<glm::vec3> along_u(mesh.positions.size(), glm::vec3(0.0f));
+  std::vector<glm::vec3> along_v(mesh.positions.size(), glm::vec3(0.0f));
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const std::uint32_t* corner = &mesh.indices[3 * t];
+    const glm::vec3 e1 = mesh.positions[corner[1]] - mesh.positions[corner[0]];
+    const glm::vec3 e2 = mesh.positions[corner[2]] - mesh.positions[corner[0]];
+    const glm::vec2 d1 = mesh.uvs[corner[1]] - mesh.uvs[corner[0]];
+    const glm::vec2 d2 = mesh.uvs[corner[2]] - mesh.uvs[corner[0]];
+    const float uv_area = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(uv_area) > 1e-20f)) continue;  // no UV extent (or NaN): says nothing about direction
+    const glm::vec3 dp_du = (e1 * d2.y - e2 * d1.y) / uv_area;
+    const glm::vec3 dp_dv = (e2 * d1.x - e1 * d2.x) / uv_area;
+    if (!is_finite(dp_du) || !is_finite(dp_dv)) continue;
+    for (int k = 0; k < 3; ++k) {
+      along_u[corner[k]] += dp_du;
+      along_v[corner[k]] += dp_dv;
+    }
+  }
+  std::size_t degenerate = 0;
+  mesh.tangents.resize(mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3& n = mesh.normals[i];
+    glm::vec3 t = along_u[i] - n * glm::dot(n, along_u[i]);
+    if (!(glm::dot(t, t) > 1e-24f)) {
+      ++degenerate;  // any direction in the surface: the normal texture's X and Y get some frame
+      t = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+      t -= n * glm::dot(n, t);
+    }
+    t = glm::normalize(t);
+    const float handedness = glm::dot(glm::cross(n, t), -along_v[i]) < 0.0f ? -1.0f : 1.0f;
+    mesh.tangents[i] = glm::vec4(t, handedness);
+  }
+  return degenerate;
+}
+
+// Tangents for a mesh whose material has a normal texture: the file's, made unit and
+// orthogonal to the (final) normals, else generated from the UVs.
+void Loader::finish_tangents(Mesh& mesh, const std::string& name) {
+  if (mesh.uvs.empty()) {
+    mesh.tangents.clear();
+    asset_.warnings.push_back(name + ": its material has a normal texture but the primitive has no texture coordinates; "
+                              "the normal texture is not applied");
+    return;
+  }
+  if (mesh.tangents.empty()) {
+    const std::size_t degenerate = generate_tangents(mesh);
+    if (degenerate > 0)
+      asset_.warnings.push_back(name + ": " + std::to_string(degenerate) +
+                                " vertices have no usable UV derivatives for a tangent; the normal texture is oriented arbitrarily there");
+    return;
+  }
+  for (std::size_t i = 0; i < mesh.tangents.size(); ++i) {
+    const glm::vec3& n = mesh.normals[i];
+    glm::vec3 t = glm::vec3(mesh.tangents[i]);
+    t -= n * glm::dot(n, t);
+    mesh.tangents[i] = glm::vec4(glm::dot(t, t) > 1e-24f ? glm::normalize(t) : glm::vec3(0.0f), mesh.tangents[i].w);
+  }
+}
+
 // Finishes asset_.meshes.back(), whose positions are still in mesh space.
 void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::string& name,
                            std::vector<std::uint32_t> indices, const glm::mat4& world) {
@@ -519,14 +613,27 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
       if (!is_finite(mesh.normals[i])) fail(name + ": normal " + std::to_string(i) + " is not finite");
   }
 
+  const bool needs_tangents = asset_.materials[mesh.material].normal_texture >= 0;
+  const auto tangent = primitive.attributes.find("TANGENT");
+  if (needs_tangents && tangent != primitive.attributes.end()) {
+    mesh.tangents = read_vectors<4>(tangent->second, name + " TANGENT", false);
+    if (mesh.tangents.size() != vertex_count) fail(name + ": TANGENT count differs from POSITION count");
+    for (std::size_t i = 0; i < vertex_count; ++i)
+      if (!std::isfinite(mesh.tangents[i].x) || !std::isfinite(mesh.tangents[i].y) || !std::isfinite(mesh.tangents[i].z))
+        fail(name + ": tangent " + std::to_string(i) + " is not finite");
+  }
+
   const glm::mat3 linear(world);
   const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
+  const bool mirrored = glm::determinant(linear) < 0.0f;
   for (glm::vec3& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
   for (glm::vec3& n : mesh.normals) {
     const glm::vec3 transformed = normal_matrix * n;
     n = glm::dot(transformed, transformed) > 0.0f ? glm::normalize(transformed) : glm::vec3(0.0f);
   }
-  if (glm::determinant(linear) < 0.0f)  // a mirror turns CCW into CW: swap to keep front faces CCW
+  for (glm::vec4& t : mesh.tangents)  // tangents lie in the surface: they transform as positions do
+    t = glm::vec4(linear * glm::vec3(t), (t.w < 0.0f) != mirrored ? -1.0f : 1.0f);  // a mirror flips the bitangent
+  if (mirrored)  // a mirror turns CCW into CW: swap to keep front faces CCW
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
   mesh.indices = std::move(indices);
 
@@ -538,6 +645,7 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
   } else {
     repair_zero_normals(mesh, name);
   }
+  if (needs_tangents) finish_tangents(mesh, name);
   for (const glm::vec3& p : mesh.positions) {
     if (!is_finite(p)) fail(name + ": a position is not finite after the node transforms");
     mesh.bounds.extend(p);
@@ -617,16 +725,52 @@ Material Loader::convert_material(const tinygltf::Material& source) {
   else fail(label + ": unknown alphaMode '" + source.alphaMode + "'");
   material.alpha_cutoff = float(source.alphaCutoff);
   material.double_sided = source.doubleSided;
+  material.metallic_factor = float(source.pbrMetallicRoughness.metallicFactor);
+  material.roughness_factor = float(source.pbrMetallicRoughness.roughnessFactor);
+  material.normal_scale = float(source.normalTexture.scale);
+  material.occlusion_strength = float(source.occlusionTexture.strength);
   const float values[] = {material.base_color_factor.r, material.base_color_factor.g, material.base_color_factor.b,
                           material.base_color_factor.a, material.emissive.r, material.emissive.g, material.emissive.b,
-                          material.alpha_cutoff};
+                          material.alpha_cutoff, material.metallic_factor, material.roughness_factor,
+                          material.normal_scale, material.occlusion_strength};
   for (float value : values)
     if (!std::isfinite(value)) fail(label + ": has a non-finite factor");
-  material.base_color_texture = texture_for(source.pbrMetallicRoughness.baseColorTexture.index);
+  for (auto [factor, what] : {std::pair{&material.metallic_factor, "metallicFactor"}, {&material.roughness_factor, "roughnessFactor"},
+                              {&material.occlusion_strength, "occlusionTexture.strength"}})
+    if (*factor < 0.0f || *factor > 1.0f) {
+      asset_.warnings.push_back(label + ": " + what + " " + std::to_string(*factor) + " is outside 0..1; clamped");
+      *factor = std::clamp(*factor, 0.0f, 1.0f);
+    }
+  convert_textures(source, label, material);
   return material;
 }
 
-int Loader::texture_for(int gltf_texture) {
+// The material's textures, each decoded in its colour space. All are read through one
+// UV set (texcoord_set); a texture on another set, or transformed by
+// KHR_texture_transform, is dropped or used untransformed with a warning.
+void Loader::convert_textures(const tinygltf::Material& source, const std::string& label, Material& material) {
+  const std::array<int*, 5> targets = material.textures();  // in texture_uses' order
+  const std::vector<TextureUse> uses = texture_uses(source);
+  int uv_set = -1;
+  for (std::size_t i = 0; i < uses.size(); ++i) {
+    const TextureUse& use = uses[i];
+    if (use.index < 0) continue;
+    const int set = std::max(0, use.texcoord);
+    if (uv_set < 0) uv_set = set;
+    if (set != uv_set) {
+      asset_.warnings.push_back(label + ": " + use.name + " reads TEXCOORD_" + std::to_string(set) +
+                                " but the material's other textures read TEXCOORD_" + std::to_string(uv_set) +
+                                " (one UV set per material is supported); the " + use.name + " is not applied");
+      continue;
+    }
+    if (use.extensions->count("KHR_texture_transform"))
+      asset_.warnings.push_back(label + ": " + use.name + " has KHR_texture_transform, which is not supported; "
+                                "the texture is sampled untransformed");
+    *targets[i] = texture_for(use.index, use.color_space);
+  }
+}
+
+int Loader::texture_for(int gltf_texture, ColorSpace color_space) {
   if (gltf_texture < 0) return -1;
   if (std::size_t(gltf_texture) >= model_.textures.size())
     fail("material uses texture " + std::to_string(gltf_texture) + ", which does not exist");
@@ -634,19 +778,20 @@ int Loader::texture_for(int gltf_texture) {
   if (image < 0 || std::size_t(image) >= model_.images.size())
     fail("texture " + std::to_string(gltf_texture) + " has no image we can decode (source " + std::to_string(image) +
          "; extension-only sources such as KTX2 or WebP are not supported)");
-  const auto found = textures_.find(image);
+  const auto found = textures_.find({image, color_space});
   if (found != textures_.end()) return found->second;
-  asset_.textures.push_back(decode_texture(image));
-  return textures_[image] = int(asset_.textures.size() - 1);
+  asset_.textures.push_back(decode_texture(image, color_space));
+  return textures_[{image, color_space}] = int(asset_.textures.size() - 1);
 }
 
-Texture Loader::decode_texture(int image_index) const {
+Texture Loader::decode_texture(int image_index, ColorSpace color_space) const {
   const tinygltf::Image& image = model_.images[image_index];
   const bool named_file = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
   const std::string label = "image " + std::to_string(image_index) + (named_file ? " '" + image.uri + "'" : "");
   if (image.image.empty()) fail(label + " has no data (missing file or empty bufferView)");
   Texture texture;
   texture.name = !image.name.empty() ? image.name : named_file ? image.uri : "image" + std::to_string(image_index);
+  texture.color_space = color_space;
   std::string error;
   if (!detail::decode_rgba8(image.image, options_.max_texture_size, texture, error))
     fail(label + " cannot be decoded: " + error);

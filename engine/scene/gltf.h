@@ -30,7 +30,7 @@ struct GltfOptions {
 struct GltfAsset {
   std::vector<Mesh> meshes;          // one per triangle primitive per node that uses it
   std::vector<Material> materials;   // Mesh::material indexes this
-  std::vector<Texture> textures;     // Material::base_color_texture indexes this
+  std::vector<Texture> textures;     // the Material texture members index this
   // LINES, LINE_STRIP and LINE_LOOP primitives as strands (StrandWidth::relative,
   // width 1, opacity 1, colour = the material's base colour). Consecutive LINES
   // segments that share an index are joined into one strand. Empty when none.

@@ -28,7 +28,8 @@ void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, 
   const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
   const auto texture_base = static_cast<int>(scene.textures.size());
   for (Material& material : asset.materials) {
-    if (material.base_color_texture >= 0) material.base_color_texture += texture_base;
+    for (int* texture : material.textures())
+      if (*texture >= 0) *texture += texture_base;
     scene.materials.push_back(std::move(material));
   }
   for (Texture& texture : asset.textures) scene.textures.push_back(std::move(texture));

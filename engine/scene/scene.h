@@ -21,7 +21,7 @@ struct Scene {
   std::filesystem::path file;
   std::vector<Mesh> meshes;         // world space; opaque ones cast into shadow maps as blockers
   std::vector<Material> materials;  // Mesh::material indexes this
-  std::vector<Texture> textures;    // Material::base_color_texture indexes this
+  std::vector<Texture> textures;    // the Material texture members index this
   std::vector<HairGroom> hair;      // world space, StrandWidth::absolute (world units)
   std::vector<Volume> volumes;
   std::vector<Light> lights;

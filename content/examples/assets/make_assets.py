@@ -6,6 +6,7 @@ fresh clone). Deterministic: running it again gives the same bytes.
   block.gltf    unit cube centred on the origin, flat normals (place and scale it
                 into floors, walls, pillars)
   ball.gltf     sphere of radius 0.5 centred on the origin, smooth normals
+  metal_ball.gltf  the same sphere, gold-coloured metal (metallic 1, roughness 0.3)
   curtain.gltf  hair: 240 wavy strands of 14 points hanging 1 m down from a 1.2 m
                 rod along X at y = 1, as one LINES primitive (consecutive segments
                 that share an index form one strand); needs 'width' in the scene
@@ -24,8 +25,10 @@ import struct
 import zlib
 
 
-def gltf(name, positions, normals, indices, mode, colour):
-    """One mesh, one node, one material; the buffer as a data URI."""
+def gltf(name, positions, normals, indices, mode, colour, metallic=0.0, roughness=0.8):
+    """One mesh, one node, one material; the buffer as a data URI. The material is not
+    metal and fairly rough unless asked: glTF's defaults (metallic 1, roughness 1)
+    would make it rough metal."""
     pos = b"".join(struct.pack("<3f", *p) for p in positions)
     nor = b"".join(struct.pack("<3f", *n) for n in normals) if normals else b""
     idx = b"".join(struct.pack("<I", i) for i in indices)
@@ -48,7 +51,8 @@ def gltf(name, positions, normals, indices, mode, colour):
         "scene": 0,
         "scenes": [{"nodes": [0]}],
         "nodes": [{"name": name, "mesh": 0}],
-        "materials": [{"name": name, "pbrMetallicRoughness": {"baseColorFactor": colour + [1.0]}}],
+        "materials": [{"name": name, "pbrMetallicRoughness": {"baseColorFactor": colour + [1.0],
+                                                              "metallicFactor": metallic, "roughnessFactor": roughness}}],
         "meshes": [{"name": name, "primitives": [
             {"attributes": attributes, "indices": len(accessors) - 1, "mode": mode, "material": 0}]}],
         "accessors": accessors,
@@ -77,7 +81,7 @@ def block():
     return gltf("block", positions, normals, indices, 4, [0.72, 0.72, 0.68])
 
 
-def ball(rings=16, segments=32):
+def ball(name="ball", colour=(0.75, 0.28, 0.2), metallic=0.0, roughness=0.8, rings=16, segments=32):
     positions, normals, indices = [], [], []
     for r in range(rings + 1):
         theta = math.pi * r / rings
@@ -93,7 +97,7 @@ def ball(rings=16, segments=32):
                 indices += [a, b, a + 1]
             if r < rings - 1:
                 indices += [a + 1, b, b + 1]
-    return gltf("ball", positions, normals, indices, 4, [0.75, 0.28, 0.2])
+    return gltf(name, positions, normals, indices, 4, list(colour), metallic, roughness)
 
 
 def curtain(strands=240, points=14):
@@ -184,7 +188,9 @@ def screens():
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    for name, asset in (("block", block()), ("ball", ball()), ("curtain", curtain()), ("screens", screens())):
+    metal_ball = ball("metal_ball", (1.0, 0.78, 0.34), metallic=1.0, roughness=0.3)  # gold-like F0
+    for name, asset in (("block", block()), ("ball", ball()), ("metal_ball", metal_ball), ("curtain", curtain()),
+                        ("screens", screens())):
         with open(os.path.join(here, name + ".gltf"), "w") as out:
             json.dump(asset, out, indent=1)
             out.write("\n")
