@@ -15,8 +15,9 @@
 // front), so their curves depended on the append order again. Here the steps run as
 // one flat state machine, kStepsPerIteration per loop iteration (unrolled, so they
 // do not count), and the lanes of a subgroup loop together (a lane whose list is
-// sorted idles), as the resolve walks its lists: lists up to about 20,000 segments
-// sort within lavapipe's budget.
+// sorted idles), as the resolve walks its lists. Lists longer than kMaxSortedSegments
+// stay in capture order (still whole, only not front to back): a longer one could run
+// out of lavapipe's budget part way through relinking.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -29,6 +30,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/passes/capture_sort.h"
 
 const int kStepsPerIteration = 8;
+// Counting and sorting 16,384 segments take about 45,000 loop iterations (sorting
+// 22,000 ran out of the budget).
+const uint kMaxSortedSegments = 16384u;
 
 bool before(vec3 a, vec3 b) {
   if (a.x != b.x) return a.x < b.x;
@@ -143,13 +147,28 @@ void merge_sort_step(inout MergeSort m) {
     merge_sort_merge(m);
 }
 
+// Whether the list from `head` holds 2 to kMaxSortedSegments segments (the lanes count together).
+bool worth_sorting(uint head) {
+  uint node = head, length = 0u;
+  while (subgroupAny(node != kListEnd && length <= kMaxSortedSegments)) {
+    [[unroll]] for (int k = 0; k < kStepsPerIteration; ++k) {
+      if (node != kListEnd && length <= kMaxSortedSegments) {
+        node = capture_nodes[node].next;
+        length += 1u;
+      }
+    }
+  }
+  return length >= 2u && length <= kMaxSortedSegments;
+}
+
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
   uint head = imageLoad(capture_heads, texel).r;
-  MergeSort m = merge_sort_begin(head);
+  bool sort = worth_sorting(head);
+  MergeSort m = merge_sort_begin(sort ? head : kListEnd);
   while (subgroupAny(m.phase != kSorted)) {
     [[unroll]] for (int k = 0; k < kStepsPerIteration; ++k) merge_sort_step(m);
   }
-  if (m.merged != head) imageStore(capture_heads, texel, uvec4(m.merged));
+  if (sort && m.merged != head) imageStore(capture_heads, texel, uvec4(m.merged));
 }
