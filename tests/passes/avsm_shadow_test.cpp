@@ -2,7 +2,9 @@
 //  - AvsmResolvePass against the C++ core (passes/avsm_core.h) run over the same lists,
 //    node by node, and exact where the node budget holds the whole curve;
 //  - AvsmMipsPass against the CPU mip chain (avsm_mip_merge), with odd sizes;
-//  - a sorted resolve of the default scene bit-identical from run to run;
+//  - the sort on lists of up to 20,000 segments beside short ones, against the CPU;
+//  - a sorted resolve of the default scene bit-identical from run to run, and every
+//    texel of its 32^2 AVSM-16 maps (lists read back) bit for bit against the core;
 //  - the uncompressed (and a 16-node AVSM) lookup through a constant box against the
 //    closed-form Beer-Lambert transmittance, via the probe pass;
 //  - capture overflow: detected, reported, clamped to the limit, grown when allowed;
