@@ -14,7 +14,7 @@ CaptureLists CaptureSortPass::add_to_graph(rg::Graph& graph, const std::string& 
   return graph.add_pass<CaptureLists>(prefix + " sort lists", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, CaptureLists& d) {
         d = lists;
-        d.heads = b.read(lists.heads, rg::Usage::StorageRead);
+        d.heads = b.read_write(lists.heads, rg::Usage::StorageReadWrite);
         d.nodes = b.read_write(lists.nodes, rg::Usage::StorageReadWrite);
       },
       [this, resolution](const CaptureLists& d, rg::PassContext& c) {

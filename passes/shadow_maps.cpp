@@ -351,7 +351,9 @@ void ShadowMaps::create_list_buffers() {
   list_heads_ = {};
   list_nodes_ = {};
   if (heads == 0) return;
-  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  // TRANSFER_SRC: they can be read back (looked_up_list_heads/nodes), like the atlas.
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list heads"});
   list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list nodes"});
   for (MapState& map : maps_) {

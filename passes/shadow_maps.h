@@ -126,6 +126,16 @@ class ShadowMaps {
   uint32_t map_count(uint32_t light) const { return lights_.at(light).map_count; }
   // Light `light`'s first map (layout: map_layout(light)); empty for uncompressed lights.
   const gpu::Buffer& avsm_map(uint32_t light) const { return maps_.at(lights_.at(light).first_map).map; }
+  // Light `light`'s first map's capture lists as the last frame copied them for the lookups
+  // (sorted if its settings sort): the heads row by row (kListEnd: empty) and the nodes they
+  // and each segment's `next` index. Empty buffers unless lookups read the lists
+  // (ShadowOptions::keep_reference, or the uncompressed technique).
+  const gpu::Buffer& looked_up_list_heads(uint32_t light) const {
+    return maps_.at(lights_.at(light).first_map).list_heads;
+  }
+  const gpu::Buffer& looked_up_list_nodes(uint32_t light) const {
+    return maps_.at(lights_.at(light).first_map).list_nodes;
+  }
   // The state every frame leaves the maps in (read by the camera passes' shaders): what a
   // later graph reading a map back imports it in.
   static rg::ImportState map_state_after_frame() { return rg::ImportState::of(rg::Usage::StorageRead); }

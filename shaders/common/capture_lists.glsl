@@ -6,7 +6,8 @@
 // binding, the node buffer at +1 and the counter at +2. Define
 // AVSM_CAPTURE_APPEND in the passes that append (they get capture_append());
 // the others only walk the lists, read-only unless they define
-// AVSM_CAPTURE_NODE_ACCESS (e.g. empty, for the sort that rewrites payloads).
+// AVSM_CAPTURE_HEAD_ACCESS and AVSM_CAPTURE_NODE_ACCESS (empty, for the sort that
+// relinks the lists).
 #ifndef AVSM_CAPTURE_LISTS_GLSL
 #define AVSM_CAPTURE_LISTS_GLSL
 
@@ -14,10 +15,13 @@
 #include "shared/capture.h"
 
 #ifndef AVSM_CAPTURE_APPEND
+#ifndef AVSM_CAPTURE_HEAD_ACCESS
+#define AVSM_CAPTURE_HEAD_ACCESS readonly
+#endif
 #ifndef AVSM_CAPTURE_NODE_ACCESS
 #define AVSM_CAPTURE_NODE_ACCESS readonly
 #endif
-layout(binding = AVSM_CAPTURE_BINDING, r32ui) uniform readonly uimage2D capture_heads;
+layout(binding = AVSM_CAPTURE_BINDING, r32ui) uniform AVSM_CAPTURE_HEAD_ACCESS uimage2D capture_heads;
 layout(std430, binding = AVSM_CAPTURE_BINDING + 1) AVSM_CAPTURE_NODE_ACCESS buffer CaptureNodes {
   CaptureSegment capture_nodes[];
 };
@@ -38,6 +42,7 @@ void capture_append(ivec2 texel, float entry, float exit_depth, float exit_trans
 }
 #endif
 
-// Lists are walked from the newest node: `next` always points at an older node
-// (a smaller index), so every walk ends.
+// Lists are walked from the head. As captured, `next` always points at an older node
+// (a smaller index); the sort (capture_sort.comp) relinks them front to back.
+// Either way a list ends at kListEnd.
 #endif

@@ -34,6 +34,10 @@ uint shadow_list_head(GpuShadow s, ivec2 texel) {
 // Node indices are the capture's own, counted from the record's first node.
 CaptureSegment shadow_list_node(GpuShadow s, uint i) { return shadow_nodes[s.list_nodes_offset + i]; }
 
+// Whether a walk that has taken `steps` steps goes on to `node`: a list ends at kListEnd,
+// and none holds more nodes than the buffer (a bound should one ever be malformed).
+bool shadow_list_goes_on(uint node, uint steps) { return node != kListEnd && steps < uint(shadow_nodes.length()); }
+
 float shadow_light_depth(GpuShadow s, vec3 p) { return dot(s.depth_plane.xyz, p) + s.depth_plane.w; }
 
 float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.texel_camera.y * depth; }

@@ -2,7 +2,9 @@
 //  - AvsmResolvePass against the C++ core (passes/avsm_core.h) run over the same lists,
 //    node by node, and exact where the node budget holds the whole curve;
 //  - AvsmMipsPass against the CPU mip chain (avsm_mip_merge), with odd sizes;
-//  - a sorted resolve of the default scene bit-identical from run to run;
+//  - the sort on lists of up to 20,000 segments beside short ones, against the CPU;
+//  - a sorted resolve of the default scene bit-identical from run to run, and every
+//    texel of its 32^2 AVSM-16 maps (lists read back) bit for bit against the core;
 //  - the uncompressed (and a 16-node AVSM) lookup through a constant box against the
 //    closed-form Beer-Lambert transmittance, via the probe pass;
 //  - capture overflow: detected, reported, clamped to the limit, grown when allowed;
@@ -199,16 +201,16 @@ std::vector<Segment> sorted_list(std::vector<Segment> list) {
   return list;
 }
 
-// The CPU reference of a whole map: level 0 from the lists (sorted first if `sort`),
-// every other level from the CPU level above (2x2 children, clamped at odd edges)
-// through avsm_mip_merge.
-std::vector<std::vector<StoredCurve>> cpu_map(const Lists& lists, const AvsmMapLayout& layout, float far_depth,
-                                              bool sort = false) {
+// The CPU reference of a whole map stored over [near_depth, far_depth]: level 0 from the
+// lists (sorted first if `sort`), every other level from the CPU level above (2x2
+// children, clamped at odd edges) through avsm_mip_merge.
+std::vector<std::vector<StoredCurve>> cpu_map(const Lists& lists, const AvsmMapLayout& layout, float near_depth,
+                                              float far_depth, bool sort = false) {
   const int n = int(layout.nodes);
   std::vector<std::vector<StoredCurve>> levels(layout.levels);
   for (uint32_t texel = 0; texel < lists.heads.size(); ++texel) {
     const std::vector<Segment> list = sort ? sorted_list(lists.walk(texel)) : lists.walk(texel);
-    levels[0].push_back(stored_form(cpu_resolve(list, far_depth, n), n));
+    levels[0].push_back(stored_form(cpu_resolve(list, far_depth, n), n, near_depth, far_depth));
   }
   for (uint32_t level = 1; level < layout.levels; ++level) {
     const uint32_t size = layout.level_size(level), above = layout.level_size(level - 1);
@@ -219,7 +221,7 @@ std::vector<std::vector<StoredCurve>> cpu_map(const Lists& lists, const AvsmMapL
       for (uint32_t x = 0; x < size; ++x)
         levels[level].push_back(stored_form(core::avsm_mip_merge(child(2 * x, 2 * y), child(2 * x + 1, 2 * y),
                                                                  child(2 * x, 2 * y + 1), child(2 * x + 1, 2 * y + 1), n),
-                                            n));
+                                            n, near_depth, far_depth));
   }
   return levels;
 }
@@ -228,6 +230,11 @@ std::string describe(const StoredCurve& s) {
   std::ostringstream out;
   for (size_t i = 0; i < s.depth.size(); ++i) out << " (" << s.depth[i] << ", " << s.trans[i] << ")";
   return out.str();
+}
+
+bool bit_identical(const StoredCurve& a, const StoredCurve& b) {
+  return std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0 &&
+         std::memcmp(a.trans.data(), b.trans.data(), a.trans.size() * sizeof(float)) == 0;
 }
 
 // ---- Running resolve (and mips) alone in a graph ----
@@ -321,7 +328,7 @@ TEST_F(AvsmShadowTest, AvsmResolveMatchesCpuReference) {
     const AvsmMapLayout layout{kRes, n, 1};
     const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout);
     ASSERT_EQ(gpu_map.size(), layout.bytes() / 16);
-    const auto cpu = cpu_map(lists, layout, kFar);
+    const auto cpu = cpu_map(lists, layout, kNear, kFar);
     const std::string what = "N = " + std::to_string(n);
     const float max_error = compare_map(gpu_map, cpu, layout, what);
     std::cout << "[ resolve N=" << n << " ] " << lists.nodes.size() << " segments, max |GPU - CPU| " << max_error
@@ -411,7 +418,7 @@ TEST_F(AvsmShadowTest, AvsmMipsMatchCpuReference) {
       const AvsmMapLayout layout{res, n, AvsmMapLayout::full_mip_count(res)};
       ASSERT_EQ(layout.level_size(layout.levels - 1), 1u);
       const std::vector<glm::vec4> gpu_map = run_resolve(ctx(), shaders(), lists, layout);
-      const auto cpu = cpu_map(lists, layout, kFar);
+      const auto cpu = cpu_map(lists, layout, kNear, kFar);
       const std::string what = std::to_string(res) + "^2, N = " + std::to_string(n);
       const float max_error = compare_map(gpu_map, cpu, layout, what);
       std::cout << "[ mips " << what << " ] " << layout.levels << " levels, max |GPU - CPU| " << max_error << "\n";
@@ -449,11 +456,41 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIgnoresAppendOrder) {
     const std::vector<glm::vec4> sorted_second = run_resolve(ctx(), shaders(), second, layout, /*sort=*/true);
     EXPECT_EQ(std::memcmp(sorted_first.data(), sorted_second.data(), bytes), 0)
         << "N = " << n << ": sorted resolves of the same segments differ";
-    const float max_error = compare_map(sorted_first, cpu_map(first, layout, kFar, /*sort=*/true), layout,
+    const float max_error = compare_map(sorted_first, cpu_map(first, layout, kNear, kFar, /*sort=*/true), layout,
                                         "sorted, N = " + std::to_string(n));
     std::cout << "[ sort N=" << n << "    ] " << long_lists << " lists longer than 32, max |GPU - CPU sorted| "
               << max_error << "\n";
   }
+}
+
+// Long lists next to short ones in one subgroup (a row of 8 texels), as hair gives them:
+// each sorts completely, so the resolve matches the CPU core over the sorted lists. The
+// sort used to stop part way once its lanes' loops had iterated 65535 times together
+// (lavapipe's limit; shaders/passes/capture_sort.comp): 12,000 segments would have taken
+// it 72 million steps. A list over its 16,384-segment limit stays whole in capture order.
+TEST_F(AvsmShadowTest, AvsmSortSortsLongListsCompletely) {
+  constexpr uint32_t kRes = 8, kNodes = 16;
+  constexpr size_t kMaxSortedSegments = 16384;  // capture_sort.comp
+  std::mt19937 rng(17);
+  std::vector<std::vector<Segment>> per_texel = random_texel_segments(rng, kRes, 40);
+  const int lengths[kRes] = {1, 12000, 2, 700, 20000, 3000, 33, 1};
+  for (uint32_t x = 0; x < kRes; ++x) per_texel[x] = random_segments(rng, lengths[x]);
+  const Lists lists = make_lists(kRes, per_texel, rng);
+  const AvsmMapLayout layout{kRes, kNodes, 1};
+  const std::vector<glm::vec4> map = run_resolve(ctx(), shaders(), lists, layout, /*sort=*/true);
+  std::vector<std::vector<StoredCurve>> cpu(1);
+  size_t order_matters = 0;
+  for (uint32_t texel = 0; texel < kRes * kRes; ++texel) {
+    const std::vector<Segment> list = lists.walk(texel);
+    const StoredCurve unsorted = stored_form(cpu_resolve(list, kFar, kNodes), kNodes);
+    const StoredCurve sorted = stored_form(cpu_resolve(sorted_list(list), kFar, kNodes), kNodes);
+    cpu[0].push_back(list.size() > kMaxSortedSegments ? unsorted : sorted);
+    order_matters += !bit_identical(unsorted, sorted);
+  }
+  const float max_error = compare_map(map, cpu, layout, "long lists, sorted, N = 16");
+  std::cout << "[ sort long   ] lists of up to 20000 segments, max |GPU - CPU| " << max_error << "\n";
+  // Not vacuous: the long lists' curves depend on their order.
+  EXPECT_GE(order_matters, 4u);
 }
 
 // ---- Rendering scenes ----
@@ -543,6 +580,87 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIsBitIdenticalAcrossRuns) {
         << scene.lights[light].name << ": " << differing << " of " << a.size() << " map bytes differ between runs";
     std::cout << "[ sorted      ] " << scene.lights[light].name << ": " << a.size() << " map bytes, " << shadowed
               << " level-0 texels below 0.5, " << differing << " bytes differ\n";
+  }
+}
+
+// ---- 4c. The default scene's maps against the C++ core, every texel ----
+
+// Light `light`'s capture lists as the renderer kept them for the lookups
+// (ShadowOptions::keep_reference), read back.
+Lists read_looked_up_lists(gpu::Context& ctx, const passes::ShadowMaps& shadows, uint32_t light) {
+  Lists lists;
+  lists.resolution = shadows.map_layout(light).resolution;
+  lists.heads = gpu::read_buffer<uint32_t>(ctx, shadows.looked_up_list_heads(light));
+  lists.nodes = gpu::read_buffer<Segment>(ctx, shadows.looked_up_list_nodes(light));
+  return lists;
+}
+
+bool same_segments(const std::vector<Segment>& a, const std::vector<Segment>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Segment& x, const Segment& y) {
+           return x.entry == y.entry && x.exit_depth == y.exit_depth && x.exit_trans == y.exit_trans;
+         });
+}
+
+// Both default lights at 32^2, AVSM-16, sorted lists: the sun's map holds the hair
+// curtain's longest lists (over a thousand segments), the spot's has mips. Every list
+// must come out of the sort front to back, and every stored node of every level must be
+// the C++ core's over the sorted lists, bit for bit. (The sort used to stop part way on
+// long lists under lavapipe's loop limit: shaders/passes/capture_sort.comp.)
+TEST_F(AvsmShadowTest, AvsmDefaultSceneMatchesTheCoreAtEveryTexel) {
+  constexpr uint32_t kNodes = 16, kResolution = 32;
+  const scene::Scene scene = default_scene(int(kNodes), int(kResolution));
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.keep_reference = true});
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
+  const passes::View view = passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight);
+  // The second frame's capture has room for every segment (see 4b).
+  render_frame(ctx(), renderer, executor, view);
+  render_frame(ctx(), renderer, executor, view);
+  const passes::ShadowMaps& shadows = renderer.shadows();
+  ASSERT_EQ(shadows.light_count(), 2u);
+  for (uint32_t light = 0; light < shadows.light_count(); ++light) {
+    const std::string name = scene.lights[light].name;
+    ASSERT_FALSE(shadows.frame_stats().at(light).overflowed) << name;
+    const passes::LightView& light_view = shadows.light_views().at(light);
+    const AvsmMapLayout& layout = shadows.map_layout(light);
+    ASSERT_EQ(layout.nodes, kNodes) << name;
+    ASSERT_EQ(layout.resolution, kResolution) << name;
+    const Lists lists = read_looked_up_lists(ctx(), shadows, light);
+    size_t longest = 0, compressed = 0, unsorted = 0;
+    for (uint32_t texel = 0; texel < lists.heads.size(); ++texel) {
+      const std::vector<Segment> list = lists.walk(texel);
+      longest = std::max(longest, list.size());
+      compressed += 2 * list.size() + 1 > kNodes;
+      if (!same_segments(list, sorted_list(list)) && unsorted++ < 3)
+        ADD_FAILURE() << name << ", texel (" << texel % kResolution << ", " << texel / kResolution << "): "
+                      << list.size() << " segments not sorted front to back";
+    }
+    EXPECT_EQ(unsorted, 0u) << name << ": lists the sort left out of order";
+
+    const std::vector<glm::vec4> map = gpu::read_buffer<glm::vec4>(ctx(), shadows.avsm_map(light));
+    const auto cpu = cpu_map(lists, layout, light_view.near_depth, light_view.far_depth, /*sort=*/true);
+    size_t differing = 0;
+    for (uint32_t level = 0; level < layout.levels; ++level) {
+      const uint32_t size = layout.level_size(level);
+      for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+          const StoredCurve got = read_texel(map, layout, level, x, y, light_view.near_depth, light_view.far_depth);
+          const StoredCurve& want = cpu[level][size_t(y) * size + x];
+          if (bit_identical(got, want)) continue;
+          if (differing++ < 3)
+            ADD_FAILURE() << name << ", level " << level << ", texel (" << x << ", " << y << ")"
+                          << "\n  GPU:" << describe(got) << "\n  CPU:" << describe(want);
+        }
+    }
+    EXPECT_EQ(differing, 0u) << name << ": texels whose stored curve is not the C++ core's";
+    std::cout << "[ default 16  ] " << name << ": " << layout.levels << " levels, " << compressed << " of "
+              << lists.heads.size() << " lists compressed, longest " << longest << " segments; " << unsorted
+              << " unsorted, " << differing << " texels differ from the core\n";
+    // Not vacuous: lists that need compressing, the sun's longer than the sort's
+    // register-sized lists used to be (32) by far.
+    EXPECT_GT(compressed, 20u) << name;
+    if (light == 0) {
+      EXPECT_GT(longest, 1000u) << name << ": the sun's map should hold the hair's longest lists";
+    }
   }
 }
 
@@ -1065,11 +1183,6 @@ float texel_error(const StoredCurve& got, const StoredCurve& want, float far_dep
     error = std::max(error, std::abs(got.trans[i] - want.trans[i]));
   }
   return error;
-}
-
-bool bit_identical(const StoredCurve& a, const StoredCurve& b) {
-  return std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0 &&
-         std::memcmp(a.trans.data(), b.trans.data(), a.trans.size() * sizeof(float)) == 0;
 }
 
 // Decisions that sit within rounding of their threshold, where the GPU may decide the

@@ -4,13 +4,11 @@
 
 // The exact curve of one texel's capture list: the product of its segments.
 float uncompressed_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
-  uint node = shadow_list_head(s, texel);
   float t = 1.0;
-  uint previous = 0xffffffffu;
-  while (node < previous) {  // indices fall along a list; kListEnd ends it
+  uint node = shadow_list_head(s, texel);
+  for (uint steps = 0u; shadow_list_goes_on(node, steps); ++steps) {
     CaptureSegment n = shadow_list_node(s, node);
     t *= avsm_segment_transmittance(n.entry, n.exit_depth, n.exit_trans, d);
-    previous = node;
     node = n.next;
   }
   return t;
@@ -21,11 +19,11 @@ float uncompressed_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
 #define AVSM_UNCOMPRESSED_FIRST_OPAQUE_DEPTH
 float uncompressed_first_opaque_depth(GpuShadow s, ivec2 texel) {
   float nearest = s.texel_camera.z;
-  uint previous = 0xffffffffu;
-  for (uint node = shadow_list_head(s, texel); node < previous; node = shadow_list_node(s, node).next) {
+  uint node = shadow_list_head(s, texel);
+  for (uint steps = 0u; shadow_list_goes_on(node, steps); ++steps) {
     CaptureSegment n = shadow_list_node(s, node);
     if (n.exit_trans <= kShadowOpaque) nearest = min(nearest, n.entry);
-    previous = node;
+    node = n.next;
   }
   return nearest;
 }
