@@ -11,6 +11,8 @@
 namespace avsm::passes {
 namespace {
 
+// What sizes the march targets: the setting a message names when one does not fit the device.
+constexpr const char* kMarchSizeSetting = "the image size (--width/--height) or raise --volume-resolution-divisor";
 
 using Push = shared::VolumeCachedMarchPush;  // shaders/shared/passes/volume_cached_march.h
 
@@ -39,9 +41,9 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
         inputs.declare_volume_reads(b);
-        d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat}),
+        d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat, kMarchSizeSetting}),
                                rg::Usage::StorageWrite);
-        d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat}),
+        d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat, kMarchSizeSetting}),
                              rg::Usage::StorageWrite);
       },
       [this, view, width, height, divisor, inputs](const Targets& d, rg::PassContext& c) {
