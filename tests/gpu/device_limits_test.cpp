@@ -91,6 +91,40 @@ TEST_F(GpuTest, FrameGraphTransientOverTheLimitIsRefusedWhilePlanning) {
                         " texels; lower the light's shadow.resolution"));
 }
 
+// Transients that each fit but are alive together: their heap is over the allocation
+// limit. The error names the heap and its largest residents with what sizes them, and
+// the executor does not keep the plan it could not realise (the next frame fails alike).
+TEST_F(GpuTest, FrameGraphHeapOverTheLimitNamesWhatItHolds) {
+  const gpu::DeviceInfo& info = ctx().info();
+  const uint64_t each = std::min(info.max_memory_allocation_size, info.max_buffer_size) / 4 * 3;
+  rg::Graph graph;
+  struct Data {
+    rg::BufferHandle a, b;
+  };
+  const Data& written = graph.add_pass<Data>("write", rg::QueueType::Transfer, [&](rg::PassBuilder& b, Data& d) {
+    d.a = b.write(b.create_buffer("big a", {each, "setting a"}), rg::Usage::TransferDst);
+    d.b = b.write(b.create_buffer("big b", {each, "setting b"}), rg::Usage::TransferDst);
+  }, [](const Data&, rg::PassContext&) {});
+  graph.add_pass("read", rg::QueueType::Transfer, [&](rg::PassBuilder& b) {
+    b.read(written.a, rg::Usage::TransferSrc);
+    b.read(written.b, rg::Usage::TransferSrc);
+    b.side_effect();
+  }, [](rg::PassContext&) {});
+
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
+  VkCommandBuffer cmd = ctx().allocate_command_buffer("heap over the limit");
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  vkBeginCommandBuffer(cmd, &begin);
+  for (int frame = 0; frame < 2; ++frame) {
+    const std::string message = limit_error([&] { executor.record(graph, cmd); });
+    EXPECT_THAT(message, HasSubstr("'frame graph heap 0' needs " + gpu::format_mib(2 * each) + ", over the device's "));
+    EXPECT_THAT(message, HasSubstr("; lower what it holds, largest first: 'big a' " + gpu::format_mib(each) +
+                                   " (setting a), 'big b' " + gpu::format_mib(each) + " (setting b)"));
+  }
+  vkEndCommandBuffer(cmd);
+  vkFreeCommandBuffers(ctx().device(), ctx().command_pool(), 1, &cmd);
+}
+
 TEST_F(GpuTest, MemoryOverTheHeapOrAllocationLimitIsRefusedByName) {
   const gpu::DeviceInfo& info = ctx().info();
   const VkPhysicalDeviceMemoryProperties& memory = ctx().memory_properties();

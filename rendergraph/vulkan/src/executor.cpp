@@ -194,9 +194,10 @@ void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOpti
   uint64_t shape = graph.shape_hash(options);
   plan_reused_ = has_plan_ && plan_.shape_hash == shape;
   if (!plan_reused_) {
+    has_plan_ = false;  // until its transients exist: a plan the device could not hold is never reused
     plan_ = graph.compile(memory_model_, options);
-    has_plan_ = true;
     realise_transients();
+    has_plan_ = true;
   }
   resolve_imports(graph);
 
