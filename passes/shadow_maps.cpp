@@ -274,8 +274,8 @@ void ShadowMaps::fit_to_budget() {
       std::string lights;
       for (size_t i = 0; i < lights_.size(); ++i)
         lights += (i ? ", " : "") + light_name(lights_[i].light, i) + " " + format_mib(light_bytes(lights_[i]));
-      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " + format_mib(budget) +
-                              (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " +
+                              format_mib(budget) + (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
                               "; lower their shadow.resolution or nodes, raise the budget (shadows.budget_mib) "
                               "or let it lower resolutions (shadows.fit_budget)");
     }
@@ -285,8 +285,9 @@ void ShadowMaps::fit_to_budget() {
       if (light.light.shadow.resolution > 16 && light_bytes(light) > 0 && (!largest || light_bytes(light) > light_bytes(*largest)))
         largest = &light;
     if (!largest)
-      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + " at their smallest resolution, over the budget of " +
-                              format_mib(budget) + "; raise the budget (shadows.budget_mib) or shadow fewer lights");
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) +
+                              " at their smallest resolution, over the budget of " + format_mib(budget) +
+                              "; raise the budget (shadows.budget_mib) or shadow fewer lights");
     if (largest->lowered_from == 0) largest->lowered_from = uint32_t(largest->light.shadow.resolution);
     largest->light.shadow.resolution /= 2;
     for (uint32_t m = largest->first_map; m < largest->first_map + largest->map_count; ++m) {
@@ -327,7 +328,8 @@ std::string ShadowMaps::list_readers() const {
     const MapState& first = maps_[lights_[i].first_map];
     if (!first.lookups_read_lists) continue;
     lights += (lights.empty() ? "" : ", ") + light_name(lights_[i].light, i) + " " +
-              std::to_string(first.map_state.layout.resolution) + "x" + std::to_string(first.map_state.layout.resolution) +
+              std::to_string(first.map_state.layout.resolution) + "x" +
+              std::to_string(first.map_state.layout.resolution) +
               (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : "");
   }
   return "the shadow.resolution (--shadow-res) of the lights whose lookups read the exact lists (technique "
@@ -365,8 +367,9 @@ void ShadowMaps::create_list_buffers() {
   if (heads == 0) return;
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   const std::string sized_by = list_readers();
-  list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list heads", sized_by});
-  list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list nodes", sized_by});
+  constexpr gpu::MemoryLocation kDevice = gpu::MemoryLocation::DeviceLocal;
+  list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, kDevice, "looked-up list heads", sized_by});
+  list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, kDevice, "looked-up list nodes", sized_by});
   for (MapState& map : maps_) {
     if (!map.lookups_read_lists) continue;
     const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;

@@ -165,7 +165,8 @@ class VolumeShadingRun {
 CaptureOutputs run_capture(const CaptureOptions& options) {
   // The largest size is the device's (its image dimension limit and memory, checked as the
   // targets are made: gpu/device_limits.h).
-  if (options.width == 0 || options.height == 0) throw std::runtime_error("image size must be at least 1 pixel per side");
+  if (options.width == 0 || options.height == 0)
+    throw std::runtime_error("image size must be at least 1 pixel per side");
   if (options.frames == 0) throw std::runtime_error("--frames must be at least 1");
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);

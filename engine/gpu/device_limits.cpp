@@ -20,7 +20,8 @@ static std::string setting_hint(const ResourceLabel& label) {
 }
 
 void throw_over_limit(const ResourceLabel& label, const std::string& needed, const std::string& limit) {
-  throw ResourceLimitError("'" + label.name + "' needs " + needed + ", over the device's " + limit + setting_hint(label));
+  throw ResourceLimitError("'" + label.name + "' needs " + needed + ", over the device's " + limit +
+                           setting_hint(label));
 }
 
 void check_buffer_limits(const Context& ctx, const BufferDesc& desc) {
@@ -31,7 +32,8 @@ void check_buffer_limits(const Context& ctx, const BufferDesc& desc) {
   // The engine binds a storage buffer whole: past the range no shader could read it.
   if ((desc.usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && desc.size > info.max_storage_buffer_range)
     throw_over_limit(label, format_mib(desc.size),
-                     "maxStorageBufferRange of " + format_mib(info.max_storage_buffer_range) + " (the most a shader binding sees)");
+                     "maxStorageBufferRange of " + format_mib(info.max_storage_buffer_range) +
+                         " (the most a shader binding sees)");
 }
 
 void check_image_limits(const Context& ctx, const ImageDesc& desc) {
@@ -66,7 +68,8 @@ static VkDeviceSize budget_left(const Context& ctx, uint32_t heap) {
 void check_memory_limits(const Context& ctx, VkDeviceSize bytes, uint32_t type, const ResourceLabel& label) {
   const DeviceInfo& info = ctx.info();
   if (bytes > info.max_memory_allocation_size)
-    throw_over_limit(label, format_mib(bytes), "maxMemoryAllocationSize of " + format_mib(info.max_memory_allocation_size));
+    throw_over_limit(label, format_mib(bytes),
+                     "maxMemoryAllocationSize of " + format_mib(info.max_memory_allocation_size));
   const uint32_t heap = ctx.memory_properties().memoryTypes[type].heapIndex;
   const VkDeviceSize heap_size = ctx.memory_properties().memoryHeaps[heap].size;
   if (bytes > heap_size)
@@ -83,7 +86,8 @@ void throw_allocation_failure(VkResult result, VkDeviceSize bytes, const Resourc
     throw ResourceLimitError("'" + label.name + "' (" + format_mib(bytes) + ") did not fit: the device is out of " +
                              (result == VK_ERROR_OUT_OF_HOST_MEMORY ? "host" : "device") + " memory" +
                              setting_hint(label));
-  throw VulkanError(result, "creating '" + label.name + "' (" + format_mib(bytes) + ") failed with " + to_string(result));
+  throw VulkanError(result,
+                    "creating '" + label.name + "' (" + format_mib(bytes) + ") failed with " + to_string(result));
 }
 
 }  // namespace avsm::gpu

@@ -132,12 +132,13 @@ TEST_F(GpuTest, MemoryOverTheHeapOrAllocationLimitIsRefusedByName) {
   const VkDeviceSize heap = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
   const VkDeviceSize bytes = std::max(heap, info.max_memory_allocation_size) + (1 << 20);
   const std::string message = limit_error([&] {
-    gpu::MemoryHeap(ctx(), bytes, 1u << type, gpu::MemoryLocation::DeviceLocal, "test heap", "what the test puts in it");
+    gpu::MemoryHeap(ctx(), bytes, 1u << type, gpu::MemoryLocation::DeviceLocal, "test heap",
+                    "what the test puts in it");
   });
   EXPECT_THAT(message, HasSubstr("'test heap' needs " + gpu::format_mib(bytes) + ", over the device's "));
   EXPECT_THAT(message, HasSubstr("; lower what the test puts in it"));
-  EXPECT_THAT(message, ::testing::AnyOf(HasSubstr("maxMemoryAllocationSize of " + gpu::format_mib(info.max_memory_allocation_size)),
-                                        HasSubstr("memory heap")));
+  const std::string allocation_limit = "maxMemoryAllocationSize of " + gpu::format_mib(info.max_memory_allocation_size);
+  EXPECT_THAT(message, ::testing::AnyOf(HasSubstr(allocation_limit), HasSubstr("memory heap")));
 }
 
 }  // namespace
