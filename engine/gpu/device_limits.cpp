@@ -43,8 +43,9 @@ void check_image_limits(const Context& ctx, const ImageDesc& desc) {
   const uint32_t largest = std::max({desc.width, desc.height, volume ? desc.depth : 1u});
   const uint32_t limit = volume ? info.max_image_dimension_3d : info.max_image_dimension_2d;
   if (largest > limit) {
-    const std::string extent = std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                               (volume ? "x" + std::to_string(desc.depth) : "");
+    // Appended, not prepended to a temporary: keeps g++ 12 free of a false -Wrestrict.
+    std::string extent = std::to_string(desc.width) + "x" + std::to_string(desc.height);
+    if (volume) extent.append("x").append(std::to_string(desc.depth));
     throw_over_limit(label, "a " + extent + " image",
                      std::string(volume ? "maxImageDimension3D" : "maxImageDimension2D") + " of " +
                          std::to_string(limit) + " texels");
