@@ -3,6 +3,7 @@
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/pipeline.h"
+#include "passes/light_view.h"
 
 namespace avsm::passes {
 
@@ -10,12 +11,12 @@ CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix,
                                     uint64_t node_capacity, rg::BufferHandle counter) {
   const CaptureLists& lists = graph.add_pass<CaptureLists>(prefix + " clear lists", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, CaptureLists& d) {
-        d.heads = b.write(b.create_texture(prefix + " list heads", {resolution, resolution, 1, 1, 1, kCaptureHeadFormat}),
-                          rg::Usage::TransferDst);
+        const rg::TextureDesc heads{resolution, resolution, 1, 1, 1, kCaptureHeadFormat, kShadowResolutionSetting};
+        d.heads = b.write(b.create_texture(prefix + " list heads", heads), rg::Usage::TransferDst);
         // Only the first node is cleared: appends overwrite nodes whole, and the
         // graph must see the buffer written before the captures read-modify it.
-        d.nodes = b.write(b.create_buffer(prefix + " list nodes", {node_capacity * kCaptureSegmentBytes}),
-                          rg::Usage::TransferDst);
+        const rg::BufferDesc nodes{node_capacity * kCaptureSegmentBytes, kShadowResolutionSetting};
+        d.nodes = b.write(b.create_buffer(prefix + " list nodes", nodes), rg::Usage::TransferDst);
         d.counter = b.write(counter, rg::Usage::TransferDst);
       },
       [](const CaptureLists& d, rg::PassContext& c) {

@@ -31,8 +31,8 @@ HairBins HairBinsPass::add_to_graph(rg::Graph& graph, const std::string& prefix,
   const uint64_t entries = entry_bytes(hair.segment_count, ctx_.info().max_storage_buffer_range);
   HairBins bins = graph.add_pass<HairBins>(prefix + " hair bins clear", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, HairBins& d) {
-        d.tiles = b.write(b.create_buffer(prefix + " hair tiles", {tile_bytes(light.resolution)}),
-                          rg::Usage::TransferDst);
+        const rg::BufferDesc tiles{tile_bytes(light.resolution), kShadowResolutionSetting};
+        d.tiles = b.write(b.create_buffer(prefix + " hair tiles", tiles), rg::Usage::TransferDst);
         d.entries = b.write(b.create_buffer(prefix + " hair bin entries", {entries}), rg::Usage::TransferDst);
         d.counter = b.write(counter, rg::Usage::TransferDst);
       },

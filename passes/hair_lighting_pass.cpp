@@ -29,8 +29,9 @@ rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass
   const Output& output = graph.add_pass<Output>("hair lighting", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Output& d) {
         inputs.declare_volume_reads(b);
-        d.lights = b.write(b.create_buffer("hair vertex lights", {uint64_t(hair.point_count()) * sizeof(HairVertexLight)}),
-                           rg::Usage::StorageWrite);
+        const rg::BufferDesc lights{uint64_t(hair.point_count()) * sizeof(HairVertexLight),
+                                    "the scene's hair: grooms with fewer strand vertices"};
+        d.lights = b.write(b.create_buffer("hair vertex lights", lights), rg::Usage::StorageWrite);
       },
       [this, &hair, inputs, camera = view.camera_position](const Output& d, rg::PassContext& c) {
         const VolumeCasters volumes = inputs.volumes->casters();

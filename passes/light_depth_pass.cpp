@@ -35,7 +35,7 @@ rg::TextureHandle LightDepthPass::add_to_graph(rg::Graph& graph, const std::stri
   };
   return graph.add_pass<Data>(prefix + " light depth", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Data& d) {
-        const rg::TextureDesc desc{light.resolution, light.resolution, 1, 1, 1, kFormat};
+        const rg::TextureDesc desc{light.resolution, light.resolution, 1, 1, 1, kFormat, kShadowResolutionSetting};
         d.depth = b.write(b.create_texture(prefix + " light depth", desc), rg::Usage::DepthAttachmentWrite);
       },
       [this, light, meshes](const Data& d, rg::PassContext& c) {

@@ -15,6 +15,10 @@
 
 namespace avsm::passes {
 
+// What sizes a map's resources (resolution^2 texels each): the setting a message names
+// when one does not fit the device (gpu/device_limits.h).
+inline constexpr const char* kShadowResolutionSetting = "the light's shadow.resolution (--shadow-res)";
+
 struct LightView {
   glm::mat4 light_from_world{1.0f};  // world -> light clip space (Vulkan, z 0..1); map uv = clip.xy / w * 0.5 + 0.5
   glm::mat4 world_from_light{1.0f};  // its inverse, for per-texel rays

@@ -125,7 +125,7 @@ OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle
   const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Outputs& d) {
         d.color = b.write(color, rg::Usage::ColorAttachment);
-        rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat};
+        rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat, kCameraSizeSetting};
         d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
         shadows.declare_reads(b);
       },

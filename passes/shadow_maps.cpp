@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 #include "gpu/pipeline.h"
 #include "gpu/transfer.h"
 #include "passes/hair_bins_pass.h"
@@ -65,11 +66,7 @@ uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple 
 // alignment (the mips pass binds windows of a map at aligned offsets).
 constexpr uint64_t kAtlasAlignment = 256;
 
-std::string mib(uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f MiB", double(bytes) / double(1 << 20));
-  return text;
-}
+using gpu::format_mib;
 
 }  // namespace
 
@@ -276,9 +273,9 @@ void ShadowMaps::fit_to_budget() {
     if (!options_.fit_budget) {
       std::string lights;
       for (size_t i = 0; i < lights_.size(); ++i)
-        lights += (i ? ", " : "") + light_name(lights_[i].light, i) + " " + mib(light_bytes(lights_[i]));
-      throw ShadowBudgetError("the shadow maps need " + mib(total()) + ", over the budget of " + mib(budget) +
-                              (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
+        lights += (i ? ", " : "") + light_name(lights_[i].light, i) + " " + format_mib(light_bytes(lights_[i]));
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " +
+                              format_mib(budget) + (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
                               "; lower their shadow.resolution or nodes, raise the budget (shadows.budget_mib) "
                               "or let it lower resolutions (shadows.fit_budget)");
     }
@@ -288,8 +285,9 @@ void ShadowMaps::fit_to_budget() {
       if (light.light.shadow.resolution > 16 && light_bytes(light) > 0 && (!largest || light_bytes(light) > light_bytes(*largest)))
         largest = &light;
     if (!largest)
-      throw ShadowBudgetError("the shadow maps need " + mib(total()) + " at their smallest resolution, over the budget of " +
-                              mib(budget) + "; raise the budget (shadows.budget_mib) or shadow fewer lights");
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) +
+                              " at their smallest resolution, over the budget of " + format_mib(budget) +
+                              "; raise the budget (shadows.budget_mib) or shadow fewer lights");
     if (largest->lowered_from == 0) largest->lowered_from = uint32_t(largest->light.shadow.resolution);
     largest->light.shadow.resolution /= 2;
     for (uint32_t m = largest->first_map; m < largest->first_map + largest->map_count; ++m) {
@@ -313,13 +311,29 @@ void ShadowMaps::create_atlas() {
   // Transfer source too, so tests and tools can read a map back.
   atlas_ = gpu::Buffer::create(
       ctx_, {offset, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-             gpu::MemoryLocation::DeviceLocal, "shadow map atlas"});
+             gpu::MemoryLocation::DeviceLocal, "shadow map atlas", "the lights' shadow.resolution or nodes"});
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
     if (!light.technique->has_map()) continue;
     map.map = gpu::Buffer::region(atlas_, map.atlas_offset, light.technique->map_bytes(light.light.shadow, map.map_state),
                                   map.prefix + " " + light.light.shadow.technique + " map");
   }
+}
+
+// What sizes the looked-up lists, for a message when they do not fit: the resolution of
+// every light whose lookups read its lists.
+std::string ShadowMaps::list_readers() const {
+  std::string lights;
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
+    const MapState& first = maps_[lights_[i].first_map];
+    if (!first.lookups_read_lists) continue;
+    lights += (lights.empty() ? "" : ", ") + light_name(lights_[i].light, i) + " " +
+              std::to_string(first.map_state.layout.resolution) + "x" +
+              std::to_string(first.map_state.layout.resolution) +
+              (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : "");
+  }
+  return "the shadow.resolution (--shadow-res) of the lights whose lookups read the exact lists (technique "
+         "uncompressed, --compare-to): " + lights;
 }
 
 // The lists that lookups read (the exact reference), copied each frame into two buffers
@@ -354,8 +368,10 @@ void ShadowMaps::create_list_buffers() {
   // TRANSFER_SRC: they can be read back (looked_up_list_heads/nodes), like the atlas.
   const VkBufferUsageFlags usage =
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-  list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list heads"});
-  list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list nodes"});
+  const std::string sized_by = list_readers();
+  constexpr gpu::MemoryLocation kDevice = gpu::MemoryLocation::DeviceLocal;
+  list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, kDevice, "looked-up list heads", sized_by});
+  list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, kDevice, "looked-up list nodes", sized_by});
   for (MapState& map : maps_) {
     if (!map.lookups_read_lists) continue;
     const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;

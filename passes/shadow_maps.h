@@ -188,6 +188,7 @@ class ShadowMaps {
   void fit_to_budget();
   void create_atlas();
   void create_list_buffers();
+  std::string list_readers() const;
   void update_views(const View& camera);
   GpuShadow gpu_shadow(const MapState& map, const View& camera) const;
   std::vector<GpuShadow> frame_records(const View& camera) const;

@@ -8,6 +8,10 @@
 
 namespace avsm::passes {
 
+// What sizes the camera's targets: the setting a message names when one does not fit
+// the device (gpu/device_limits.h).
+inline constexpr const char* kCameraSizeSetting = "the image size (--width/--height, the viewer's window)";
+
 struct View {
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};       // Vulkan clip space (depth 0..1), +y up with a flipped viewport

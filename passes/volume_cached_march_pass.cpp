@@ -11,6 +11,8 @@
 namespace avsm::passes {
 namespace {
 
+// What sizes the march targets: the setting a message names when one does not fit the device.
+constexpr const char* kMarchSizeSetting = "the image size (--width/--height) or raise --volume-resolution-divisor";
 
 using Push = shared::VolumeCachedMarchPush;  // shaders/shared/passes/volume_cached_march.h
 
@@ -39,10 +41,10 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
         inputs.declare_volume_reads(b);
-        d.scattering = b.write(b.create_texture("volume march scattering", {width, height, 1, 1, 1, kScatteringFormat}),
-                               rg::Usage::StorageWrite);
-        d.distance = b.write(b.create_texture("volume march distance", {width, height, 1, 1, 1, kDistanceFormat}),
-                             rg::Usage::StorageWrite);
+        const rg::TextureDesc scattering{width, height, 1, 1, 1, kScatteringFormat, kMarchSizeSetting};
+        const rg::TextureDesc distance{width, height, 1, 1, 1, kDistanceFormat, kMarchSizeSetting};
+        d.scattering = b.write(b.create_texture("volume march scattering", scattering), rg::Usage::StorageWrite);
+        d.distance = b.write(b.create_texture("volume march distance", distance), rg::Usage::StorageWrite);
       },
       [this, view, width, height, divisor, inputs](const Targets& d, rg::PassContext& c) {
         const gpu::Pipeline& pipeline = inputs.map_lookups() ? with_lookups_ : cached_;

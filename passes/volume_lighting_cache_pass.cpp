@@ -138,7 +138,9 @@ void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, FrameInputs& inputs
   const Cache& cache = graph.add_pass<Cache>("volume lighting cache", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Cache& d) {
         d.layouts = b.read(upload.layouts, rg::Usage::StorageRead);
-        d.image = b.write(b.create_texture("volume lighting cache", {size.x, size.y, size.z, 1, 1, kFormat}),
+        d.image = b.write(b.create_texture("volume lighting cache", {size.x, size.y, size.z, 1, 1, kFormat,
+                                                            "the cache's cells: a volume's lighting_cache.downsample "
+                                                            "higher, or --volume-resolution-divisor"}),
                           rg::Usage::StorageWrite);
         inputs.shadows.declare_reads(b);
       },

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 #include "gpu/transfer.h"
 #include "passes/lights.h"
 #include "passes/shadow_maps.h"
@@ -91,9 +92,18 @@ GpuVolume to_gpu(const scene::Volume& volume, uint64_t grid_byte_offset, uint64_
   return gpu;  // the atlas fields are set by VolumeDensityAtlas::build
 }
 
-gpu::Buffer storage_buffer(const gpu::Context& ctx, const void* data, size_t bytes, const char* name) {
+gpu::Buffer storage_buffer(const gpu::Context& ctx, const void* data, size_t bytes, const char* name,
+                           const std::string& sized_by = {}) {
   return gpu::create_buffer_with_data(
-      ctx, {0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal, name}, data, bytes);
+      ctx, {0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal, name, sized_by}, data, bytes);
+}
+
+// What sizes the grid buffer, for a message when it does not fit the device: each grid's bytes.
+std::string grid_sizes(const std::vector<scene::Volume>& volumes) {
+  std::string sizes = "the scene's volumes: fewer, or smaller NanoVDB grids (";
+  for (size_t i = 0; i < volumes.size(); ++i)
+    sizes += (i ? ", " : "") + label(volumes[i], i) + " " + gpu::format_mib(volumes[i].nanovdb.size());
+  return sizes + ")";
 }
 
 }  // namespace
@@ -122,10 +132,11 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
     parameters.push_back(to_gpu(volume, grid_offset, majorants.size()));
     majorants.insert(majorants.end(), volume.majorant.max_density.begin(), volume.majorant.max_density.end());
   }
-  const VkDeviceSize limit = ctx_.info().max_storage_buffer_range;
-  if (grids.size() > limit)
-    throw std::invalid_argument("VolumePass: the NanoVDB grids take " + std::to_string(grids.size()) +
-                                " bytes, more than this device's storage buffer range of " + std::to_string(limit));
+  // First, so that grids the device cannot hold (its storage buffer range: the march binds
+  // them whole) are refused before the atlas is built and while the last volumes stay.
+  gpu::Buffer grid_buffer;
+  if (!volumes.empty())
+    grid_buffer = storage_buffer(ctx_, grids.data(), grids.size(), "volume nanovdb grids", grid_sizes(volumes));
 
   volume_count_ = 0;
   grids_ = gpu::Buffer();
@@ -140,7 +151,7 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
     boxes_.push_back({volume.world_from_index, glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1),
                       smallest_voxel_edge(volume), volume.majorant.brick_size, volume.world_bounds,
                       volume.lighting_cache_downsample, volume.lighting_cache});
-  grids_ = storage_buffer(ctx_, grids.data(), grids.size(), "volume nanovdb grids");
+  grids_ = std::move(grid_buffer);
   majorants_ = storage_buffer(ctx_, majorants.data(), majorants.size() * sizeof(float), "volume majorants");
   parameters_ = storage_buffer(ctx_, parameters.data(), parameters.size() * sizeof(GpuVolume), "volume parameters");
   volume_count_ = uint32_t(volumes.size());

@@ -22,7 +22,7 @@ void no_execute(rg::PassContext&) {}
 // Device-like requirements: images 64 KiB aligned, buffers 256, one memory class.
 class BenchMemoryModel : public rg::MemoryModel {
  public:
-  rg::MemoryRequirements texture(const rg::TextureDesc& d, rg::UsageSet) const override {
+  rg::MemoryRequirements texture(const rg::TextureDesc& d, rg::UsageSet, const std::string&) const override {
     const uint64_t texel = d.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8 : d.format == VK_FORMAT_R8_UNORM ? 1 : 4;
     uint64_t bytes = 0;
     for (uint32_t mip = 0; mip < d.mip_levels; ++mip)
@@ -30,7 +30,7 @@ class BenchMemoryModel : public rg::MemoryModel {
     bytes *= texel * d.array_layers * d.depth;
     return {(bytes + 65535) / 65536 * 65536, 65536, 0x1};
   }
-  rg::MemoryRequirements buffer(const rg::BufferDesc& d, rg::UsageSet) const override {
+  rg::MemoryRequirements buffer(const rg::BufferDesc& d, rg::UsageSet, const std::string&) const override {
     return {(d.size + 255) / 256 * 256, 256, 0x1};
   }
   uint64_t buffer_image_granularity() const override { return 1024; }

@@ -222,7 +222,11 @@ void Context::pick_physical_device(const std::string& preference) {
 void Context::read_device_info() {
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceMaintenance4Properties maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
   driver.pNext = &subgroup;
+  subgroup.pNext = &maintenance3;
+  maintenance3.pNext = &maintenance4;
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props2.pNext = &driver;
   vkGetPhysicalDeviceProperties2(physical_device_, &props2);
@@ -236,7 +240,12 @@ void Context::read_device_info() {
   info_.timestamp_period_ns = limits.timestampPeriod;
   info_.max_storage_buffer_range = limits.maxStorageBufferRange;
   info_.min_storage_buffer_offset_alignment = limits.minStorageBufferOffsetAlignment;
+  info_.max_image_dimension_2d = limits.maxImageDimension2D;
   info_.max_image_dimension_3d = limits.maxImageDimension3D;
+  info_.max_image_array_layers = limits.maxImageArrayLayers;
+  info_.max_memory_allocation_size = maintenance3.maxMemoryAllocationSize;
+  if (info_.api_version >= VK_API_VERSION_1_3) info_.max_buffer_size = maintenance4.maxBufferSize;
+  info_.memory_budget = has_device_extension(physical_device_, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
   info_.buffer_image_granularity = limits.bufferImageGranularity;
   info_.non_coherent_atom_size = limits.nonCoherentAtomSize;
   info_.subgroup_size = subgroup.subgroupSize;

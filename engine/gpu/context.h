@@ -95,7 +95,13 @@ struct DeviceInfo {
   uint32_t timestamp_valid_bits = 0;
   VkDeviceSize max_storage_buffer_range = 0;
   VkDeviceSize min_storage_buffer_offset_alignment = 1;
-  uint32_t max_image_dimension_3d = 256;  // texels per side of a 3D image
+  // What one resource may be (checked by gpu/device_limits.h before it is made).
+  uint32_t max_image_dimension_2d = 4096;  // texels per side of a 2D image
+  uint32_t max_image_dimension_3d = 256;   // texels per side of a 3D image
+  uint32_t max_image_array_layers = 256;
+  VkDeviceSize max_buffer_size = ~VkDeviceSize{0};             // Vulkan 1.3 (maintenance4)
+  VkDeviceSize max_memory_allocation_size = ~VkDeviceSize{0};  // Vulkan 1.1 (maintenance3)
+  bool memory_budget = false;  // VK_EXT_memory_budget: what is left of each heap can be asked
   VkDeviceSize buffer_image_granularity = 1;
   VkDeviceSize non_coherent_atom_size = 1;
   uint32_t subgroup_size = 0;

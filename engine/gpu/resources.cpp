@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 #include "gpu/vk_check.h"
 
 namespace avsm::gpu {
@@ -28,23 +29,26 @@ static uint32_t choose_memory_type(const Context& ctx, uint32_t type_bits, Memor
 
 static bool is_host_visible(MemoryLocation location) { return location != MemoryLocation::DeviceLocal; }
 
-static VkDeviceMemory allocate(const Context& ctx, VkDeviceSize size, uint32_t type, const std::string& name) {
+// The memory of `label`, checked against the heap and allocation limits first.
+static VkDeviceMemory allocate(const Context& ctx, VkDeviceSize size, uint32_t type, const ResourceLabel& label) {
+  check_memory_limits(ctx, size, type, label);
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = size;
   info.memoryTypeIndex = type;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateMemory(ctx.device(), &info, nullptr, &memory));
-  ctx.set_name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY, name);
+  if (VkResult result = vkAllocateMemory(ctx.device(), &info, nullptr, &memory); result < 0)
+    throw_allocation_failure(result, size, label);
+  ctx.set_name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY, label.name + " memory");
   return memory;
 }
 
 // ---------------------------------------------------------------- MemoryHeap
 
 MemoryHeap::MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
-                       const std::string& name)
+                       const std::string& name, const std::string& sized_by)
     : ctx_(&ctx), size_(size) {
   memory_type_ = choose_memory_type(ctx, memory_type_bits, location);
-  memory_ = allocate(ctx, size, memory_type_, name);
+  memory_ = allocate(ctx, size, memory_type_, {name, sized_by});
   if (is_host_visible(location)) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
@@ -90,21 +94,31 @@ static VkBufferCreateInfo buffer_info(const BufferDesc& desc) {
   return info;
 }
 
+// The driver's requirements, after the checks that make asking valid; the memory they
+// need is checked too, so a plan fails on the resource, not later on its heap.
+static MemoryRequirements checked_requirements(const Context& ctx, const VkMemoryRequirements& reqs,
+                                               MemoryLocation location, const ResourceLabel& label) {
+  check_memory_limits(ctx, reqs.size, choose_memory_type(ctx, reqs.memoryTypeBits, location), label);
+  return {reqs.size, reqs.alignment, reqs.memoryTypeBits};
+}
+
 MemoryRequirements memory_requirements(const Context& ctx, const BufferDesc& desc) {
+  check_buffer_limits(ctx, desc);
   VkBufferCreateInfo create = buffer_info(desc);
   VkDeviceBufferMemoryRequirements query{VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS};
   query.pCreateInfo = &create;
   VkMemoryRequirements2 reqs{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
   vkGetDeviceBufferMemoryRequirements(ctx.device(), &query, &reqs);
-  return {reqs.memoryRequirements.size, reqs.memoryRequirements.alignment,
-          reqs.memoryRequirements.memoryTypeBits};
+  return checked_requirements(ctx, reqs.memoryRequirements, desc.location, {desc.name, desc.sized_by});
 }
 
 static VkBuffer create_buffer_handle(const Context& ctx, const BufferDesc& desc) {
   if (desc.size == 0) throw std::runtime_error("buffer '" + desc.name + "' has size 0");
+  memory_requirements(ctx, desc);  // checks it against the device's limits
   VkBufferCreateInfo info = buffer_info(desc);
   VkBuffer buffer = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateBuffer(ctx.device(), &info, nullptr, &buffer));
+  if (VkResult result = vkCreateBuffer(ctx.device(), &info, nullptr, &buffer); result < 0)
+    throw_allocation_failure(result, desc.size, {desc.name, desc.sized_by});
   ctx.set_name(buffer, VK_OBJECT_TYPE_BUFFER, desc.name);
   return buffer;
 }
@@ -118,7 +132,7 @@ Buffer Buffer::create(const Context& ctx, const BufferDesc& desc) {
   VkMemoryRequirements reqs;
   vkGetBufferMemoryRequirements(ctx.device(), b.buffer_, &reqs);
   uint32_t type = choose_memory_type(ctx, reqs.memoryTypeBits, desc.location);
-  b.own_memory_ = allocate(ctx, reqs.size, type, desc.name + " memory");
+  b.own_memory_ = allocate(ctx, reqs.size, type, {desc.name, desc.sized_by});
   VK_CHECK(vkBindBufferMemory(ctx.device(), b.buffer_, b.own_memory_, 0));
   if (is_host_visible(desc.location)) VK_CHECK(vkMapMemory(ctx.device(), b.own_memory_, 0, VK_WHOLE_SIZE, 0, &b.mapped_));
   return b;
@@ -243,20 +257,22 @@ static VkImageCreateInfo image_info(const ImageDesc& desc) {
 }
 
 MemoryRequirements memory_requirements(const Context& ctx, const ImageDesc& desc) {
+  check_image_limits(ctx, desc);
   VkImageCreateInfo create = image_info(desc);
   VkDeviceImageMemoryRequirements query{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
   query.pCreateInfo = &create;
   VkMemoryRequirements2 reqs{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
   vkGetDeviceImageMemoryRequirements(ctx.device(), &query, &reqs);
-  return {reqs.memoryRequirements.size, reqs.memoryRequirements.alignment,
-          reqs.memoryRequirements.memoryTypeBits};
+  return checked_requirements(ctx, reqs.memoryRequirements, MemoryLocation::DeviceLocal, {desc.name, desc.sized_by});
 }
 
 void Image::create_image(const Context& ctx, const ImageDesc& desc) {
   ctx_ = &ctx;
   desc_ = desc;
+  const VkDeviceSize bytes = memory_requirements(ctx, desc).size;  // checks it against the device's limits
   VkImageCreateInfo info = image_info(desc);
-  VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &image_));
+  if (VkResult result = vkCreateImage(ctx.device(), &info, nullptr, &image_); result < 0)
+    throw_allocation_failure(result, bytes, {desc.name, desc.sized_by});
   ctx.set_name(image_, VK_OBJECT_TYPE_IMAGE, desc.name);
 }
 
@@ -304,7 +320,7 @@ Image Image::create(const Context& ctx, const ImageDesc& desc) {
   VkMemoryRequirements reqs;
   vkGetImageMemoryRequirements(ctx.device(), img.image_, &reqs);
   uint32_t type = choose_memory_type(ctx, reqs.memoryTypeBits, MemoryLocation::DeviceLocal);
-  img.own_memory_ = allocate(ctx, reqs.size, type, desc.name + " memory");
+  img.own_memory_ = allocate(ctx, reqs.size, type, {desc.name, desc.sized_by});
   VK_CHECK(vkBindImageMemory(ctx.device(), img.image_, img.own_memory_, 0));
   img.create_view();
   return img;

@@ -8,6 +8,8 @@
 //    resources of the frame graph, which aliases several of them in one heap).
 // memory_requirements() gives the driver's real size/alignment for a description
 // without creating anything, so the graph can plan placements before allocating.
+// Each of these checks the description against the device's limits first
+// (gpu/device_limits.h) and throws ResourceLimitError for what the device cannot hold.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -35,8 +37,9 @@ struct MemoryRequirements {
 class MemoryHeap {
  public:
   MemoryHeap() = default;
+  // `sized_by`: what decides its size, said when it does not fit the device.
   MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
-             const std::string& name);
+             const std::string& name, const std::string& sized_by = {});
   ~MemoryHeap();
   MemoryHeap(MemoryHeap&& other) noexcept;
   MemoryHeap& operator=(MemoryHeap&& other) noexcept;
@@ -76,6 +79,9 @@ struct BufferDesc {
   VkBufferUsageFlags usage = 0;
   MemoryLocation location = MemoryLocation::DeviceLocal;
   std::string name;
+  // The setting that sizes it, said when it does not fit the device (gpu/device_limits.h):
+  // "the light's shadow.resolution (--shadow-res)". Empty: nothing the user sets.
+  std::string sized_by;
 };
 
 class Buffer {
@@ -126,6 +132,7 @@ struct ImageDesc {
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageUsageFlags usage = 0;
   std::string name;
+  std::string sized_by;  // as BufferDesc::sized_by
 };
 
 class Image {

@@ -16,6 +16,7 @@ static gpu::Image output_image(gpu::Context& ctx, uint32_t width, uint32_t heigh
   desc.format = format;
   desc.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   desc.name = name;
+  desc.sized_by = passes::kCameraSizeSetting;
   return gpu::Image::create(ctx, desc);
 }
 

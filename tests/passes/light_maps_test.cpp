@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gpu/device_limits.h"
 #include "passes/light_view.h"
 #include "passes/shadow_maps.h"
 #include "passes/view.h"
@@ -296,6 +297,52 @@ TEST_F(LightMapsTest, MapsOverTheBudgetAreAnErrorNamingTheLightsOrAreLowered) {
   uint32_t lowered = 0;
   for (uint32_t i = 0; i < 3; ++i) lowered += maps.map_layout(i).resolution < 512;
   EXPECT_GE(lowered, 2u);  // 3 x 512^2 -> fits only with most lowered to 256^2
+}
+
+// What one shader binding sees bounds what the shadows may take: a map budget above the
+// storage buffer range is held to it (ShadowBudgetError), and the exact lists that
+// uncompressed lights' lookups read, which no budget covers, are refused by the device
+// limit check naming the lights and the setting, before anything is allocated.
+TEST_F(LightMapsTest, MapsAndExactListsOverTheStorageRangeAreErrorsNamingTheLights) {
+  Box box;
+  scene::Scene scene = box_scene({box});
+  const uint64_t range = ctx().info().max_storage_buffer_range;
+  // An AVSM-8 map takes 32 bytes a texel: the smallest power-of-two side over the range.
+  int resolution = 16;
+  while (uint64_t(resolution) * uint64_t(resolution) * 32 <= range) resolution *= 2;
+  if (resolution * 2 > 16384) GTEST_SKIP() << "no light resolution reaches this device's storage buffer range";
+  scene.lights.push_back(make_light("sun", scene::LightType::directional, resolution));
+  passes::ShadowMaps maps(ctx(), shaders());
+  passes::ShadowOptions options;
+  options.map_budget_bytes = range * 8;
+  try {
+    maps.set_scene(scene, options);
+    FAIL() << "no error for a map over the storage buffer range";
+  } catch (const passes::ShadowBudgetError& e) {
+    EXPECT_NE(std::string(e.what()).find("(the device's storage buffer range): light 0 'sun'"), std::string::npos)
+        << e.what();
+  }
+
+  // Uncompressed: no map, 4 bytes of list head a texel, so a side twice as large is over.
+  scene.lights[0] = make_light("sun", scene::LightType::directional, resolution * 2, "uncompressed");
+  try {
+    maps.set_scene(scene, options);
+    FAIL() << "no error for exact lists over the storage buffer range";
+  } catch (const gpu::ResourceLimitError& e) {
+    const std::string message = e.what();
+    const uint64_t heads = uint64_t(resolution) * uint64_t(resolution) * 16;
+    EXPECT_NE(message.find("'looked-up list heads' needs " + gpu::format_mib(heads) +
+                           ", over the device's maxStorageBufferRange of " + gpu::format_mib(range)),
+              std::string::npos)
+        << message;
+    const std::string side = std::to_string(resolution * 2);
+    EXPECT_NE(message.find("--shadow-res"), std::string::npos) << message;
+    EXPECT_NE(message.find("light 0 'sun' " + side + "x" + side), std::string::npos) << message;
+  }
+  // Half the side fits the range exactly.
+  scene.lights[0].shadow.resolution = resolution;
+  maps.set_scene(scene, options);
+  EXPECT_EQ(maps.light_count(), 1u);
 }
 
 // ---- Directional maps fitted to the view ----

@@ -20,6 +20,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "gpu/device_limits.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "passes/lights.h"
@@ -517,6 +518,33 @@ TEST_F(GpuTest, VolumeMajorantSkippingChangesNothing) {
   const gpu::ImageRGBA32F marched = render(ctx(), pass, view, Input{});
   EXPECT_EQ(*std::min_element(skipped.pixels.begin(), skipped.pixels.end()), 1.0f);
   EXPECT_LT(*std::min_element(marched.pixels.begin(), marched.pixels.end()), 0.9f);
+}
+
+// ---- The device's limits ----
+
+// Grids the march cannot bind (over the storage buffer range) are refused naming every
+// volume's bytes before the density atlas is built; the pass keeps the volumes it had.
+TEST_F(GpuTest, VolumeGridsOverTheStorageRangeAreRefusedNamingTheVolumes) {
+  const scene::Volume box = constant_box(0.4f);
+  passes::VolumePass pass(ctx(), shaders());
+  pass.set_volumes({box});
+  scene::Volume huge = box;
+  huge.name = "huge";
+  const uint64_t bytes = ctx().info().max_storage_buffer_range + (1 << 20);
+  huge.nanovdb.resize(bytes);  // a valid grid, padded past the range
+  try {
+    pass.set_volumes({huge});
+    FAIL() << "no error for grids over the storage buffer range";
+  } catch (const gpu::ResourceLimitError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'volume nanovdb grids' needs " + gpu::format_mib(bytes) +
+                           ", over the device's maxStorageBufferRange"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("smaller NanoVDB grids (volume 0 'huge' " + gpu::format_mib(bytes) + ")"), std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(pass.volume_count(), 1u);
 }
 
 // ---- Hot reload ----

@@ -230,7 +230,9 @@ TEST(Errors, BadDescriptions) {
 
 TEST(Errors, MemoryModelWithoutAMemoryType) {
   struct NoMemory : MockMemoryModel {
-    rg::MemoryRequirements buffer(const rg::BufferDesc&, rg::UsageSet) const override { return {64, 16, 0}; }
+    rg::MemoryRequirements buffer(const rg::BufferDesc&, rg::UsageSet, const std::string&) const override {
+      return {64, 16, 0};
+    }
   };
   const rg::Graph graph = buffer_raw_graph();
   EXPECT_EQ(error_of([&] { graph.compile(NoMemory()); }),

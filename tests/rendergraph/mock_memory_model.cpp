@@ -25,7 +25,7 @@ uint32_t MockMemoryModel::bytes_per_texel(VkFormat format) {
   }
 }
 
-rg::MemoryRequirements MockMemoryModel::texture(const rg::TextureDesc& desc, rg::UsageSet usages) const {
+rg::MemoryRequirements MockMemoryModel::texture(const rg::TextureDesc& desc, rg::UsageSet usages, const std::string&) const {
   uint64_t bytes = 0;
   for (uint32_t mip = 0; mip < desc.mip_levels; ++mip) {
     const uint64_t w = std::max(1u, desc.width >> mip), h = std::max(1u, desc.height >> mip),
@@ -44,7 +44,7 @@ rg::MemoryRequirements MockMemoryModel::texture(const rg::TextureDesc& desc, rg:
   return req;
 }
 
-rg::MemoryRequirements MockMemoryModel::buffer(const rg::BufferDesc& desc, rg::UsageSet) const {
+rg::MemoryRequirements MockMemoryModel::buffer(const rg::BufferDesc& desc, rg::UsageSet, const std::string&) const {
   return rg::MemoryRequirements{round_up(desc.size, 4), 256, 0x1};
 }
 

@@ -21,8 +21,8 @@ class MockMemoryModel : public rg::MemoryModel {
   MockMemoryModel() = default;
   explicit MockMemoryModel(Config config) : config_(config) {}
 
-  rg::MemoryRequirements texture(const rg::TextureDesc& desc, rg::UsageSet usages) const override;
-  rg::MemoryRequirements buffer(const rg::BufferDesc& desc, rg::UsageSet usages) const override;
+  rg::MemoryRequirements texture(const rg::TextureDesc& desc, rg::UsageSet usages, const std::string&) const override;
+  rg::MemoryRequirements buffer(const rg::BufferDesc& desc, rg::UsageSet usages, const std::string&) const override;
   uint64_t buffer_image_granularity() const override { return config_.granularity; }
 
   static uint32_t bytes_per_texel(VkFormat format);

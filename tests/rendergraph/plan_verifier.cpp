@@ -356,8 +356,8 @@ class Verifier {
         continue;
       }
       const rg::MemoryRequirements req = res(r).kind == rg::ResourceKind::Texture
-                                             ? memory_.texture(res(r).texture, usages_[r])
-                                             : memory_.buffer(res(r).buffer, usages_[r]);
+                                             ? memory_.texture(res(r).texture, usages_[r], res(r).name)
+                                             : memory_.buffer(res(r).buffer, usages_[r], res(r).name);
       const rg::PlannedHeap& heap = plan_.heaps[planned.heap];
       if (planned.size != req.size) problem(name(r) + ": planned size differs from the memory model");
       if (planned.offset % req.alignment != 0) problem(name(r) + ": offset " + std::to_string(planned.offset) +

@@ -5,6 +5,8 @@
 // the answers must not depend on the order they are asked in.
 #include <rendergraph/usage.h>
 
+#include <string>
+
 namespace rg {
 
 struct MemoryRequirements {
@@ -18,9 +20,10 @@ struct MemoryRequirements {
 class MemoryModel {
  public:
   virtual ~MemoryModel() = default;
-  // `usages` is every usage the resource sees in the plan (see image_usage_flags()).
-  virtual MemoryRequirements texture(const TextureDesc& desc, UsageSet usages) const = 0;
-  virtual MemoryRequirements buffer(const BufferDesc& desc, UsageSet usages) const = 0;
+  // `usages` is every usage the resource sees in the plan (see image_usage_flags()); `name`
+  // is the resource's, for a model that refuses what the device cannot hold (and says so).
+  virtual MemoryRequirements texture(const TextureDesc& desc, UsageSet usages, const std::string& name) const = 0;
+  virtual MemoryRequirements buffer(const BufferDesc& desc, UsageSet usages, const std::string& name) const = 0;
   virtual uint64_t buffer_image_granularity() const = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
+#include <string>
 
 namespace rg {
 
@@ -36,12 +37,16 @@ struct TextureDesc {
   uint32_t mip_levels = 1;
   uint32_t array_layers = 1;
   VkFormat format = VK_FORMAT_UNDEFINED;
+  // The setting that sizes it ("the light's shadow.resolution (--shadow-res)"), which a
+  // memory model names when the device cannot hold it. Not part of the graph's shape.
+  std::string sized_by;
 
   bool operator==(const TextureDesc&) const = default;
 };
 
 struct BufferDesc {
   uint64_t size = 0;
+  std::string sized_by;  // as TextureDesc::sized_by
 
   bool operator==(const BufferDesc&) const = default;
 };

@@ -153,8 +153,8 @@ void plan_memory(CompileState& state) {
     const Lifetime& life = state.lifetimes[r];
     if (resource.imported || !life.used) continue;
     const bool is_image = resource.kind == ResourceKind::Texture;
-    const MemoryRequirements req = is_image ? state.memory.texture(resource.texture, life.usages)
-                                            : state.memory.buffer(resource.buffer, life.usages);
+    const MemoryRequirements req = is_image ? state.memory.texture(resource.texture, life.usages, resource.name)
+                                            : state.memory.buffer(resource.buffer, life.usages, resource.name);
     if (req.memory_type_bits == 0)
       throw GraphError("memory model: no memory type for '" + resource.name + "' (memory_type_bits 0)");
     state.placements[r].requirements = req;

@@ -1,9 +1,11 @@
 #include <rendergraph/vulkan/executor.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "gpu/barriers.h"
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 
 static_assert(rg::kWholeSize == VK_WHOLE_SIZE);
 
@@ -24,20 +26,21 @@ static avsm::gpu::ImageDesc image_desc(const TextureDesc& desc, VkImageUsageFlag
   out.format = desc.format;
   out.usage = usage;
   out.name = name;
+  out.sized_by = desc.sized_by;
   return out;
 }
 
 static avsm::gpu::BufferDesc buffer_desc(const BufferDesc& desc, VkBufferUsageFlags usage, const std::string& name) {
-  return {desc.size, usage, avsm::gpu::MemoryLocation::DeviceLocal, name};
+  return {desc.size, usage, avsm::gpu::MemoryLocation::DeviceLocal, name, desc.sized_by};
 }
 
-MemoryRequirements DeviceMemoryModel::texture(const TextureDesc& desc, UsageSet usages) const {
-  auto reqs = avsm::gpu::memory_requirements(ctx_, image_desc(desc, image_usage_flags(usages), ""));
+MemoryRequirements DeviceMemoryModel::texture(const TextureDesc& desc, UsageSet usages, const std::string& name) const {
+  auto reqs = avsm::gpu::memory_requirements(ctx_, image_desc(desc, image_usage_flags(usages), name));
   return {reqs.size, reqs.alignment, reqs.memory_type_bits};
 }
 
-MemoryRequirements DeviceMemoryModel::buffer(const BufferDesc& desc, UsageSet usages) const {
-  auto reqs = avsm::gpu::memory_requirements(ctx_, buffer_desc(desc, buffer_usage_flags(usages), ""));
+MemoryRequirements DeviceMemoryModel::buffer(const BufferDesc& desc, UsageSet usages, const std::string& name) const {
+  auto reqs = avsm::gpu::memory_requirements(ctx_, buffer_desc(desc, buffer_usage_flags(usages), name));
   return {reqs.size, reqs.alignment, reqs.memory_type_bits};
 }
 
@@ -111,6 +114,22 @@ void Executor::resolve_imports(const Graph& graph) {
   }
 }
 
+// What a heap holds, largest first (three at most), with what sizes each: said when the
+// heap does not fit the device.
+static std::string heap_contents(const CompiledPlan& plan, const PlannedHeap& heap) {
+  std::vector<uint32_t> residents = heap.resources;
+  std::stable_sort(residents.begin(), residents.end(),
+                   [&](uint32_t a, uint32_t b) { return plan.resources[a].size > plan.resources[b].size; });
+  std::string contents = "what it holds, largest first:";
+  for (size_t i = 0; i < residents.size() && i < 3; ++i) {
+    const PlannedResource& r = plan.resources[residents[i]];
+    const std::string& sized_by = r.kind == ResourceKind::Texture ? r.texture.sized_by : r.buffer.sized_by;
+    contents += (i ? ", '" : " '") + r.name + "' " + avsm::gpu::format_mib(r.size) +
+                (sized_by.empty() ? "" : " (" + sized_by + ")");
+  }
+  return contents;
+}
+
 // Creates the heaps and the placed transients of plan_. Called when the plan changes.
 void Executor::realise_transients() {
   transient_images_.clear();
@@ -119,7 +138,7 @@ void Executor::realise_transients() {
   for (uint32_t h = 0; h < plan_.heaps.size(); ++h) {
     const PlannedHeap& heap = plan_.heaps[h];
     heaps_.emplace_back(ctx_, heap.size, heap.memory_type_bits, avsm::gpu::MemoryLocation::DeviceLocal,
-                        "frame graph heap " + std::to_string(h));
+                        "frame graph heap " + std::to_string(h), heap_contents(plan_, heap));
   }
   transient_images_.resize(plan_.resources.size());
   transient_buffers_.resize(plan_.resources.size());
@@ -175,9 +194,10 @@ void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOpti
   uint64_t shape = graph.shape_hash(options);
   plan_reused_ = has_plan_ && plan_.shape_hash == shape;
   if (!plan_reused_) {
+    has_plan_ = false;  // until its transients exist: a plan the device could not hold is never reused
     plan_ = graph.compile(memory_model_, options);
-    has_plan_ = true;
     realise_transients();
+    has_plan_ = true;
   }
   resolve_imports(graph);
 

@@ -32,8 +32,9 @@ BufferHandle import(Graph& graph, std::string name, const avsm::gpu::Buffer& buf
 class DeviceMemoryModel final : public MemoryModel {
  public:
   explicit DeviceMemoryModel(const avsm::gpu::Context& ctx) : ctx_(ctx) {}
-  MemoryRequirements texture(const TextureDesc& desc, UsageSet usages) const override;
-  MemoryRequirements buffer(const BufferDesc& desc, UsageSet usages) const override;
+  // Throw avsm::gpu::ResourceLimitError for what the device cannot hold.
+  MemoryRequirements texture(const TextureDesc& desc, UsageSet usages, const std::string& name) const override;
+  MemoryRequirements buffer(const BufferDesc& desc, UsageSet usages, const std::string& name) const override;
   uint64_t buffer_image_granularity() const override;
 
  private:

@@ -1,0 +1,20 @@
+# Runs COMMAND (a ;-list) and fails unless it exits with status 1 and prints exactly one
+# line on stderr that matches every regular expression in EXPECT (a ;-list) and names no
+# Vulkan result code or source file: what a user sees for a condition the engine foresees.
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 1)
+  message(FATAL_ERROR "exit status ${status}, expected 1\nstdout: ${out}\nstderr: ${err}")
+endif()
+string(STRIP "${err}" line)
+if(line MATCHES "\n")
+  message(FATAL_ERROR "more than one line on stderr:\n${err}")
+endif()
+foreach(pattern IN LISTS EXPECT)
+  if(NOT line MATCHES "${pattern}")
+    message(FATAL_ERROR "stderr does not match '${pattern}':\n${line}")
+  endif()
+endforeach()
+if(line MATCHES "VK_[A-Z_]+|\\.(cpp|h):[0-9]+")
+  message(FATAL_ERROR "stderr names a Vulkan result or a source line:\n${line}")
+endif()
+message(STATUS "${line}")
