@@ -351,7 +351,9 @@ void ShadowMaps::create_list_buffers() {
   list_heads_ = {};
   list_nodes_ = {};
   if (heads == 0) return;
-  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  // Transfer source too, so tests can read the lists back.
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list heads"});
   list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, gpu::MemoryLocation::DeviceLocal, "looked-up list nodes"});
   for (MapState& map : maps_) {
@@ -627,7 +629,7 @@ FixedBuildStats ShadowMaps::fixed_build_stats(const MapState& map) const {
 LightShadowStats ShadowMaps::finish_map(MapState& map) {
   const LightState& light = lights_[map.light];
   LightShadowStats stats;
-  uint32_t counters[2] = {0, 0};  // capture segments, what the technique's build asked for
+  uint32_t counters[3] = {0, 0, 0};  // capture segments, what the technique's build asked for
   if (map.captured_lists) std::memcpy(counters, map.counter.mapped(), sizeof(counters));
   const uint32_t requested = counters[0];
   stats.technique = light.light.shadow.technique;
@@ -669,6 +671,9 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
     pool.requested_nodes += map.dsm_pool->requested_nodes;
     pool.capacity_nodes += map.dsm_pool->capacity_nodes;
     pool.overflowed = pool.overflowed || map.dsm_pool->overflowed;
+    pool.build_dispatches = std::max(pool.build_dispatches, map.dsm_pool->build_dispatches);
+    pool.needed_dispatches = std::max(pool.needed_dispatches, map.dsm_pool->needed_dispatches);
+    pool.build_cut_short = pool.build_cut_short || map.dsm_pool->build_cut_short;
     light.dsm_pool = pool;
   }
   if (map.fixed_build) {

@@ -126,6 +126,16 @@ class ShadowMaps {
   uint32_t map_count(uint32_t light) const { return lights_.at(light).map_count; }
   // Light `light`'s first map (layout: map_layout(light)); empty for uncompressed lights.
   const gpu::Buffer& avsm_map(uint32_t light) const { return maps_.at(lights_.at(light).first_map).map; }
+  // Light `light`'s first map's capture lists of the last frame as the lookups read them
+  // (ShadowOptions::keep_reference, or an uncompressed light; else empty): heads, one
+  // uint per texel row by row (kListEnd: none), and nodes (shared/capture.h), which
+  // the `next` of a node and the heads index.
+  const gpu::Buffer& looked_up_list_heads(uint32_t light) const {
+    return maps_.at(lights_.at(light).first_map).list_heads;
+  }
+  const gpu::Buffer& looked_up_list_nodes(uint32_t light) const {
+    return maps_.at(lights_.at(light).first_map).list_nodes;
+  }
   // The state every frame leaves the maps in (read by the camera passes' shaders): what a
   // later graph reading a map back imports it in.
   static rg::ImportState map_state_after_frame() { return rg::ImportState::of(rg::Usage::StorageRead); }
