@@ -40,4 +40,23 @@ float dsm_lookup(GpuShadow s, uint level, ivec2 texel, float d) {
   return clamp(avsm_interpolate(previous.y, next.y, f, s.exponential != 0u), 0.0, 1.0);
 }
 
+// Where the first opaque blocker along the texel's ray starts (for the maps' pictures,
+// shaders/passes/shadow_debug.comp): the node before the first opaque one, as for AVSM.
+// Opaque: at most 0.05, as compressed nodes lie up to the error away from the exact 0.
+#define AVSM_DSM_FIRST_OPAQUE_DEPTH
+float dsm_first_opaque_depth(GpuShadow s, ivec2 texel) {
+  float far_depth = s.texel_camera.z;
+  uint index = uint(texel.y) * s.resolution + uint(texel.x);
+  uint first = dsm_word(s, dsm_first_node_word(index)), count = dsm_word(s, dsm_node_count_word(index));
+  if (count == kDsmLost) return far_depth;
+  float previous_depth = far_depth;
+  for (uint k = 0u; k < 65536u; ++k) {  // constant bound (see avsm_core.glsl); a texel has fewer nodes
+    if (k >= count) break;
+    vec2 node = dsm_node(s, first + k);
+    if (node.y <= 0.05) return k == 0u ? node.x : previous_depth;
+    previous_depth = node.x;
+  }
+  return far_depth;
+}
+
 #endif
