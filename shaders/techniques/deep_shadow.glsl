@@ -3,10 +3,9 @@
 // variable node count per texel. Written for GLSL and C++ like the AVSM core
 // (include avsm/avsm_core.glsl first; C++ through passes/deep_shadow.h).
 //
-// The exact curve of a list of any length is never held anywhere (private arrays
-// above ~16 elements miscompile on lavapipe, and a hair texel has thousands of
-// segments): its nodes are streamed front to back straight into the compressor,
-// which only ever needs the next one. The exact curve is the product of the list's
+// The exact curve of a list of any length is never held anywhere (a hair texel has
+// thousands of segments): its nodes are streamed front to back straight into the
+// compressor, which only ever needs the next one. The exact curve is the product of the list's
 // segments (avsm_segment_transmittance), with a node at every segment's entry and
 // exit (clamped to the far depth, as the AVSM core clamps them) and one at the far
 // depth, linear between nodes. Each node takes one walk of the list (the product at
