@@ -53,7 +53,9 @@ float dsm_first_opaque_depth(GpuShadow s, ivec2 texel) {
   for (uint k = 0u; k < 65536u; ++k) {  // constant bound (see avsm_core.glsl); a texel has fewer nodes
     if (k >= count) break;
     vec2 node = dsm_node(s, first + k);
-    if (node.y <= 0.05) return k == 0u ? node.x : previous_depth;
+    // Just in front of the node before: where that node and the opaque one share a depth
+    // (a step), a lookup at the depth itself reads the value behind the step.
+    if (node.y <= 0.05) return k == 0u ? node.x : previous_depth - 1e-5 * max(abs(previous_depth), 1.0);
     previous_depth = node.x;
   }
   return far_depth;
