@@ -25,7 +25,8 @@ struct CaptureLists {
   rg::TextureHandle heads;   // R32_UINT, resolution x resolution
   rg::BufferHandle nodes;    // node_capacity CaptureSegments
   rg::BufferHandle counter;  // uint 0: nodes asked for, including those that did not fit; uint 1: deep
-                             // shadow map pool nodes asked for (dsm_build.comp); 16 bytes, cleared
+                             // shadow map pool nodes asked for, uint 2: its build dispatches needed
+                             // (dsm_build.comp); 16 bytes, cleared
 };
 
 // Declares "<prefix> clear lists": creates the heads and nodes, clears every head

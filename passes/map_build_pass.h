@@ -1,9 +1,9 @@
 #pragma once
 // Builds a comparison technique's per-texel map from a light's capture lists:
 // one compute dispatch per light, one thread per texel, with the technique's
-// shader (shaders/passes/avsm_resolve.comp; the osm, fom and dsm builds in their
-// folders under passes/techniques/). All
-// share one push-constant block.
+// shader (shaders/passes/avsm_resolve.comp; the osm and fom builds in their
+// folders under passes/techniques/). All share one push-constant block (the deep
+// shadow map's build, several dispatches, has a pass of its own: passes/techniques/dsm/).
 #include <rendergraph/graph.h>
 
 #include <string>
@@ -25,12 +25,9 @@ class MapBuildPass {
   MapBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const std::string& shader, std::string name,
                bool per_node_count = false);
   // Adds "<prefix> <name>" writing `map` (at least resolution^2 texels of the technique's
-  // size). With `counter` (a host-readable buffer, updated to its new version), the
-  // shader also gets it at binding 3: the deep shadow map reports its node pool
-  // demand there.
+  // size).
   rg::BufferHandle add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                rg::BufferHandle map, const MapBuildParameters& parameters,
-                                rg::BufferHandle* counter = nullptr) const;
+                                rg::BufferHandle map, const MapBuildParameters& parameters) const;
 
  private:
   gpu::Context& ctx_;

@@ -645,7 +645,7 @@ FixedBuildStats ShadowMaps::fixed_build_stats(const MapState& map) const {
 LightShadowStats ShadowMaps::finish_map(MapState& map) {
   const LightState& light = lights_[map.light];
   LightShadowStats stats;
-  uint32_t counters[2] = {0, 0};  // capture segments, what the technique's build asked for
+  uint32_t counters[3] = {0, 0, 0};  // capture segments, what the technique's build asked for
   if (map.captured_lists) std::memcpy(counters, map.counter.mapped(), sizeof(counters));
   const uint32_t requested = counters[0];
   stats.technique = light.light.shadow.technique;
@@ -687,6 +687,9 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
     pool.requested_nodes += map.dsm_pool->requested_nodes;
     pool.capacity_nodes += map.dsm_pool->capacity_nodes;
     pool.overflowed = pool.overflowed || map.dsm_pool->overflowed;
+    pool.build_dispatches = std::max(pool.build_dispatches, map.dsm_pool->build_dispatches);
+    pool.needed_dispatches = std::max(pool.needed_dispatches, map.dsm_pool->needed_dispatches);
+    pool.build_cut_short = pool.build_cut_short || map.dsm_pool->build_cut_short;
     light.dsm_pool = pool;
   }
   if (map.fixed_build) {

@@ -14,9 +14,14 @@ namespace avsm::passes {
 // A deep shadow map's node pool: nodes the texels' compressed curves needed and the
 // pool held; texels that did not fit read as unshadowed this frame (the pool grows
 // for the next).
+// Its build: the dispatches after the first that the frame made and that its longest
+// list needed; cut short when it made fewer (texels whose build did not finish read as
+// unshadowed; the next frame makes as many as were needed).
 struct DsmPoolStats {
   uint64_t requested_nodes = 0, capacity_nodes = 0;
   bool overflowed = false;
+  uint32_t build_dispatches = 0, needed_dispatches = 0;
+  bool build_cut_short = false;
   bool operator==(const DsmPoolStats&) const = default;
 };
 
@@ -53,8 +58,11 @@ struct LightShadowStats {
   // the frame, so not in memory.json.
   bool grew = false;
 
-  // Some of the frame's shadowing was lost: capture segments or pool nodes did not fit.
-  bool lost_shadowing() const { return overflowed || (dsm_pool && dsm_pool->overflowed); }
+  // Some of the frame's shadowing was lost: capture segments or pool nodes did not fit,
+  // or a deep shadow map's build did not finish.
+  bool lost_shadowing() const {
+    return overflowed || (dsm_pool && (dsm_pool->overflowed || dsm_pool->build_cut_short));
+  }
   bool operator==(const LightShadowStats&) const = default;
 };
 

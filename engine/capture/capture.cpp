@@ -90,6 +90,12 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
                    "%llu; texels that did not fit were unshadowed; the pool grows for the next frame\n",
                    index + 1, light.light.c_str(), (unsigned long long)light.dsm_pool->requested_nodes,
                    (unsigned long long)light.dsm_pool->capacity_nodes);
+    if (light.dsm_pool && light.dsm_pool->build_cut_short)
+      std::fprintf(stderr,
+                   "avsm-capture: warning: frame %u: light '%s': the deep shadow map build needed %u dispatches but "
+                   "made %u; texels whose build did not finish were unshadowed; the next frame makes %u\n",
+                   index + 1, light.light.c_str(), light.dsm_pool->needed_dispatches,
+                   light.dsm_pool->build_dispatches, light.dsm_pool->needed_dispatches);
   }
   if (overflowed) ++overflowed_frames;
   return grew;

@@ -145,6 +145,9 @@ json to_json(const passes::LightShadowStats& s) {
     out["dsm_pool_capacity_nodes"] = s.dsm_pool->capacity_nodes;
     out["dsm_pool_requested_nodes"] = s.dsm_pool->requested_nodes;
     out["dsm_pool_overflowed"] = s.dsm_pool->overflowed;
+    out["dsm_build_dispatches"] = s.dsm_pool->build_dispatches;
+    out["dsm_build_needed_dispatches"] = s.dsm_pool->needed_dispatches;
+    out["dsm_build_cut_short"] = s.dsm_pool->build_cut_short;
   }
   if (s.fixed_build) {
     const passes::FixedBuildStats& f = *s.fixed_build;
@@ -180,6 +183,11 @@ passes::LightShadowStats light_stats_from_json(const json& in) {
     s.dsm_pool = passes::DsmPoolStats{value_of<uint64_t>(in, "dsm_pool_requested_nodes"),
                                       value_of<uint64_t>(in, "dsm_pool_capacity_nodes"),
                                       value_of<bool>(in, "dsm_pool_overflowed")};
+  if (in.contains("dsm_build_dispatches")) {  // reports from before the build was several dispatches: none
+    s.dsm_pool->build_dispatches = value_of<uint32_t>(in, "dsm_build_dispatches");
+    s.dsm_pool->needed_dispatches = value_of<uint32_t>(in, "dsm_build_needed_dispatches");
+    s.dsm_pool->build_cut_short = value_of<bool>(in, "dsm_build_cut_short");
+  }
   if (in.contains("fixed_build")) {
     const json& f = in.at("fixed_build");
     s.fixed_build = passes::FixedBuildStats{

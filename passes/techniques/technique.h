@@ -49,6 +49,7 @@ struct TechniqueParameter {
 struct TechniqueMapState {
   AvsmMapLayout layout;     // resolution, AVSM nodes and mip levels
   uint64_t pool_nodes = 0;  // a variable-size node pool (deep shadow maps)
+  uint32_t build_dispatches = 0;  // deep shadow maps: the build's dispatches after its first
 };
 
 // What a technique's build passes work with, for one light and frame.
@@ -122,9 +123,9 @@ class ShadowTechnique {
   virtual std::unique_ptr<TechniqueBuilder> create_builder(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) const;
 
   // After a completed frame: the light's capture counter words (0: segments asked
-  // for, 1: what the build asked for) into `stats`. Returns true when the map must be
+  // for, 1 and 2: what the build asked for) into `stats`. Returns true when the map must be
   // created again (it grew `state`).
-  virtual bool finish_frame(const uint32_t counters[2], TechniqueMapState& state, LightShadowStats& stats) const;
+  virtual bool finish_frame(const uint32_t counters[3], TechniqueMapState& state, LightShadowStats& stats) const;
 
   // GpuShadow::technique: the registry position + 1 (0 is kShadowNone), as the
   // generated GLSL dispatch numbers them.

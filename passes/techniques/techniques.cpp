@@ -145,7 +145,7 @@ rg::BufferHandle TechniqueBuilder::add_fixed_to_graph(const FixedTechniqueBuild&
   throw std::logic_error(build.prefix + ": technique '" + build.settings.technique + "' has no fixed-memory build");
 }
 
-bool ShadowTechnique::finish_frame(const uint32_t[2], TechniqueMapState&, LightShadowStats&) const { return false; }
+bool ShadowTechnique::finish_frame(const uint32_t[3], TechniqueMapState&, LightShadowStats&) const { return false; }
 
 double ShadowTechnique::parameter(const scene::ShadowSettings& settings, std::string_view name) const {
   const TechniqueParameter* p = find_parameter(*this, name);

@@ -53,14 +53,21 @@ GPU_FUNCTION float avsm_node_transmittance(uint node) { return avsm_from_unorm16
 
 // ---- Deep shadow map: one uint array per light ----
 // [0] pool nodes allocated, [1..3] unused, [4 + 2 t] texel t's first node, [5 + 2 t]
-// its node count (kDsmLost: the pool was full), then the pool from word
+// its node count (kDsmLost: the pool was full, or its build did not finish), then from
+// word dsm_builds_base(resolution) kDsmBuildWords per texel, its build between the
+// build's dispatches (dsm_build.comp's DsmBuild), then the pool from word
 // dsm_pool_base(resolution): per node depth, transmittance (float bits).
 
 GPU_CONST(uint, kDsmLost, 0xffffffffu)
+GPU_CONST(uint, kDsmBuildWords, 20u)  // DsmBuild takes 17 (std430)
 
 GPU_FUNCTION uint dsm_first_node_word(uint texel_index) { return 4u + 2u * texel_index; }
 GPU_FUNCTION uint dsm_node_count_word(uint texel_index) { return 5u + 2u * texel_index; }
-GPU_FUNCTION uint dsm_pool_base(uint resolution) { return (4u + 2u * resolution * resolution + 3u) & ~3u; }
+// On 256 bytes: the build binds the builds on their own (any storage buffer offset alignment).
+GPU_FUNCTION uint dsm_builds_base(uint resolution) { return (4u + 2u * resolution * resolution + 63u) & ~63u; }
+GPU_FUNCTION uint dsm_pool_base(uint resolution) {
+  return (dsm_builds_base(resolution) + kDsmBuildWords * resolution * resolution + 3u) & ~3u;
+}
 
 GPU_NAMESPACE_END
 #endif

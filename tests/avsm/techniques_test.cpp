@@ -1,5 +1,5 @@
 // The comparison techniques' math on the CPU (shaders/techniques/*.glsl compiled as
-// C++): deep shadow map compression against its error threshold, opacity shadow maps
+// C++): deep shadow maps of lists of any length against their error threshold, opacity shadow maps
 // and Fourier opacity maps against slabs and a sharp step with known transmittance.
 #include <gtest/gtest.h>
 
@@ -21,56 +21,121 @@ constexpr float kFar = 100.0f;
 
 // ---- Deep shadow maps ----
 
-AvsmCurve random_exact_curve(std::mt19937& rng) {
-  // Up to 7 segments: the 18-node curve then holds them exactly (2 nodes each + far).
-  std::uniform_int_distribution<int> count(1, 7);
-  std::uniform_real_distribution<float> depth(1.0f, 90.0f), length(0.0f, 8.0f), trans(0.0f, 1.0f);
-  AvsmCurve c = core::avsm_clear(kFar);
+using core::DsmNode;
+using shared::CaptureSegment;
+
+// A list as the captures link it: each node points at the one appended before it.
+struct List {
+  std::vector<CaptureSegment> nodes;
+  uint32_t head() const { return nodes.empty() ? shared::kListEnd : uint32_t(nodes.size() - 1); }
+  void append(float entry, float exit_depth, float exit_trans) {
+    nodes.push_back({entry, exit_depth, exit_trans, head()});
+  }
+};
+
+// Overlapping segments anywhere in (1, kFar * 1.1), each letting through at least
+// `min_trans`: some of zero length (steps), some running past the far depth (clamped
+// there), some opaque.
+List random_list(std::mt19937& rng, int max_segments, float min_trans = 0.0f) {
+  std::uniform_int_distribution<int> count(0, max_segments);
+  std::uniform_real_distribution<float> depth(1.0f, 1.1f * kFar), length(0.0f, 8.0f), trans(min_trans, 1.0f),
+      u(0.0f, 1.0f);
+  List list;
   for (int i = count(rng); i > 0; --i) {
     const float entry = depth(rng);
-    core::avsm_insert_segment(c, entry, entry + length(rng), trans(rng), 16);
+    const float kind = u(rng);
+    list.append(entry, entry + (kind < 0.1f ? 0.0f : length(rng)), kind > 0.998f ? 0.0f : trans(rng));
   }
-  return c;
+  return list;
 }
 
-float max_difference(const AvsmCurve& a, const AvsmCurve& b) {
-  float worst = 0.0f;
-  for (int i = 0; i <= 4000; ++i) {
-    const float d = kFar * 1.02f * float(i) / 4000.0f;
-    worst = std::max(worst, std::abs(core::avsm_evaluate_linear(a, d) - core::avsm_evaluate_linear(b, d)));
-  }
-  return worst;
-}
-
-TEST(DeepShadowMaps, CompressionStaysWithinItsErrorThreshold) {
+TEST(DeepShadowMaps, CompressionOfListsOfAnyLengthStaysWithinItsErrorThreshold) {
   std::mt19937 rng(7);
   for (float error : {0.002f, 0.01f, 0.05f, 0.2f}) {
-    int exact_nodes = 0, kept_nodes = 0;
+    size_t exact_nodes = 0, kept_nodes = 0, longest = 0;
     float worst = 0.0f;
-    for (int trial = 0; trial < 400; ++trial) {
-      const AvsmCurve exact = random_exact_curve(rng);
-      AvsmCurve compressed;
-      core::dsm_compress(exact, error, compressed);
-      ASSERT_LE(compressed.count, exact.count);
-      worst = std::max(worst, max_difference(exact, compressed));
-      exact_nodes += exact.count;
-      kept_nodes += compressed.count;
+    for (int trial = 0; trial < 60; ++trial) {
+      // Long lists (hair) of light segments, whose product falls slowly.
+      const List list = trial < 50 ? random_list(rng, 40) : random_list(rng, 2000, 0.997f);
+      const std::vector<core::DsmExactValue> exact = core::dsm_exact_values(list.nodes, list.head(), kFar);
+      const std::vector<DsmNode> compressed = core::dsm_build_list(list.nodes, list.head(), kFar, error);
+      size_t steps = 0;  // exact nodes that are two (a step)
+      for (const core::DsmExactValue& v : exact) steps += v.before != v.after;
+      ASSERT_LE(compressed.size(), exact.size() + steps);
+      ASSERT_GE(compressed.size(), 1u);
+      EXPECT_EQ(compressed.back().depth, kFar) << "the last node is the far depth";
+      for (size_t i = 1; i < compressed.size(); ++i) ASSERT_GE(compressed[i].depth, compressed[i - 1].depth);
+      worst = std::max(worst, core::dsm_max_error_at_exact_nodes(compressed, exact));
+      exact_nodes += exact.size() + steps;
+      kept_nodes += compressed.size();
+      longest = std::max(longest, list.nodes.size());
     }
-    std::printf("[ dsm         ] error %.3f: worst %.5f, nodes kept %d of %d\n", error, worst, kept_nodes, exact_nodes);
+    std::printf("[ dsm         ] error %.3f: worst %.5f, nodes kept %zu of %zu (lists up to %zu segments)\n", error,
+                worst, kept_nodes, exact_nodes, longest);
     EXPECT_LE(worst, error + 1e-5f) << "error threshold " << error;
+    EXPECT_GT(longest, 1000u);
     if (error >= 0.05f) {
-      EXPECT_LT(kept_nodes, exact_nodes) << "a loose threshold must drop nodes";
+      EXPECT_LT(kept_nodes, exact_nodes / 4) << "a loose threshold must drop most nodes";
     }
   }
+}
+
+// Where segments do not overlap, the AVSM core with room for every node is exact
+// (where they do, it interpolates the curve so far at a new node, which the DSM does
+// not): at a tiny threshold the DSM is its curve.
+TEST(DeepShadowMaps, AtATinyThresholdDisjointSegmentsGiveTheAvsmCoresExactCurve) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> depth(1.0f, 1.1f * kFar), trans(0.0f, 1.0f);
+  float worst = 0.0f;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<float> ends(2 * (trial % 8));
+    for (float& end : ends) end = depth(rng);
+    std::sort(ends.begin(), ends.end());
+    List list;
+    core::AvsmCurve exact = core::avsm_clear(kFar);
+    for (size_t i = 0; i < ends.size(); i += 2) {
+      list.append(ends[i], ends[i + 1], trans(rng));
+      const CaptureSegment& s = list.nodes.back();
+      core::avsm_insert_segment(exact, s.entry, s.exit_depth, s.exit_trans, 16);
+    }
+    ASSERT_LE(exact.count, 16);
+    const std::vector<DsmNode> compressed = core::dsm_build_list(list.nodes, list.head(), kFar, 1e-6f);
+    for (int i = 0; i <= 2000; ++i) {
+      const float d = kFar * 1.05f * float(i) / 2000.0f;
+      worst = std::max(worst, std::abs(core::dsm_evaluate(compressed, d) - core::avsm_evaluate_linear(exact, d)));
+    }
+  }
+  std::printf("[ dsm         ] max |DSM at 1e-6 - AVSM core's exact curve| %.2g\n", worst);
+  EXPECT_LE(worst, 1e-5f);
+}
+
+TEST(DeepShadowMaps, LokovicVeachCompressionOfACurveStaysWithinItsError) {
+  // A smooth fall sampled densely: few lines suffice; each exact node stays within the error.
+  std::vector<DsmNode> exact;
+  for (int i = 0; i <= 1000; ++i) exact.push_back({float(i) * 0.1f, std::exp(-float(i) * 0.004f)});
+  const std::vector<DsmNode> compressed = core::dsm_compress(exact, 0.01f);
+  float worst = 0.0f;
+  for (const DsmNode& n : exact) worst = std::max(worst, std::abs(core::dsm_evaluate(compressed, n.depth) - n.trans));
+  EXPECT_LE(worst, 0.01f + 1e-6f);
+  EXPECT_LT(compressed.size(), 20u);
+  EXPECT_EQ(compressed.front().depth, 0.0f);
+  EXPECT_EQ(compressed.back().depth, 100.0f);
 }
 
 TEST(DeepShadowMaps, AnOpaqueStepStaysSharp) {
-  AvsmCurve exact = core::avsm_clear(kFar);
-  core::avsm_insert_segment(exact, 50.0f, 50.0f, 0.0f, 16);  // an opaque surface: a step at depth 50
-  AvsmCurve compressed;
-  core::dsm_compress(exact, 0.01f, compressed);
-  EXPECT_NEAR(core::avsm_evaluate_linear(compressed, 49.999f), 1.0f, 1e-6f);
-  EXPECT_NEAR(core::avsm_evaluate_linear(compressed, 50.001f), 0.0f, 1e-6f);
+  List list;
+  list.append(50.0f, 50.0f, 0.0f);  // an opaque surface: a step at depth 50
+  const std::vector<DsmNode> compressed = core::dsm_build_list(list.nodes, list.head(), kFar, 0.01f);
+  EXPECT_NEAR(core::dsm_evaluate(compressed, 49.999f), 1.0f, 1e-6f);
+  EXPECT_NEAR(core::dsm_evaluate(compressed, 50.001f), 0.0f, 1e-6f);
+  ASSERT_EQ(compressed.size(), 3u);  // (50, 1), (50, 0), (far, 0)
+}
+
+TEST(DeepShadowMaps, AnEmptyListIsOneLitNode) {
+  const std::vector<DsmNode> compressed = core::dsm_build_list({}, shared::kListEnd, kFar, 0.01f);
+  ASSERT_EQ(compressed.size(), 1u);
+  EXPECT_EQ(compressed[0].depth, kFar);
+  EXPECT_EQ(compressed[0].trans, 1.0f);
 }
 
 // ---- Opacity shadow maps and Fourier opacity maps ----

@@ -6,7 +6,7 @@ GPU_NAMESPACE_BEGIN
 
 #define GPU_MAP_BUILD_PUSH(F, A)                                                                 \
   F(uint, resolution)                                                                            \
-  F(uint, count)        /* avsm: N nodes; osm: K planes; fom: K terms; dsm: input nodes kept */  \
+  F(uint, count)        /* avsm: N nodes; osm: K planes; fom: K terms; dsm: the dispatch */      \
   F(float, near_depth)  /* the light's caster depth range the map covers */                      \
   F(float, far_depth)                                                                            \
   F(float, error)       /* error threshold (dsm) */
