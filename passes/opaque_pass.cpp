@@ -78,14 +78,8 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
     if (draw.index_count > 0) draws_.push_back(draw);
   }
   std::vector<GpuMaterial> materials;
-  material_textures_.clear();
   scene_materials_ = scene.materials;
-  for (const scene::Material& m : scene.materials) {
-    materials.push_back(gpu_material(m));
-    MaterialTextures textures;
-    for (size_t i = 0; i < textures.size(); ++i) textures[i] = *m.textures()[i];
-    material_textures_.push_back(textures);
-  }
+  for (const scene::Material& m : scene.materials) materials.push_back(gpu_material(m));
   if (materials.empty()) materials.push_back(gpu_material(fallback_material()));
   if (tangents.empty()) tangents.emplace_back(0.0f);  // no zero-sized buffers
   vertices_ = gpu::create_buffer_from(ctx_, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
@@ -147,13 +141,13 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
   static constexpr const char* kTextureBindings[] = {"base_color_texture", "metallic_roughness_texture", "normal_texture",
                                                      "occlusion_texture", "emissive_texture"};  // Material::textures() order
   for (const Draw& draw : draws_) {
-    MaterialTextures textures;
-    textures.fill(-1);
-    if (draw.material < material_textures_.size()) textures = material_textures_[draw.material];
+    const scene::Material* material = draw.material < scene_materials_.size() ? &scene_materials_[draw.material] : nullptr;
     gpu::Bindings bindings(ctx_, pipeline_);
     bindings.buffer("Vertices", vertices_).buffer("Tangents", tangents_).buffer("Materials", materials_).buffer("Lights", lights);
-    for (size_t i = 0; i < textures.size(); ++i)
-      bindings.image(kTextureBindings[i], texture_view(textures[i]), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    for (size_t i = 0; i < std::size(kTextureBindings); ++i) {
+      const int texture = material ? *material->textures()[i] : -1;  // -1: the white texture
+      bindings.image(kTextureBindings[i], texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    }
     shadows.bind(bindings, c);
     bindings.push(cmd);
     pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),

@@ -58,9 +58,7 @@ class OpaquePass {
   std::vector<gpu::Image> textures_;
   gpu::Image white_;
   std::vector<Draw> draws_;
-  using MaterialTextures = std::array<int, 5>;  // scene::Material::textures(), -1 = none
-  std::vector<MaterialTextures> material_textures_;
-  std::vector<scene::Material> scene_materials_;  // for their alpha as casters (casters())
+  std::vector<scene::Material> scene_materials_;  // their textures per draw, and their alpha as casters
 };
 
 }  // namespace avsm::passes
