@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "gpu/context.h"
-#include "live/file_watcher.h"
 #include "gpu/shader_compiler.h"
+#include "live/file_watcher.h"
 #include "passes/shadow_maps.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"

@@ -327,7 +327,8 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 // An editor that writes a temporary file beside the original and renames it over.
 void save_by_rename(const fs::path& file, const std::string& text) {
-  const fs::path temporary = file.parent_path() / ("." + file.filename().string() + ".saving");
+  fs::path temporary = file;
+  temporary += ".saving";
   std::ofstream(temporary, std::ios::trunc) << text;
   fs::rename(temporary, file);
 }
@@ -368,14 +369,15 @@ class EditorSaveTest : public LiveRendererTest {
          }},
         {"shader", tonemap,
          [=](int v) {
-           return replaced(tonemapper, "vec3 mapped = filmic(c);", "vec3 mapped = filmic(c); mapped.b = " + fixed2(v / 20.0) + ";");
+           return replaced(tonemapper, "vec3 mapped = filmic(c);",
+                           "vec3 mapped = filmic(c); mapped.b = " + fixed2(v / 20.0) + ";");
          },
          [this](int v) {
            const float linear = v / 20.0f;
            const float srgb = 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
            const std::vector<float> rgba = render();
-           for (size_t i = 0; i < rgba.size(); ++i)
-             if (i % 4 == 2) ASSERT_NEAR(rgba[i], srgb, 1.5f / 255) << "tonemap of version " << v << ", value " << i;
+           for (size_t blue = 2; blue < rgba.size(); blue += 4)
+             ASSERT_NEAR(rgba[blue], srgb, 1.5f / 255) << "tonemap of version " << v << ", value " << blue;
          }},
     };
   }
