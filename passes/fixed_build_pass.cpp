@@ -31,13 +31,15 @@ rg::BufferHandle FixedBuildPass::add_to_graph(rg::Graph& graph, const std::strin
                                               const FixedBuildTarget& target, const LightView& light,
                                               const ShadowCasters& casters, uint32_t smoke_samples_per_segment) const {
   const VkBuffer none = placeholder_.handle();
+  const VkDeviceSize none_size = placeholder_.size();
   StrandCasters hair = casters.strands;
-  if (hair.empty()) hair = {none, none, none, 0};
+  if (hair.empty()) hair = {none, none_size, none, none_size, none, none_size, 0};
   VolumeCasters volumes = casters.volumes;
   if (!volumes.empty() && !volumes.has_atlas())
     throw std::invalid_argument(prefix + ": the fixed build reads smoke from the density brick atlas, and the "
                                 "volume casters have none (VolumeCasters::atlas); pass it, or build from lists");
-  if (volumes.empty()) volumes = {none, none, none, 0, empty_atlas_.view(), empty_atlas_.sampler(), none};
+  if (volumes.empty())
+    volumes = {none, none, none, none_size, 0, empty_atlas_.view(), empty_atlas_.sampler(), none};
   FixedBuildInputs inputs{depth_.add_to_graph(graph, prefix, light, casters.meshes),
                           bins_.add_to_graph(graph, prefix, light, casters.strands, target.counter)};
   struct Data {

@@ -35,7 +35,10 @@ class HairPass {
   // Strand vertices (vec4), read by the hair quality pass.
   const gpu::Buffer& points() const { return points_; }
   // The strands as shadow casters (passes/capture_hair_pass.h).
-  StrandCasters casters() const { return {points_.handle(), segments_.handle(), strands_.handle(), segment_count_}; }
+  StrandCasters casters() const {
+    return {points_.handle(),  points_.size(),  segments_.handle(), segments_.size(),
+            strands_.handle(), strands_.size(), segment_count_};
+  }
 
   // Draws onto `color` (loaded), testing against `depth`; returns the new colour version.
   // `vertex_lights`: this frame's HairLightingPass output. `light_per_fragment`: the

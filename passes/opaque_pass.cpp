@@ -92,7 +92,7 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
 }
 
 MeshCasters OpaquePass::casters() const {
-  MeshCasters casters{vertices_.handle(), indices_.handle(), {}};
+  MeshCasters casters{vertices_.handle(), vertices_.size(), indices_.handle(), indices_.size(), {}};
   for (const Draw& draw : draws_) {
     const MeshDraw range{draw.first_index, draw.index_count, draw.vertex_offset};
     if (draw.material >= scene_materials_.size()) {

@@ -1,6 +1,8 @@
 #pragma once
 // What casts into the shadow maps, as plain views of GPU buffers: no scene format,
-// no ownership. The camera passes produce them for a loaded scene (OpaquePass::casters(),
+// no ownership. Each buffer comes with its size in bytes: the bytes of its elements at
+// its start (a whole number of them, at most the VkBuffer's size), against which the
+// embedding API (avsm/shadows.h) checks the counts and ranges it is given. The camera passes produce them for a loaded scene (OpaquePass::casters(),
 // HairPass::casters(), VolumePass::casters()); a host renderer fills them from its own
 // buffers. The buffers (and the draws' alpha textures) must hold their data before the
 // frame is submitted and stay unchanged and alive until it completes: the captures read
@@ -47,7 +49,9 @@ struct MeshDraw {
 // Triangle meshes, world space, drawn from both sides.
 struct MeshCasters {
   VkBuffer vertices = VK_NULL_HANDLE;  // CasterVertex[]; usage STORAGE_BUFFER
+  VkDeviceSize vertices_size = 0;      // bytes: sizeof(CasterVertex) x vertices
   VkBuffer indices = VK_NULL_HANDLE;   // uint32 triangle list; usage INDEX_BUFFER
+  VkDeviceSize indices_size = 0;       // bytes: 4 x indices
   std::vector<MeshDraw> draws;
   bool empty() const { return draws.empty() || vertices == VK_NULL_HANDLE || indices == VK_NULL_HANDLE; }
 };
@@ -62,8 +66,11 @@ using StrandParameters = shared::Strand;
 // Hair: ribbons facing the light.
 struct StrandCasters {
   VkBuffer points = VK_NULL_HANDLE;    // vec4 per point (xyz world, w unused); usage STORAGE_BUFFER
+  VkDeviceSize points_size = 0;        // bytes: 16 x points
   VkBuffer segments = VK_NULL_HANDLE;  // StrandSegment[]; usage STORAGE_BUFFER
+  VkDeviceSize segments_size = 0;      // bytes: sizeof(StrandSegment) x segments
   VkBuffer strands = VK_NULL_HANDLE;   // StrandParameters[]; usage STORAGE_BUFFER
+  VkDeviceSize strands_size = 0;       // bytes: sizeof(StrandParameters) x strands
   uint32_t segment_count = 0;
   // Segments [first_segment, first_segment + segment_count) cast (a clustered map's groom).
   uint32_t first_segment = 0;
@@ -77,6 +84,7 @@ struct VolumeCasters {
   VkBuffer grids = VK_NULL_HANDLE;       // usage STORAGE_BUFFER
   VkBuffer majorants = VK_NULL_HANDLE;   // usage STORAGE_BUFFER
   VkBuffer parameters = VK_NULL_HANDLE;  // GpuVolume[]; usage STORAGE_BUFFER
+  VkDeviceSize parameters_size = 0;      // bytes: sizeof(GpuVolume) x volumes
   uint32_t volume_count = 0;
   // Optional: the density brick atlas (passes/volume_density_atlas.h; image in
   // SHADER_READ_ONLY_OPTIMAL, its sampler, and the brick slots, usage STORAGE_BUFFER),

@@ -32,8 +32,9 @@ std::string light_name(const scene::Light& light, size_t index) {
   return "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
 }
 
-// The settings every technique shares, then the technique's own (passes/techniques/).
-void check_settings(const scene::Light& light, size_t index) {
+}  // namespace
+
+void check_light_settings(const scene::Light& light, size_t index) {
   const std::string who = light_name(light, index);
   const scene::ShadowSettings& s = light.shadow;
   if (s.cascades < 1 || s.cascades > 4)
@@ -58,6 +59,8 @@ void check_settings(const scene::Light& light, size_t index) {
     throw std::invalid_argument(who + ": shadow resolution " + std::to_string(s.resolution) + " is outside 1..16384");
   check_shadow_settings(s, who);
 }
+
+namespace {
 
 uint64_t round_up(uint64_t value, uint64_t multiple) { return (value + multiple - 1) / multiple * multiple; }
 
@@ -131,7 +134,7 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
 
 void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
                             const ShadowOptions& options, const std::vector<CasterObject>& objects) {
-  for (size_t i = 0; i < lights.size(); ++i) check_settings(lights[i], i);
+  for (size_t i = 0; i < lights.size(); ++i) check_light_settings(lights[i], i);
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
                                 " samples per segment; use 1 to 255");

@@ -86,6 +86,11 @@ class ShadowBudgetError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// Throws std::invalid_argument, naming light `index`, for shadow settings this build
+// cannot render (cascades, clusters, nodes, kernel radius, resolution, the technique's
+// own); set_scene() and set_lights() check every light with it.
+void check_light_settings(const scene::Light& light, size_t index);
+
 class ShadowMaps {
  public:
   ShadowMaps(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);

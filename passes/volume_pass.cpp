@@ -168,8 +168,8 @@ void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool wi
 
 VolumeCasters VolumePass::casters() const {
   const VkBuffer none = placeholder_.handle();
-  if (volume_count_ == 0) return {none, none, none, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
-  return {grids_.handle(), majorants_.handle(), parameters_.handle(), volume_count_,
+  if (volume_count_ == 0) return {none, none, none, 0, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
+  return {grids_.handle(), majorants_.handle(), parameters_.handle(), parameters_.size(), volume_count_,
           atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
 }
 

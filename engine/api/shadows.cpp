@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadow_maps.h"
 #include "passes/view.h"
+#include "shared/volume.h"
 
 #ifndef AVSM_NANOVDB_INCLUDE_DIR
 #define AVSM_NANOVDB_INCLUDE_DIR "/usr/include"
@@ -27,49 +30,237 @@ scene::ShadowFilter to_scene(ShadowFilter filter) {
   return scene::ShadowFilter::bilinear;
 }
 
-// The facade's light as the shadow pipeline's scene light; the rest of its checks
-// (nodes, resolution) are ShadowMaps' own, so both paths give the same messages.
-scene::Light to_scene(const Light& light, size_t index) {
-  const std::string who = "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
-  const float length = light.type == LightType::point ? 1.0f : glm::length(light.direction);
-  if (!std::isfinite(length) || length < 1e-6f) throw std::invalid_argument(who + ": direction has no length");
-  if (light.type == LightType::spot && !(light.outer_cone_radians > 0.0f && light.outer_cone_radians < 1.55f))
-    throw std::invalid_argument(who + ": a spot light's outer cone must be in (0, 1.55) radians");
+// A precondition of one public function: throws std::invalid_argument with
+// "avsm::Shadows::<function>: <what>" when it does not hold.
+struct Precondition {
+  const char* function;
+  void require(bool holds, const std::string& what) const {
+    if (!holds) throw std::invalid_argument(std::string("avsm::Shadows::") + function + ": " + what);
+  }
+};
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string text(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+std::string text(const glm::vec3& v) { return "(" + text(v.x) + ", " + text(v.y) + ", " + text(v.z) + ")"; }
+
+std::string light_name(const Light& light, size_t index) {
+  return "light " + std::to_string(index) + (light.name.empty() ? "" : " '" + light.name + "'");
+}
+
+// Empty (nothing given) or finite with min <= max.
+void check_bounds(const Precondition& check, const Bounds& bounds, const std::string& name) {
+  const bool unset = bounds.min == Bounds().min && bounds.max == Bounds().max;
+  check.require(unset || (finite(bounds.min) && finite(bounds.max) && !bounds.empty()),
+                name + " " + text(bounds.min) + " to " + text(bounds.max) +
+                    " is not finite with min <= max (leave it default-constructed for none)");
+}
+
+// The light's own numbers; its shadow settings are ShadowMaps' (check_light_settings).
+void check_light(const Precondition& check, const Light& light, size_t index) {
+  const std::string who = light_name(light, index);
+  check.require(light.type == LightType::directional || light.type == LightType::spot || light.type == LightType::point,
+                who + ": type " + std::to_string(int(light.type)) + " is not a LightType");
+  if (light.type != LightType::point) {
+    const float length = glm::length(light.direction);
+    check.require(finite(light.direction) && length >= 1e-6f,
+                  who + ": direction " + text(light.direction) + " must be finite and not zero");
+  }
+  if (light.type != LightType::directional)
+    check.require(finite(light.position), who + ": position " + text(light.position) + " is not finite");
+  if (light.type == LightType::spot)
+    check.require(light.outer_cone_radians > 0.0f && light.outer_cone_radians < 1.55f,
+                  who + ": outer_cone_radians " + text(light.outer_cone_radians) +
+                      ": a spot light's outer cone must be in (0, 1.55) radians");
+  check.require(std::isfinite(light.range) && light.range >= 0.0f,
+                who + ": range " + text(light.range) + " must be finite and >= 0 (0: no limit)");
+  check.require(std::isfinite(light.shadow_distance) && light.shadow_distance >= 0.0f,
+                who + ": shadow_distance " + text(light.shadow_distance) + " must be finite and >= 0 (0: camera far)");
+  check.require(light.filter == ShadowFilter::point || light.filter == ShadowFilter::bilinear ||
+                    light.filter == ShadowFilter::trilinear,
+                who + ": filter " + std::to_string(int(light.filter)) + " is not a ShadowFilter");
+}
+
+// A count of the API's (unsigned) as the scene light's int, without wrapping to negative.
+int to_int(uint32_t count) { return int(std::min<uint32_t>(count, uint32_t(std::numeric_limits<int>::max()))); }
+
+// The facade's light as the shadow pipeline's scene light (check_light first).
+scene::Light to_scene(const Light& light) {
   scene::Light out;
   out.name = light.name;
   out.type = light.type == LightType::spot    ? scene::LightType::spot
              : light.type == LightType::point ? scene::LightType::point
                                               : scene::LightType::directional;
-  out.direction = light.type == LightType::point ? glm::vec3(0.0f, -1.0f, 0.0f) : light.direction / length;
+  out.direction = light.type == LightType::point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(light.direction);
   out.position = light.position;
   out.range = light.range;
   out.shadow.fit = light.fit_to_view ? scene::ShadowFit::view : scene::ShadowFit::scene;
   out.shadow.distance = light.shadow_distance;
-  out.shadow.cascades = int(light.cascades);
-  out.shadow.clusters = int(light.clusters);
+  out.shadow.cascades = to_int(light.cascades);
+  out.shadow.clusters = to_int(light.clusters);
   out.inner_cone_angle = light.outer_cone_radians;
   out.outer_cone_angle = light.outer_cone_radians;
   out.shadow.technique = "avsm";
-  out.shadow.nodes = int(light.nodes);
-  out.shadow.resolution = int(light.resolution);
+  out.shadow.nodes = to_int(light.nodes);
+  out.shadow.resolution = to_int(light.resolution);
   out.shadow.filter = to_scene(light.filter);
   out.shadow.sort = light.sort;
   out.shadow.build = light.fixed_memory_build ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists;
   return out;
 }
 
+std::vector<scene::Light> checked_scene_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
+                                               const std::vector<CasterObject>& objects) {
+  const Precondition check{"set_lights"};
+  std::vector<scene::Light> scene_lights;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    check_light(check, lights[i], i);
+    scene_lights.push_back(to_scene(lights[i]));
+    try {
+      passes::check_light_settings(scene_lights.back(), i);
+    } catch (const std::invalid_argument& e) {
+      check.require(false, e.what());
+    }
+  }
+  check_bounds(check, casters_bounds, "casters_bounds");
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const std::string who = "objects[" + std::to_string(i) + "]" + (objects[i].name.empty() ? "" : " '" + objects[i].name + "'");
+    check_bounds(check, objects[i].bounds, who + ".bounds");
+    check.require(objects[i].count >= 1, who + ": count is 0; an object is at least one draw, segment or volume");
+  }
+  return scene_lights;
+}
+
+void check_camera(const Precondition& check, const Camera& camera) {
+  check.require(finite(camera.position), "camera.position " + text(camera.position) + " is not finite");
+  check.require(finite(camera.forward) && glm::length(camera.forward) >= 1e-6f,
+                "camera.forward " + text(camera.forward) + " must be finite and not zero");
+  check.require(finite(camera.up) && glm::length(camera.up) >= 1e-6f,
+                "camera.up " + text(camera.up) + " must be finite and not zero");
+  check.require(glm::length(glm::cross(glm::normalize(camera.forward), glm::normalize(camera.up))) >= 1e-4f,
+                "camera.up " + text(camera.up) + " is along camera.forward " + text(camera.forward));
+  check.require(camera.vertical_fov_radians > 0.0f && camera.vertical_fov_radians < 3.14159f,
+                "camera.vertical_fov_radians " + text(camera.vertical_fov_radians) + " must be in (0, pi)");
+  check.require(camera.height_pixels >= 1, "camera.height_pixels is 0");
+  check.require(std::isfinite(camera.aspect) && camera.aspect > 0.0f,
+                "camera.aspect " + text(camera.aspect) + " must be finite and > 0");
+  check.require(std::isfinite(camera.near_plane) && std::isfinite(camera.far_plane) && camera.near_plane > 0.0f &&
+                    camera.far_plane > camera.near_plane,
+                "camera.near_plane " + text(camera.near_plane) + " and far_plane " + text(camera.far_plane) +
+                    " must be finite with 0 < near_plane < far_plane");
+}
+
+// A view's buffer of `stride`-byte elements, `name` (e.g. "casters.meshes.vertices"):
+// given, and sized a whole, non-zero number of elements. Returns how many it holds.
+uint64_t element_count(const Precondition& check, const std::string& name, VkBuffer buffer, VkDeviceSize size,
+                       size_t stride, const std::string& element) {
+  check.require(buffer != VK_NULL_HANDLE, name + " is VK_NULL_HANDLE");
+  check.require(size > 0, name + "_size is 0: an empty buffer (give its size in bytes)");
+  check.require(size % stride == 0, name + "_size " + std::to_string(size) + " bytes is not a whole number of " +
+                                        element + " (stride " + std::to_string(stride) +
+                                        "): the buffer must hold that layout, there is no stride to set");
+  return size / stride;
+}
+
+// "(4096 bytes = 256 vertices at stride 16)"
+std::string holds(VkDeviceSize size, uint64_t count, const std::string& elements, size_t stride) {
+  return "(" + std::to_string(size) + " bytes = " + std::to_string(count) + " " + elements + " at stride " +
+         std::to_string(stride) + ")";
+}
+
+void check_meshes(const Precondition& check, const MeshCasters& meshes) {
+  if (meshes.draws.empty()) return;
+  const uint64_t vertices = element_count(check, "casters.meshes.vertices", meshes.vertices, meshes.vertices_size,
+                                          sizeof(CasterVertex), "CasterVertex");
+  const uint64_t indices =
+      element_count(check, "casters.meshes.indices", meshes.indices, meshes.indices_size, sizeof(uint32_t), "uint32");
+  for (size_t i = 0; i < meshes.draws.size(); ++i) {
+    const MeshDraw& draw = meshes.draws[i];
+    const std::string who = "casters.meshes.draws[" + std::to_string(i) + "]";
+    const uint64_t end = uint64_t(draw.first_index) + draw.index_count;
+    check.require(end <= indices, who + ": indices " + std::to_string(draw.first_index) + ".." + std::to_string(end) +
+                                      " exceed the index buffer " +
+                                      holds(meshes.indices_size, indices, "indices", sizeof(uint32_t)));
+    check.require(draw.index_count % 3 == 0,
+                  who + ": index_count " + std::to_string(draw.index_count) + " is not a multiple of 3 (a triangle list)");
+    check.require(int64_t(draw.vertex_offset) < int64_t(vertices),
+                  who + ": vertex_offset " + std::to_string(draw.vertex_offset) + " is past the vertex buffer " +
+                      holds(meshes.vertices_size, vertices, "vertices", sizeof(CasterVertex)));
+    check.require(draw.alpha == passes::CasterAlpha::opaque || draw.alpha == passes::CasterAlpha::mask ||
+                      draw.alpha == passes::CasterAlpha::blend,
+                  who + ": alpha " + std::to_string(uint32_t(draw.alpha)) + " is not a CasterAlpha");
+    check.require(draw.alpha_cutoff >= 0.0f && draw.alpha_cutoff <= 1.0f,
+                  who + ": alpha_cutoff " + text(draw.alpha_cutoff) + " is not in [0, 1]");
+    check.require(draw.alpha_factor >= 0.0f && draw.alpha_factor <= 1.0f,
+                  who + ": alpha_factor " + text(draw.alpha_factor) + " is not in [0, 1]");
+  }
+}
+
+void check_strands(const Precondition& check, const StrandCasters& strands) {
+  if (strands.empty()) return;
+  const uint64_t points =
+      element_count(check, "casters.strands.points", strands.points, strands.points_size, sizeof(glm::vec4), "vec4");
+  const uint64_t segments = element_count(check, "casters.strands.segments", strands.segments, strands.segments_size,
+                                          sizeof(StrandSegment), "StrandSegment");
+  element_count(check, "casters.strands.strands", strands.strands, strands.strands_size, sizeof(StrandParameters),
+                "StrandParameters");
+  check.require(points >= 2, "casters.strands.points holds 1 point; a segment joins two");
+  const uint64_t end = uint64_t(strands.first_segment) + strands.segment_count;
+  check.require(end <= segments, "casters.strands: segments " + std::to_string(strands.first_segment) + ".." +
+                                     std::to_string(end) + " exceed the segment buffer " +
+                                     holds(strands.segments_size, segments, "StrandSegment", sizeof(StrandSegment)));
+}
+
+void check_volumes(const Precondition& check, const VolumeCasters& volumes) {
+  if (volumes.empty()) return;
+  check.require(volumes.grids != VK_NULL_HANDLE, "casters.volumes.grids is VK_NULL_HANDLE");
+  check.require(volumes.majorants != VK_NULL_HANDLE, "casters.volumes.majorants is VK_NULL_HANDLE");
+  const uint64_t parameters = element_count(check, "casters.volumes.parameters", volumes.parameters,
+                                            volumes.parameters_size, sizeof(shared::GpuVolume), "GpuVolume");
+  check.require(volumes.volume_count <= parameters,
+                "casters.volumes: volume_count " + std::to_string(volumes.volume_count) +
+                    " exceeds the parameter buffer " +
+                    holds(volumes.parameters_size, parameters, "GpuVolume", sizeof(shared::GpuVolume)));
+  const bool any_atlas = volumes.atlas != VK_NULL_HANDLE || volumes.atlas_sampler != VK_NULL_HANDLE ||
+                         volumes.brick_slots != VK_NULL_HANDLE;
+  const bool whole_atlas = volumes.atlas != VK_NULL_HANDLE && volumes.atlas_sampler != VK_NULL_HANDLE &&
+                           volumes.brick_slots != VK_NULL_HANDLE;
+  check.require(!any_atlas || whole_atlas,
+                "casters.volumes: the density atlas needs atlas, atlas_sampler and brick_slots together (or none)");
+}
+
+void check_objects(const Precondition& check, const std::vector<CasterObject>& objects, const ShadowCasters& casters) {
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const CasterObject& o = objects[i];
+    const uint64_t available = o.kind == CasterObject::Kind::mesh_draw ? casters.meshes.draws.size()
+                               : o.kind == CasterObject::Kind::strands ? casters.strands.segment_count
+                                                                       : casters.volumes.volume_count;
+    const char* what = o.kind == CasterObject::Kind::mesh_draw ? "mesh draws"
+                       : o.kind == CasterObject::Kind::strands ? "strand segments"
+                                                               : "volumes";
+    const uint64_t end = uint64_t(o.first) + o.count;
+    check.require(end <= available, "the object " + std::to_string(i) + (o.name.empty() ? "" : " '" + o.name + "'") +
+                                        " given to set_lights is " + what + " " + std::to_string(o.first) + ".." +
+                                        std::to_string(end) + ", but the casters have " + std::to_string(available));
+  }
+}
+
 // What the shadow parameters need of a camera: its position, and a projection whose
 // [1][1] is 1 / tan(fov / 2) (a pixel's angle for trilinear filtering).
+// (check_camera first.)
 passes::View to_view(const Camera& camera) {
   passes::View view;
   view.camera_position = camera.position;
-  const glm::vec3 forward = glm::length(camera.forward) > 1e-6f ? glm::normalize(camera.forward) : glm::vec3(0, 0, -1);
-  view.view = glm::lookAtRH(camera.position, camera.position + forward, camera.up);
-  view.projection = glm::perspectiveRH_ZO(camera.vertical_fov_radians, std::max(camera.aspect, 1e-3f),
-                                          camera.near_plane, camera.far_plane);
+  view.view = glm::lookAtRH(camera.position, camera.position + glm::normalize(camera.forward), camera.up);
+  view.projection =
+      glm::perspectiveRH_ZO(camera.vertical_fov_radians, camera.aspect, camera.near_plane, camera.far_plane);
   view.view_projection = view.projection * view.view;
   view.inverse_view_projection = glm::inverse(view.view_projection);
-  view.height = std::max(camera.height_pixels, 1u);
+  view.height = camera.height_pixels;
   view.near_plane = camera.near_plane;
   view.far_plane = camera.far_plane;
   return view;
@@ -85,21 +276,51 @@ struct Shadows::Impl {
   ShaderLocation location;
   gpu::ShaderLibrary library;
   passes::ShadowMaps maps;
+  std::vector<CasterObject> objects;  // set_lights' (add_to_graph checks them against its casters)
 };
 
+namespace {
+
+const ShaderLocation& checked_location(const ShaderLocation& shaders) {
+  const std::filesystem::path folder = shaders.compile_from_source ? shaders.glsl_root / "shaders"
+                                                                   : shaders.spirv_root / "shaders";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+    throw std::invalid_argument("avsm::Shadows: the shader folder " + folder.string() +
+                                " does not exist; check ShaderLocation (" +
+                                (shaders.compile_from_source ? "glsl_root" : "spirv_root") + ")");
+  return shaders;
+}
+
+}  // namespace
+
 Shadows::Shadows(gpu::Context& context, const ShaderLocation& shaders)
-    : impl_(std::make_unique<Impl>(context, shaders)) {}
+    : impl_(std::make_unique<Impl>(context, checked_location(shaders))) {}
 
 Shadows::~Shadows() = default;
 
+void Shadows::check_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
+                           const std::vector<CasterObject>& objects) {
+  checked_scene_lights(lights, casters_bounds, objects);
+}
+
+void Shadows::check_frame(const Camera& camera, const ShadowCasters& casters, const std::vector<CasterObject>& objects) {
+  const Precondition check{"add_to_graph"};
+  check_camera(check, camera);
+  check_meshes(check, casters.meshes);
+  check_strands(check, casters.strands);
+  check_volumes(check, casters.volumes);
+  check_objects(check, objects, casters);
+}
+
 void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
                          const std::vector<CasterObject>& objects) {
-  std::vector<scene::Light> scene_lights;
-  for (size_t i = 0; i < lights.size(); ++i) scene_lights.push_back(to_scene(lights[i], i));
-  impl_->maps.set_lights(scene_lights, casters_bounds, {}, objects);
+  impl_->maps.set_lights(checked_scene_lights(lights, casters_bounds, objects), casters_bounds, {}, objects);
+  impl_->objects = objects;
 }
 
 ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters) {
+  check_frame(camera, casters, impl_->objects);
   return impl_->maps.add_to_graph(graph, to_view(camera), casters);
 }
 

@@ -4,6 +4,7 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <set>
@@ -213,8 +214,17 @@ std::vector<uint32_t> ShaderLibrary::load(const std::string& relative_path, cons
     auto found = cache_->entries.find(name);
     if (found != cache_->entries.end() && found->second.current()) return found->second.shader.spirv;
     Cache::Entry entry;
+    // A file written while it compiled must not look current (its time stamp from after
+    // the compile would vouch for the half-read content): one written since shortly
+    // before, within any file system's time stamp resolution, compiles again next time
+    // (max: a time no file has, where min would match a file that is gone).
+    const std::filesystem::file_time_type trusted_before =
+        std::filesystem::file_time_type::clock::now() - std::chrono::milliseconds(100);
     entry.shader = compile(relative_path, variant);  // throws before the cache changes
-    for (const std::filesystem::path& file : entry.shader.files) entry.times.push_back(io::write_time_or_min(file));
+    for (const std::filesystem::path& file : entry.shader.files) {
+      const std::filesystem::file_time_type time = io::write_time_or_min(file);
+      entry.times.push_back(time < trusted_before ? time : std::filesystem::file_time_type::max());
+    }
     return (cache_->entries[name] = std::move(entry)).shader.spirv;
   }
   return read_spirv_file(paths_.spirv_root / (name + ".spv"));

@@ -79,41 +79,19 @@ std::string ReloadError::summary() const {
   return out.str();
 }
 
-// Time stamps of the files last loaded successfully; a change to any of them
-// triggers a reload on the next poll.
-struct LiveRenderer::Watched {
-  std::map<fs::path, fs::file_time_type> scene, shaders;
-
-  static void set(std::map<fs::path, fs::file_time_type>& watched, const std::vector<fs::path>& files) {
-    watched.clear();
-    for (const fs::path& file : files) watched[file] = io::write_time_or_min(file);
-  }
-  // Files whose time stamp changed since the last call; remembers the new stamps,
-  // so an edit that fails to load is reported once, not on every poll.
-  static std::vector<fs::path> take_changes(std::map<fs::path, fs::file_time_type>& watched) {
-    std::vector<fs::path> changed;
-    for (auto& [file, time] : watched) {
-      const fs::file_time_type now = io::write_time_or_min(file);
-      if (now == time) continue;
-      time = now;
-      changed.push_back(file);
-    }
-    return changed;
-  }
-};
-
 LiveRenderer::LiveRenderer(gpu::Context& ctx, LiveOptions options)
     : ctx_(ctx),
       options_(std::move(options)),
       shaders_(std::make_unique<gpu::ShaderLibrary>(options_.shader_paths, /*compile_from_source=*/true)),
-      watched_(std::make_unique<Watched>()),
+      scene_files_(options_.settle),
+      shader_files_(options_.settle),
       next_shadow_options_(options_.shadow_options) {
   const scene::SceneDescription description = scene::read_scene_description(options_.scene_file);
   loaded_ = scene::load_scene(description);
   edited_ = loaded_;
   renderer_ = make_renderer(edited_);
-  Watched::set(watched_->scene, scene_files(description));
-  Watched::set(watched_->shaders, shaders_->source_files());
+  scene_files_.watch(scene_files(description));
+  shader_files_.watch(shaders_->source_files());
 }
 
 LiveRenderer::~LiveRenderer() {
@@ -155,37 +133,43 @@ void LiveRenderer::set_renderer_setup(std::function<void(renderer::SceneRenderer
 
 std::vector<fs::path> LiveRenderer::watched_files() const {
   std::set<fs::path> files;
-  for (const auto& [file, time] : watched_->scene) files.insert(file);
-  for (const auto& [file, time] : watched_->shaders) files.insert(file);
+  for (const fs::path& file : scene_files_.files()) files.insert(file);
+  for (const fs::path& file : shader_files_.files()) files.insert(file);
   return {files.begin(), files.end()};
 }
 
-PollResult LiveRenderer::poll() {
+PollResult LiveRenderer::poll(Clock::time_point now) {
   PollResult result;
-  const std::vector<fs::path> scene_changes = Watched::take_changes(watched_->scene);
-  const std::vector<fs::path> shader_changes = Watched::take_changes(watched_->shaders);
+  const std::vector<fs::path> scene_changes = scene_files_.settled_changes(now);
+  const std::vector<fs::path> shader_changes = shader_files_.settled_changes(now);
   result.changed = scene_changes;
   result.changed.insert(result.changed.end(), shader_changes.begin(), shader_changes.end());
   if (!scene_changes.empty()) files_dirty_ = true;
 
   // The scene first, so new pipelines are built for the scene they will draw.
-  if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, result);
-  if (!shader_changes.empty()) reload_shaders(result);
+  if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, now, result);
+  if (!shader_changes.empty()) reload_shaders(now, result);
   error_ = shader_error_ ? shader_error_ : scene_error_;
+  result.waiting = scene_files_.busy() || shader_files_.busy();
   return result;
 }
 
-void LiveRenderer::reload_shaders(PollResult& result) {
+void LiveRenderer::reload_shaders(Clock::time_point now, PollResult& result) {
   std::unique_ptr<renderer::SceneRenderer> fresh;
+  std::optional<ReloadError> failure;
+  if (options_.before_reading) options_.before_reading();
   try {
     fresh = make_renderer(edited_);
   } catch (const gpu::ShaderCompileError& e) {
-    shader_error_ = ReloadError{e.file(), e.line(), e.what()};
-    result.failed = true;
-    return;
+    failure = ReloadError{e.file(), e.line(), e.what()};
   } catch (const std::exception& e) {
     // Pipeline creation or a missing file: name the last changed shader.
-    shader_error_ = ReloadError{result.changed.empty() ? fs::path() : result.changed.back(), 0, e.what()};
+    failure = ReloadError{result.changed.empty() ? fs::path() : result.changed.back(), 0, e.what()};
+  }
+  // A source written to while it compiled: neither its pipelines nor its errors count.
+  if (!shader_files_.confirm(now)) return;
+  if (failure) {
+    shader_error_ = std::move(failure);
     result.failed = true;
     return;
   }
@@ -193,18 +177,21 @@ void LiveRenderer::reload_shaders(PollResult& result) {
   vkDeviceWaitIdle(ctx_.device());  // the old pipelines may still be in flight
   renderer_ = std::move(fresh);
   // A new include may have appeared; watch what the good shaders are made of now.
-  Watched::set(watched_->shaders, shaders_->source_files());
+  shader_files_.watch(shaders_->source_files());
   result.shaders_reloaded = true;
 }
 
-void LiveRenderer::reload_scene(bool read_files, PollResult& result) {
+void LiveRenderer::reload_scene(bool read_files, Clock::time_point now, PollResult& result) {
   const fs::path file = next_scene_file_.value_or(options_.scene_file);
+  const bool edits_were_dirty = edits_dirty_;
   files_dirty_ = false;
   edits_dirty_ = false;
   next_scene_file_.reset();
 
   scene::SceneDescription description;
   scene::Scene fresh_loaded;
+  std::optional<ReloadError> failure;
+  if (read_files && options_.before_reading) options_.before_reading();
   try {
     if (read_files) {
       description = scene::read_scene_description(file);
@@ -213,11 +200,19 @@ void LiveRenderer::reload_scene(bool read_files, PollResult& result) {
       fresh_loaded = loaded_;
     }
   } catch (const scene::LoadError& e) {
-    scene_error_ = ReloadError{e.file(), 0, e.what()};
-    result.failed = true;
-    return;
+    failure = ReloadError{e.file(), 0, e.what()};
   } catch (const std::exception& e) {
-    scene_error_ = ReloadError{file, 0, e.what()};
+    failure = ReloadError{file, 0, e.what()};
+  }
+  // A file written to while it was read: what was read (good or not) is not final.
+  // The watcher hands the files out again once they settle; the request waits for them.
+  if (read_files && !scene_files_.confirm(now)) {
+    if (file != options_.scene_file) next_scene_file_ = file;
+    edits_dirty_ = edits_were_dirty;
+    return;
+  }
+  if (failure) {
+    scene_error_ = std::move(failure);
     result.failed = true;
     return;
   }
@@ -240,7 +235,7 @@ void LiveRenderer::reload_scene(bool read_files, PollResult& result) {
   options_.shadow_options = next_shadow_options_;
   if (read_files) {
     options_.scene_file = file;
-    Watched::set(watched_->scene, scene_files(description));
+    scene_files_.watch(scene_files(description));
   }
   result.scene_reloaded = true;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The authoring loop's renderer: a SceneRenderer that follows its files. It
 // watches the scene file, every asset the scene references and every shader
-// source (with its #includes), and on the next poll() after an edit it reloads
+// source (with its #includes), and on the first poll() after an edit has settled
+// (live/file_watcher.h: the file held still for LiveOptions::settle) it reloads
 // what changed:
 //   - a shader: recompiles it (glslang, from source) and rebuilds the pipelines;
 //   - the scene file or an asset: loads the scene again and hands it to the renderer;
@@ -9,6 +10,10 @@
 // A reload that fails (a compile error, a malformed file) changes nothing: the
 // last good scene and pipelines keep rendering and error() says what failed,
 // naming the file and, for shaders, the line. The next successful reload clears it.
+// Files are read the way editors save them: a file being written (in chunks, or
+// several times in a row) is read once it held still; a file that vanished (deleted
+// then recreated, renamed over) is waited for, not reported, for a while; and a read
+// that overlapped a write is dropped (not loaded, not reported) and retried.
 // Nothing here needs a window: the viewer drives it, and so do the tests.
 #include <filesystem>
 #include <functional>
@@ -19,6 +24,7 @@
 
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
+#include "live/file_watcher.h"
 #include "passes/shadow_maps.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
@@ -39,14 +45,21 @@ struct LiveOptions {
   passes::ShadowOptions shadow_options;
   // Shader sources to compile and watch (source_root/shaders/...); spirv_root is unused.
   gpu::ShaderLibrary::Paths shader_paths = gpu::ShaderLibrary::default_paths();
+  // How long an edited file must hold still before it is read, and how long a
+  // vanished one is waited for.
+  SettleTimes settle;
+  // Called when a reload is about to read settled files (scene, assets or shaders):
+  // tests land an editor's next write there, as if it came during the read.
+  std::function<void()> before_reading;
 };
 
 // What one poll() did.
 struct PollResult {
-  std::vector<std::filesystem::path> changed;  // watched files whose time stamp changed
+  std::vector<std::filesystem::path> changed;  // watched files whose change settled and was read
   bool shaders_reloaded = false;               // new pipelines are in use
   bool scene_reloaded = false;                 // the scene (file, assets or edits) was handed to the renderer again
   bool failed = false;                         // a reload failed; error() has it
+  bool waiting = false;                        // a change is still settling (or was read mid-write): poll again
   bool anything_new() const { return shaders_reloaded || scene_reloaded; }
 };
 
@@ -71,10 +84,12 @@ class LiveRenderer {
   // SceneRenderer): enable probes, light images, texel samples, exposure here.
   void set_renderer_setup(std::function<void(renderer::SceneRenderer&)> setup);
 
-  // Checks the watched files' time stamps and reloads what changed or was asked
-  // for. Cheap when nothing changed. Waits for the device to idle before it
-  // replaces anything, so call it between frames.
-  PollResult poll();
+  // Checks the watched files' sizes and time stamps and reloads what changed (once
+  // settled) or was asked for. Cheap when nothing changed. Waits for the device to
+  // idle before it replaces anything, so call it between frames.
+  PollResult poll() { return poll(Clock::now()); }
+  // The same at a given time (tests drive the settle time with it).
+  PollResult poll(Clock::time_point now);
 
   // The last failed reload; empty once a reload succeeds.
   const std::optional<ReloadError>& error() const { return error_; }
@@ -88,9 +103,8 @@ class LiveRenderer {
   std::vector<std::filesystem::path> watched_files() const;
 
  private:
-  struct Watched;
-  void reload_shaders(PollResult& result);
-  void reload_scene(bool read_files, PollResult& result);
+  void reload_shaders(Clock::time_point now, PollResult& result);
+  void reload_scene(bool read_files, Clock::time_point now, PollResult& result);
 
   std::unique_ptr<renderer::SceneRenderer> make_renderer(const scene::Scene& scene) const;
 
@@ -101,7 +115,7 @@ class LiveRenderer {
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
   std::function<void(renderer::SceneRenderer&)> setup_;
-  std::unique_ptr<Watched> watched_;
+  FileWatcher scene_files_, shader_files_;
   std::optional<ReloadError> shader_error_, scene_error_;
   std::optional<ReloadError> error_;  // the shader error if any, else the scene error
   bool files_dirty_ = false;   // read the scene and its assets again

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "capture/frame_outputs.h"
@@ -85,6 +86,9 @@ class ViewerApp {
   // One loop iteration's parts.
   void follow_window_size();
   void poll_live();
+  // Polls until no edited file is still settling (live/file_watcher.h), so that a
+  // control script's "frame" after its edits shows them.
+  void wait_for_settled_files();
   void handle_input();
   void apply(const PanelRequests& requests);
   void render_scene_frame();
@@ -138,6 +142,7 @@ class ViewerApp {
   bool failed_ = false;
   // What poll() reported since the last control reply.
   std::vector<std::string> reloaded_files_;
+  bool files_settling_ = false;  // the last poll saw a change still being written
   bool shaders_reloaded_ = false, scene_reloaded_ = false;
 };
 
@@ -238,6 +243,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
   switch (command.kind) {
     case ControlCommand::Kind::frame: {
       const uint64_t before = frame_stats_.number;
+      wait_for_settled_files();
       iterate(/*render=*/true);
       reply["frame"] = frame_stats_.number;
       reply["rendered"] = frame_stats_.number > before;
@@ -314,6 +320,7 @@ void ViewerApp::follow_window_size() {
 void ViewerApp::poll_live() {
   const live::PollResult result = live_->poll();
   edits_pending_ = false;
+  files_settling_ = result.waiting;
   if (result.failed && live_->error())
     std::fprintf(stderr, "avsm-viewer: reload failed, keeping the last good version: %s\n",
                  live_->error()->summary().c_str());
@@ -330,6 +337,17 @@ void ViewerApp::poll_live() {
   }
   refresh_inspection();
   scene_dirty_ = true;
+}
+
+void ViewerApp::wait_for_settled_files() {
+  const live::SettleTimes& settle = live_->options().settle;
+  // A file that never stops changing (or stays missing) is given up on after this.
+  const Clock::time_point give_up = Clock::now() + settle.settle + settle.missing + std::chrono::seconds(1);
+  poll_live();
+  while (files_settling_ && Clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    poll_live();
+  }
 }
 
 void ViewerApp::handle_input() {

@@ -248,8 +248,11 @@ HostCasters upload_casters(const avsm::gpu::Context& ctx) {
   casters.views.meshes.draws = {{0, 6, 0}, {6, uint32_t(indices.size()) - 6, 0}};
   casters.vertices = avsm::gpu::create_buffer_from(ctx, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host vertices");
   casters.indices = avsm::gpu::create_buffer_from(ctx, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "host indices");
+  // Each view's buffer with its size in bytes: add_to_graph checks the draws against them.
   casters.views.meshes.vertices = casters.vertices.handle();
+  casters.views.meshes.vertices_size = casters.vertices.size();
   casters.views.meshes.indices = casters.indices.handle();
+  casters.views.meshes.indices_size = casters.indices.size();
 
   // Hair: straight strands along z, 4 segments each, in two sheets.
   std::vector<glm::vec4> points;
@@ -274,8 +277,11 @@ HostCasters upload_casters(const avsm::gpu::Context& ctx) {
   casters.strand_segments = avsm::gpu::create_buffer_from(ctx, std::move(segments), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strand segments");
   casters.strands = avsm::gpu::create_buffer_from(ctx, std::move(strands), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strands");
   casters.views.strands.points = casters.strand_points.handle();
+  casters.views.strands.points_size = casters.strand_points.size();
   casters.views.strands.segments = casters.strand_segments.handle();
+  casters.views.strands.segments_size = casters.strand_segments.size();
   casters.views.strands.strands = casters.strands.handle();
+  casters.views.strands.strands_size = casters.strands.size();
   return casters;
 }
 

@@ -6,9 +6,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "gpu/context.h"
@@ -96,11 +100,16 @@ class LiveRendererTest : public testing::GpuTest {
   fs::path scene_file() const { return root_ / "content/scene.json"; }
   fs::path shader(const std::string& relative) const { return root_ / "shaders" / relative; }
 
-  LiveRenderer& start() {
+  // Whole-file rewrites (write_text) are read at once unless a test asks for settling.
+  LiveRenderer& start(SettleTimes settle = {Clock::duration(0), Clock::duration(0)}) {
     LiveOptions options;
     options.scene_file = scene_file();
     options.width = 48;
     options.height = 32;
+    options.settle = settle;
+    options.before_reading = [this] {
+      if (during_read_) std::exchange(during_read_, nullptr)();
+    };
     // Sources from the private copy; the build's generated GLSL (the technique dispatch).
     options.shader_paths = {root_, gpu::ShaderLibrary::default_paths().spirv_root};
     live_ = std::make_unique<LiveRenderer>(ctx(), options);
@@ -120,6 +129,7 @@ class LiveRendererTest : public testing::GpuTest {
 
   fs::path root_;
   std::unique_ptr<LiveRenderer> live_;
+  std::function<void()> during_read_;  // an editor's write landing while the next reload reads
 };
 
 TEST_F(LiveRendererTest, NothingChangedMeansNothingReloads) {
@@ -283,6 +293,177 @@ TEST_F(LiveRendererTest, EditsApplyToEveryReloadAndBadEditsAreRejected) {
   EXPECT_EQ(live.scene().lights[0].shadow.nodes, 8);
   render();
   EXPECT_EQ(live.renderer().shadows().frame_stats()[0].nodes, 8u);
+}
+
+
+// ---- Saving the way editors do ---------------------------------------------------
+// The scene file, an asset (the stage's glTF) and a shader are saved in each way
+// editors do, polling at the moments that matter with time driven by the test. While a
+// file is incomplete or missing, the last good content keeps rendering and nothing is
+// reported; once it settles, its final content is what gets loaded, in one reload.
+
+constexpr SettleTimes kEditorSettle{std::chrono::milliseconds(150), std::chrono::milliseconds(2000)};
+
+// One file an editor saves over and over: version 0 is the file the test starts from,
+// versions 1 to 14 each render differently, and expect_loaded() checks which one is in use.
+struct EditedFile {
+  std::string kind;
+  fs::path file;
+  std::function<std::string(int)> version;
+  std::function<void(int)> expect_loaded;
+};
+
+std::string fixed2(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f", value);
+  return text;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error(from + " not found");
+  return text.replace(at, from.size(), to);
+}
+
+// An editor that writes a temporary file beside the original and renames it over.
+void save_by_rename(const fs::path& file, const std::string& text) {
+  fs::path temporary = file;
+  temporary += ".saving";
+  std::ofstream(temporary, std::ios::trunc) << text;
+  fs::rename(temporary, file);
+}
+
+class EditorSaveTest : public LiveRendererTest {
+ protected:
+  LiveRenderer& start_watching() {
+    LiveRenderer& live = start(kEditorSettle);
+    shown_ = render();
+    return live;
+  }
+
+  PollResult poll_after(Clock::duration elapsed) { return live_->poll(now_ += elapsed); }
+  PollResult poll_after_settling() { return poll_after(kEditorSettle.settle); }
+
+  // The scene file (the sun's direction), the stage's glTF (the box's position) and
+  // the tonemap shader (blue set to a constant, larger with each version, so that the
+  // other edits still show).
+  std::vector<EditedFile> edited_files() {
+    const std::string scene = kSceneJson;
+    const fs::path gltf = root_ / "content/stage.gltf";
+    const std::string stage = read_text(gltf);
+    const fs::path tonemap = shader("passes/tonemap.comp");
+    const std::string tonemapper = read_text(tonemap);
+    return {
+        {"scene file", scene_file(),
+         [=](int v) { return replaced(scene, "[0.35, -1.0, 0.25]", "[" + fixed2(0.35 - 0.07 * v) + ", -1.0, 0.25]"); },
+         [this](int v) {
+           const glm::vec3 d = live_->scene().lights.at(0).direction;
+           EXPECT_NEAR(d.x / -d.y, 0.35 - 0.07 * v, 1e-4) << "sun direction of version " << v;
+         }},
+        {"asset", gltf, [=](int v) { return replaced(stage, "    1.9,\n", "    " + fixed2(1.9 - 0.1 * v) + ",\n"); },
+         [this](int v) {
+           const auto box = std::find_if(live_->scene().meshes.begin(), live_->scene().meshes.end(),
+                                         [](const scene::Mesh& m) { return m.name == "stage/box"; });
+           ASSERT_NE(box, live_->scene().meshes.end());
+           EXPECT_NEAR((box->bounds.min.x + box->bounds.max.x) / 2, 1.9 - 0.1 * v, 1e-3) << "box of version " << v;
+         }},
+        {"shader", tonemap,
+         [=](int v) {
+           return replaced(tonemapper, "vec3 mapped = filmic(c);",
+                           "vec3 mapped = filmic(c); mapped.b = " + fixed2(v / 20.0) + ";");
+         },
+         [this](int v) {
+           const float linear = v / 20.0f;
+           const float srgb = 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+           const std::vector<float> rgba = render();
+           for (size_t blue = 2; blue < rgba.size(); blue += 4)
+             ASSERT_NEAR(rgba[blue], srgb, 1.5f / 255) << "tonemap of version " << v << ", value " << blue;
+         }},
+    };
+  }
+
+  // Mid-save: nothing reloads or is reported, and the last good picture stays.
+  void expect_last_good_kept(const PollResult& poll, const std::string& when) {
+    SCOPED_TRACE(when);
+    EXPECT_FALSE(poll.anything_new());
+    EXPECT_FALSE(poll.failed);
+    EXPECT_TRUE(poll.waiting);
+    EXPECT_FALSE(live_->error()) << live_->error()->summary();
+    EXPECT_EQ(render(), shown_);
+  }
+  // Settled: one reload, of the final content.
+  void expect_reloaded(const PollResult& poll, const EditedFile& edited, int version) {
+    EXPECT_TRUE(poll.anything_new());
+    EXPECT_FALSE(poll.waiting);
+    EXPECT_FALSE(live_->error()) << live_->error()->summary();
+    edited.expect_loaded(version);
+    const std::vector<float> now_shown = render();
+    EXPECT_NE(now_shown, shown_);
+    shown_ = now_shown;
+  }
+
+  std::vector<float> shown_;  // the picture of the last good content
+  Clock::time_point now_ = Clock::now();
+};
+
+// The four ways of saving, each on the scene file, the asset and the shader; one
+// LiveRenderer for all (starting one compiles every shader: the costly part).
+TEST_F(EditorSaveTest, EditorsWaysOfSavingKeepTheLastGoodContentThenLoadTheFinalOne) {
+  start_watching();
+  const std::vector<EditedFile> files = edited_files();
+  for (const EditedFile& edited : files) {
+    SCOPED_TRACE(edited.kind + ", renamed over");
+    save_by_rename(edited.file, edited.version(1));
+    expect_last_good_kept(poll_after(Clock::duration(0)), "just renamed over");
+    expect_reloaded(poll_after_settling(), edited, 1);
+  }
+  for (const EditedFile& edited : files) {
+    SCOPED_TRACE(edited.kind + ", truncated then written in chunks");
+    const std::string text = edited.version(2);
+    const size_t third = text.size() / 3;
+    std::ofstream out(edited.file, std::ios::trunc);
+    expect_last_good_kept(poll_after(Clock::duration(0)), "truncated");
+    out << text.substr(0, third) << std::flush;
+    expect_last_good_kept(poll_after(std::chrono::milliseconds(50)), "first chunk");
+    // The editor stalls past the settle time, and its second chunk lands while the
+    // reload reads: the half-written file is read, and dropped, not reported.
+    during_read_ = [&] { out << text.substr(third, third) << std::flush; };
+    expect_last_good_kept(poll_after_settling(), "read during the second chunk");
+    EXPECT_FALSE(during_read_) << "no reload read the file";
+    out << text.substr(2 * third);
+    out.close();
+    expect_last_good_kept(poll_after(std::chrono::milliseconds(50)), "last chunk written");
+    expect_reloaded(poll_after_settling(), edited, 2);
+  }
+  for (const EditedFile& edited : files) {
+    SCOPED_TRACE(edited.kind + ", deleted then recreated");
+    fs::remove(edited.file);
+    expect_last_good_kept(poll_after(Clock::duration(0)), "deleted");
+    expect_last_good_kept(poll_after(std::chrono::milliseconds(1000)), "still missing");
+    std::ofstream(edited.file, std::ios::trunc) << edited.version(3);
+    expect_last_good_kept(poll_after(Clock::duration(0)), "recreated");
+    expect_reloaded(poll_after_settling(), edited, 3);
+
+    // Gone for longer than the grace: reported, naming the file; the picture stays.
+    fs::remove(edited.file);
+    expect_last_good_kept(poll_after(Clock::duration(0)), "deleted again");
+    const PollResult gone = poll_after(kEditorSettle.missing);
+    EXPECT_TRUE(gone.failed);
+    ASSERT_TRUE(live_->error());
+    EXPECT_EQ(live_->error()->file.filename(), edited.file.filename()) << live_->error()->summary();
+    EXPECT_EQ(render(), shown_);
+    std::ofstream(edited.file, std::ios::trunc) << edited.version(4);
+    poll_after(Clock::duration(0));
+    expect_reloaded(poll_after_settling(), edited, 4);
+  }
+  for (const EditedFile& edited : files) {
+    SCOPED_TRACE(edited.kind + ", ten saves within 50 ms");
+    for (int version = 5; version <= 14; ++version) {
+      std::ofstream(edited.file, std::ios::trunc) << edited.version(version);
+      expect_last_good_kept(poll_after(std::chrono::milliseconds(5)), "version " + std::to_string(version));
+    }
+    expect_reloaded(poll_after_settling(), edited, 14);
+  }
 }
 
 }  // namespace

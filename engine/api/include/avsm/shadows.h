@@ -30,6 +30,15 @@
 // avsm::gpu::Pipeline/Bindings, by the shader's names); its push constants are declared
 // once for GLSL and C++ with GPU_PUSH_CONSTANTS ("shared/gpu_struct.h"). ShadowInputs'
 // fields hold the raw handles for hosts that write their own descriptor sets.
+//
+// Preconditions: every function below says what must hold of its arguments. set_lights()
+// and add_to_graph() check all of it before they change anything, and a violation throws
+// std::invalid_argument naming the function, the argument and what is wrong (e.g.
+// "avsm::Shadows::add_to_graph: casters.strands: segments 0..5000 exceed the segment
+// buffer (4096 bytes = 512 StrandSegment at stride 8)"). check_lights() and check_frame()
+// run the same checks without a device. What lives only on the GPU (the indices'
+// values, the segments' point and strand indices, the volumes' grids) cannot be checked
+// here: indices must stay within their buffers, or the captures read out of bounds.
 #include <rendergraph/graph.h>
 
 #include <glm/glm.hpp>
@@ -90,21 +99,23 @@ enum class ShadowFilter { point, bilinear, trilinear };
 // A shadowed light. Directional lights fit an orthographic map to what the camera sees
 // of the casters (fit_to_view) or around all of them; spot lights a perspective map of
 // their outer cone, narrowed to the casters in it; point lights a cube of six maps.
+// Every number must be finite; the ranges are given per field.
 struct Light {
   std::string name;
   LightType type = LightType::directional;
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here); not for point
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here; not zero); not for point
   glm::vec3 position{0.0f};                // spot and point
-  float outer_cone_radians = 0.5f;         // spot only: half angle of the cone
-  float range = 0.0f;                      // spot and point: shadows (and light) end there; 0: no limit
+  float outer_cone_radians = 0.5f;         // spot only: half angle of the cone, in (0, 1.55)
+  float range = 0.0f;                      // spot and point: shadows (and light) end there, >= 0; 0: no limit
   bool fit_to_view = false;                // directional: fit the map to the Camera's view (fill its forward, up, planes)
-  float shadow_distance = 0.0f;            // directional, fit_to_view: how far shadows reach (0: camera far)
-  uint32_t cascades = 1;                   // directional: 1 to 4 maps split along the view
+  float shadow_distance = 0.0f;            // directional, fit_to_view: how far shadows reach, >= 0 (0: camera far)
+  uint32_t cascades = 1;                   // directional with fit_to_view: 1 to 4 maps split along the view; else 1
   // Clustered maps (seed 004): up to this many maps, each fitted to a group of the
   // CasterObjects given to set_lights (0 or 1: off).
+  // Directional and spot lights without cascades only.
   uint32_t clusters = 0;
   uint32_t nodes = 8;                      // AVSM nodes per texel: 4, 8, 12 or 16
-  uint32_t resolution = 512;               // map texels per side
+  uint32_t resolution = 512;               // map texels per side, 1 to 16384
   ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
   bool sort = true;                        // sort each texel's segments first: the same map every run
   // Build the map straight from the casters, in fixed memory (no capture lists;
@@ -113,16 +124,16 @@ struct Light {
 };
 
 // The camera the host shades from; only trilinear filtering uses it (a pixel's
-// footprint picks the map's mip level).
+// footprint picks the map's mip level). Every number must be finite.
 struct Camera {
   glm::vec3 position{0.0f};
-  float vertical_fov_radians = 1.0f;
-  uint32_t height_pixels = 1;
+  float vertical_fov_radians = 1.0f;  // in (0, pi)
+  uint32_t height_pixels = 1;         // at least 1
   // Where it looks: what directional maps fitted to the view (and cascades) follow.
-  glm::vec3 forward{0.0f, 0.0f, -1.0f};
-  glm::vec3 up{0.0f, 1.0f, 0.0f};
-  float aspect = 16.0f / 9.0f;  // width / height
-  float near_plane = 0.1f, far_plane = 100.0f;
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // not zero
+  glm::vec3 up{0.0f, 1.0f, 0.0f};        // not zero, not along forward
+  float aspect = 16.0f / 9.0f;           // width / height, > 0
+  float near_plane = 0.1f, far_plane = 100.0f;  // 0 < near_plane < far_plane
 };
 
 // One light's figures for the frame that finish_frame() closed.
@@ -146,7 +157,9 @@ using passes::CasterObject;
 class Shadows {
  public:
 
-  // Pipelines are built here, from `shaders`, on `context` (owned or adopted; it must outlive this).
+  // Pipelines are built here, from `shaders`, on `context` (owned or adopted; it must
+  // outlive this). The shaders' folder (glsl_root/shaders with compile_from_source, else
+  // spirv_root/shaders) must exist: std::invalid_argument otherwise.
   Shadows(gpu::Context& context, const ShaderLocation& shaders);
   ~Shadows();
   Shadows(const Shadows&) = delete;
@@ -155,8 +168,11 @@ class Shadows {
   // The lights that cast (any number; all maps share one buffer of at most the device's
   // storage buffer range), their maps fitted around `casters_bounds` (everything that
   // casts or receives). Light i is light_index i in the shader. `objects` are what
-  // lights with clusters group. Throws std::invalid_argument for an unusable light (bad
-  // node count, resolution, direction) and for maps over the budget, naming the lights.
+  // lights with clusters group. Preconditions (check_lights): each light as Light
+  // documents; `casters_bounds` empty (a unit box at the origin) or finite with min <=
+  // max; each object's bounds likewise, its count at least 1 and its range within the
+  // casters later given to add_to_graph (checked there). Throws std::invalid_argument
+  // for a violation and for maps over the budget, naming the lights; nothing changes then.
   void set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
                   const std::vector<CasterObject>& objects = {});
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
@@ -165,10 +181,25 @@ class Shadows {
   // mips); their persistent maps come imported with the graph, so any executor can run
   // it. The casters' buffers must stay alive and unchanged until the frame completes.
   // The result is what the host's shading passes declare as reads and bind.
+  // Preconditions (check_frame; std::invalid_argument, nothing declared):
+  //   - camera: as Camera documents;
+  //   - every view with something to cast (draws, segment_count, volume_count) has its
+  //     buffers (not VK_NULL_HANDLE), each with a size that is a whole, non-zero number
+  //     of its elements (CasterVertex, uint32 index, vec4 point, StrandSegment,
+  //     StrandParameters, GpuVolume: the layouts are fixed, there is no stride to set);
+  //   - meshes: each draw's indices [first_index, first_index + index_count) lie in the
+  //     index buffer, index_count is a multiple of 3, vertex_offset is below the vertex
+  //     count, alpha is one of CasterAlpha, alpha_cutoff and alpha_factor are in [0, 1];
+  //   - strands: segments [first_segment, first_segment + segment_count) lie in the
+  //     segment buffer; at least 2 points and 1 strand;
+  //   - volumes: volume_count GpuVolume in the parameter buffer; grids and majorants
+  //     given; the density atlas whole (atlas, atlas_sampler and brick_slots) or absent;
+  //   - the CasterObjects given to set_lights lie within these casters.
   ShadowInputs add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters);
 
   // After the frame's command buffer completed: reads the capture counters and grows
-  // an overflowed capture buffer for the next frame.
+  // an overflowed capture buffer for the next frame. Precondition (the host's to keep,
+  // it cannot be checked here): the frame's work has finished on the GPU.
   std::vector<LightStats> finish_frame();
 
   // Bindings that leave every light unshadowed (for a pass drawn without maps).
@@ -180,6 +211,15 @@ class Shadows {
   // Compiles a host GLSL file (.vert .frag .comp .geom) with those include directories;
   // throws gpu::ShaderCompileError with the file and line of the first error.
   std::vector<uint32_t> compile_glsl(const std::filesystem::path& file) const;
+
+  // The preconditions of set_lights() and add_to_graph() on their own: no device needed,
+  // so a host can validate its data up front (and tests can). Throw std::invalid_argument
+  // naming the function they guard ("avsm::Shadows::set_lights: light 1 'key': ...").
+  // Settings that depend on the device (the maps' budget) are checked by set_lights only.
+  static void check_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
+                           const std::vector<CasterObject>& objects = {});
+  static void check_frame(const Camera& camera, const ShadowCasters& casters,
+                          const std::vector<CasterObject>& objects = {});
 
  private:
   struct Impl;
