@@ -93,6 +93,14 @@ bool parse_on_off(const std::string& flag, const std::string& value) {
   usage_error(flag + " expects on or off, got '" + value + "'");
 }
 
+// `value` through a `*_from_string` function, or a usage error listing what the flag takes.
+template <class FromString>
+auto parse_choice(const std::string& flag, const std::string& value, FromString from_string, const char* expected) {
+  const auto parsed = from_string(value);
+  if (!parsed) usage_error(flag + " expects " + expected + ", got '" + value + "'");
+  return *parsed;
+}
+
 // The whole of `text` as a finite number, or nullopt.
 template <class Number>
 std::optional<Number> parse_number(const std::string& text) {
@@ -145,9 +153,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
   } else if (arg == "--report") {
     options.report = true;
   } else if (arg == "--volume-shading") {
-    const std::string name = value();
-    options.volume_shading.mode = scene::volume_shading_mode_from_string(name);
-    if (!options.volume_shading.mode) usage_error("--volume-shading expects fast, reference or hidden, got '" + name + "'");
+    options.volume_shading.mode =
+        parse_choice(arg, value(), scene::volume_shading_mode_from_string, "fast, reference or hidden");
   } else if (arg == "--volume-resolution-divisor") {
     const uint32_t n = parse_count(arg, value());
     if (n != 1 && n != 2 && n != 4) usage_error("--volume-resolution-divisor expects 1, 2 or 4");
@@ -172,21 +179,13 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
   } else if (arg == "--sort") {
     options.shadow.sort = parse_on_off(arg, value());
   } else if (arg == "--build") {
-    const std::string name = value();
-    options.shadow.build = scene::shadow_build_from_string(name);
-    if (!options.shadow.build) usage_error("--build expects lists or fixed, got '" + name + "'");
+    options.shadow.build = parse_choice(arg, value(), scene::shadow_build_from_string, "lists or fixed");
   } else if (arg == "--fit") {
-    const std::string name = value();
-    options.shadow.fit = scene::shadow_fit_from_string(name);
-    if (!options.shadow.fit) usage_error("--fit expects view or scene, got '" + name + "'");
+    options.shadow.fit = parse_choice(arg, value(), scene::shadow_fit_from_string, "view or scene");
   } else if (arg == "--filter") {
-    const std::string name = value();
-    options.shadow.filter = scene::shadow_filter_from_string(name);
-    if (!options.shadow.filter) usage_error("--filter expects point, bilinear or trilinear, got '" + name + "'");
+    options.shadow.filter = parse_choice(arg, value(), scene::shadow_filter_from_string, "point, bilinear or trilinear");
   } else if (arg == "--kernel") {
-    const std::string name = value();
-    options.shadow.kernel = scene::shadow_kernel_from_string(name);
-    if (!options.shadow.kernel) usage_error("--kernel expects none, box or gaussian, got '" + name + "'");
+    options.shadow.kernel = parse_choice(arg, value(), scene::shadow_kernel_from_string, "none, box or gaussian");
   } else if (arg == "--kernel-radius") {
     options.shadow.kernel_radius = parse_in_range(arg, value(), 1, 4);
   } else if (arg == "--shadow-res") {

@@ -114,7 +114,7 @@ JobRun run_job(const fs::path& sweep_dir, size_t index, const JobRunOptions& opt
   const SweepIndex sweep = read_index(sweep_dir);
   if (index >= sweep.jobs.size())
     throw std::runtime_error(index_file(sweep_dir).string() + ": has " + std::to_string(sweep.jobs.size()) +
-                             " jobs (0 to " + std::to_string(sweep.jobs.size()) + " - 1); there is no job " +
+                             " jobs (index 0 to " + std::to_string(sweep.jobs.size() - 1) + "); there is no job " +
                              std::to_string(index));
   JobRecord job = sweep.jobs[index];
   const std::optional<JobRecord> earlier = read_job_record(sweep_dir, job.id);

@@ -151,6 +151,8 @@ JobRecord job_record_from_json(const json& in) {
   if (const json& code = member(in, "exit_code"); !code.is_null()) job.exit_code = value_of<int>(in, "exit_code");
   job.error = value_of<std::string>(in, "error");
   job.output = value_of<std::string>(in, "output");
+  // A folder inside the sweep's (the runner empties it before the job runs).
+  if (!is_valid_job_id(job.output)) throw std::runtime_error("\"output\": '" + job.output + "' is not a job folder");
   job.wall_s = value_of<double>(in, "wall_s");
   return job;
 }

@@ -111,6 +111,9 @@ TEST(SweepIndex, BadValuesAreNamed) {
   job["settings"]["shadow"]["filter"] = "cubic";
   EXPECT_NE(error_of([&] { job_record_from_json(job); }).find("settings: shadow: \"filter\": unknown value 'cubic'"),
             std::string::npos);
+  job = to_json(sample_job("x"));
+  job["output"] = "..";
+  EXPECT_NE(error_of([&] { job_record_from_json(job); }).find("\"output\": '..' is not a job folder"), std::string::npos);
   job = to_json(sample_job("../x"));
   EXPECT_NE(error_of([&] { job_record_from_json(job); }).find("not a job id"), std::string::npos);
 }
