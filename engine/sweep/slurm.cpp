@@ -17,6 +17,7 @@
 
 #include "capture/files.h"
 #include "capture/json_read.h"
+#include "sweep/runner.h"
 
 extern char** environ;
 
@@ -317,6 +318,38 @@ SlurmSubmission submit_to_slurm(const fs::path& sweep_dir, const fs::path& sweep
                              "', not a job id");
   }
   capture::write_json(slurm_submission_path(sweep_dir), to_json(submission));
+  return submission;
+}
+
+std::optional<SlurmSubmission> prepare_and_submit_to_slurm(const fs::path& manifest, const fs::path& sweep_dir,
+                                                           const fs::path& sweep_binary, const SlurmOptions& options) {
+  if (const std::optional<SlurmSubmission> earlier = read_slurm_submission(sweep_dir)) {
+    for (const auto& [task, state] : slurm_task_states(*earlier)) {
+      if (is_active_slurm_state(state)) {
+        throw std::runtime_error(sweep_dir.string() + ": Slurm job " + earlier->job_id + " still has tasks queued or running (task " +
+                                 std::to_string(task) + " is " + state + "); wait for it (avsm-sweep wait " +
+                                 sweep_dir.string() + ") or cancel it (scancel " + earlier->job_id + ") before submitting again");
+      }
+    }
+    fs::remove(slurm_submission_path(sweep_dir));  // superseded, even if sbatch refuses the new one
+  }
+  const SweepIndex index = prepare_sweep(manifest, sweep_dir);
+  std::vector<size_t> tasks;
+  for (size_t i = 0; i < index.jobs.size(); ++i) {
+    JobRecord job = index.jobs[i];
+    if (job.status == JobStatus::done && !options.force) continue;
+    tasks.push_back(i);
+    // Pending until its task starts: an earlier failure's job.json would otherwise
+    // read as this submission's result. Written before sbatch, so never over a task's own.
+    job.status = JobStatus::pending;
+    job.exit_code.reset();
+    job.error.clear();
+    job.wall_s = 0.0;
+    write_job_record(sweep_dir, job);
+  }
+  if (tasks.empty()) return std::nullopt;
+  const SlurmSubmission submission = submit_to_slurm(fs::absolute(sweep_dir), sweep_binary, tasks, options);
+  collect(sweep_dir);
   return submission;
 }
 

@@ -61,6 +61,16 @@ std::string array_spec(const std::vector<size_t>& tasks);
 SlurmSubmission submit_to_slurm(const std::filesystem::path& sweep_dir, const std::filesystem::path& sweep_binary,
                                 const std::vector<size_t>& tasks, const SlurmOptions& options);
 
+// `avsm-sweep slurm`: prepares DIR from the manifest (prepare_sweep), marks the jobs
+// to run pending (those not done, or all with options.force), and submits them. Refuses while
+// an earlier submission of DIR still has tasks queued or running, so no job runs twice
+// at once. `sweep_binary`: the avsm-sweep the tasks run (absolute). nullopt when every
+// job is done already (nothing submitted).
+std::optional<SlurmSubmission> prepare_and_submit_to_slurm(const std::filesystem::path& manifest,
+                                                           const std::filesystem::path& sweep_dir,
+                                                           const std::filesystem::path& sweep_binary,
+                                                           const SlurmOptions& options);
+
 // For sbatch's error message, the avsm-sweep option or slurm.conf setting that
 // usually fixes it; empty when the message is not one we know.
 std::string sbatch_error_hint(const std::string& message);
