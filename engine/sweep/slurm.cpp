@@ -254,7 +254,7 @@ std::string sbatch_script(const fs::path& sweep_dir, const fs::path& sweep_binar
     << request_line("--gres", options.gres, "gpu:1", "one GPU per task")
     << request_line("--time", options.time, "00:30:00", "the limit for one capture")
     << request_line("--mem", options.mem, "8G", "memory for one capture")
-    << "##SBATCH --cpus-per-task=4             # more CPU threads (CPU rendering with lavapipe)\n";
+    << "##SBATCH --cpus-per-task=4          # more CPU threads (CPU rendering with lavapipe)\n";
   for (const std::string& arg : options.sbatch_args) s << "#SBATCH " << arg << "\n";
   s << "\n"
        "exec " << shell_quoted(sweep_binary.string()) << " task " << shell_quoted(sweep_dir.string())
@@ -371,6 +371,10 @@ SweepIndex collect_with_slurm(const fs::path& sweep_dir) {
   SweepIndex index = collect(sweep_dir);
   const std::optional<SlurmSubmission> submission = read_slurm_submission(sweep_dir);
   if (!submission) return index;
+  const bool unfinished = std::any_of(submission->tasks.begin(), submission->tasks.end(), [&](size_t task) {
+    return task >= index.jobs.size() || !is_finished(index.jobs[task].status);
+  });
+  if (!unfinished) return index;  // every job has its result: no need to ask Slurm
   const std::map<size_t, std::string> states = slurm_task_states(*submission);
   bool changed = false;
   for (size_t task : submission->tasks) {
