@@ -12,6 +12,7 @@ PACKAGES=(
   clang libclang-rt-14-dev
   chromium
   libimgui-dev xvfb xauth
+  slurm-wlm munge  # avsm-sweep slurm; the tests start a local single-node cluster
 )
 
 missing=()

@@ -1,6 +1,7 @@
 // avsm-sweep: captures over scenes x settings, from a manifest, as a folder of capture
 // folders with one index (README, "Running captures on a farm").
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -11,6 +12,7 @@
 
 #include "scene/load_error.h"
 #include "sweep/runner.h"
+#include "sweep/slurm.h"
 #include "sweep/sweep_index.h"
 
 namespace {
@@ -27,6 +29,12 @@ const char* kUsage =
     "  avsm-sweep task DIR --index I [--force] run job I (0-based, manifest order) of a\n"
     "                   prepared sweep (what a Slurm array task runs). Exit 1 when it failed\n"
     "  avsm-sweep collect DIR                  rebuild DIR/index.json from DIR/*/job.json\n"
+    "  avsm-sweep slurm MANIFEST --out DIR [--partition P] [--time T] [--mem M] [--gres G]\n"
+    "                   [--sbatch-arg A]... [--force]\n"
+    "                   prepare, then submit the jobs not done as one Slurm job array\n"
+    "                   (DIR/slurm/sweep.sbatch); DIR must be on storage every node shares\n"
+    "  avsm-sweep wait DIR [--timeout S]       until every submitted Slurm task finished (or S\n"
+    "                   seconds), then status\n"
     "  avsm-sweep status DIR                   a table of the jobs; exit 0 all done, 1 some\n"
     "                   failed, 3 some not finished\n"
     "Each job runs avsm-capture (the one next to avsm-sweep, or $AVSM_CAPTURE) into DIR/<job id>/.\n"
@@ -45,10 +53,10 @@ class Arguments {
     for (size_t i = 0; i < args.size(); ++i) {
       const std::string& arg = args[i];
       if (contains(switches, arg)) {
-        values_[arg] = "";
+        values_[arg].push_back("");
       } else if (contains(flags_with_values, arg)) {
         if (i + 1 >= args.size()) throw UsageError(arg + " needs a value");
-        values_[arg] = args[++i];
+        values_[arg].push_back(args[++i]);
       } else if (arg.rfind("--", 0) == 0 || !positional_.empty()) {
         throw UsageError("unexpected argument '" + arg + "'");
       } else {
@@ -61,12 +69,15 @@ class Arguments {
   bool has(const std::string& flag) const { return values_.count(flag) != 0; }
   std::string required(const std::string& flag) const {
     if (!has(flag)) throw UsageError(flag + " is required");
-    return values_.at(flag);
+    return values_.at(flag).back();
   }
+  // The flag's value, empty when not given; `all`: every value of a repeatable flag.
+  std::string value(const std::string& flag) const { return has(flag) ? values_.at(flag).back() : ""; }
+  std::vector<std::string> all(const std::string& flag) const { return has(flag) ? values_.at(flag) : std::vector<std::string>{}; }
   // A whole number >= `lo`, or `fallback` when the flag is not given.
   unsigned number(const std::string& flag, unsigned fallback, unsigned lo) const {
     if (!has(flag)) return fallback;
-    const std::string& text = values_.at(flag);
+    const std::string& text = values_.at(flag).back();
     char* end = nullptr;
     const unsigned long n = std::strtoul(text.c_str(), &end, 10);
     if (text.empty() || *end != '\0' || text[0] == '-' || n < lo || n > 100000)
@@ -81,7 +92,7 @@ class Arguments {
     return false;
   }
   std::string positional_;
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> values_;  // in command-line order
 };
 
 void print_job(const JobRun& run) {
@@ -144,7 +155,7 @@ int collect_command(const std::vector<std::string>& args) {
 
 int status(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {});
-  const SweepIndex index = collect(a.positional());
+  const SweepIndex index = collect_with_slurm(a.positional());  // collect() when DIR was not submitted to Slurm
   size_t id_width = 2;
   for (const JobRecord& job : index.jobs) id_width = std::max(id_width, job.id.size());
   std::printf("%-*s  %-7s  %4s  %8s  %s\n", int(id_width), "id", "status", "exit", "wall s", "error");
@@ -160,11 +171,43 @@ int status(const std::vector<std::string>& args) {
   return unfinished ? 3 : failed ? 1 : 0;
 }
 
+// `slurm`: prepare DIR and submit its jobs not done yet as one Slurm job array.
+int slurm(const std::vector<std::string>& args) {
+  const Arguments a(args, {"--out", "--partition", "--time", "--mem", "--gres", "--sbatch-arg"}, {"--force"});
+  const fs::path dir = fs::absolute(a.required("--out"));
+  SlurmOptions options;
+  options.partition = a.value("--partition");
+  options.time = a.value("--time");
+  options.mem = a.value("--mem");
+  options.gres = a.value("--gres");
+  options.sbatch_args = a.all("--sbatch-arg");
+  options.force = a.has("--force");
+  find_capture_executable();  // the tasks run the avsm-capture next to this avsm-sweep: fail here, not on the nodes
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const std::optional<SlurmSubmission> submission = prepare_and_submit_to_slurm(a.positional(), dir, self, options);
+  if (!submission) {
+    std::printf("every job of %s is done already; nothing submitted (--force runs them again)\n", dir.c_str());
+    return 0;
+  }
+  std::printf("Slurm job %s: %zu tasks (%s); follow with: avsm-sweep wait %s\n", submission->job_id.c_str(),
+              submission->tasks.size(), submission->script.c_str(), dir.c_str());
+  return 0;
+}
+
+// `wait`: until every submitted Slurm task has finished (or --timeout), then status.
+int wait_command(const std::vector<std::string>& args) {
+  const Arguments a(args, {"--timeout"}, {});
+  wait_for_slurm(a.positional(), std::chrono::seconds(a.number("--timeout", 24 * 3600, 1)));
+  return status({a.positional()});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands = {
-      {"run", run}, {"prepare", prepare}, {"task", task}, {"collect", collect_command}, {"status", status}};
+      {"run", run}, {"prepare", prepare}, {"task", task}, {"collect", collect_command}, {"status", status},
+      {"slurm", slurm},    {"wait", wait_command}};
   const std::vector<std::string> args(argv + std::min(argc, 2), argv + argc);
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "--help" || command == "-h") {

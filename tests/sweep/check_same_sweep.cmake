@@ -1,0 +1,48 @@
+cmake_minimum_required(VERSION 3.20)
+# Checks two sweep folders of the same manifest (e.g. one run through Slurm, one run
+# locally): every job of A finished, each done job has its frame.png, and A/index.json
+# equals B/index.json apart from wall_s, the only timing in it (so the same jobs are
+# done and failed, with the same exit codes and errors).
+#   cmake -DA=SWEEP_DIR -DB=SWEEP_DIR -P check_same_sweep.cmake
+foreach(dir A B)
+  if(NOT EXISTS "${${dir}}/index.json")
+    message(FATAL_ERROR "${${dir}}/index.json: missing")
+  endif()
+  file(READ "${${dir}}/index.json" index_${dir})
+endforeach()
+
+string(JSON job_count LENGTH "${index_A}" jobs)
+if(job_count EQUAL 0)
+  message(FATAL_ERROR "${A}/index.json lists no jobs")
+endif()
+math(EXPR last "${job_count} - 1")
+set(done_count 0)
+foreach(i RANGE ${last})
+  string(JSON id GET "${index_A}" jobs ${i} id)
+  string(JSON status GET "${index_A}" jobs ${i} status)
+  string(JSON output GET "${index_A}" jobs ${i} output)
+  if(status STREQUAL "done")
+    math(EXPR done_count "${done_count} + 1")
+    if(NOT EXISTS "${A}/${output}/frame.png")
+      message(FATAL_ERROR "${A}: job '${id}' is done but ${A}/${output}/frame.png is missing")
+    endif()
+  elseif(NOT status STREQUAL "failed")
+    message(FATAL_ERROR "${A}: job '${id}' is ${status}, not finished")
+  endif()
+endforeach()
+
+# wall_s removed from every job of both, then compared as JSON (key order and spacing aside).
+foreach(dir A B)
+  string(JSON count LENGTH "${index_${dir}}" jobs)
+  if(NOT count EQUAL job_count)
+    message(FATAL_ERROR "${A} has ${job_count} jobs, ${B} has ${count}")
+  endif()
+  foreach(i RANGE ${last})
+    string(JSON index_${dir} REMOVE "${index_${dir}}" jobs ${i} wall_s)
+  endforeach()
+endforeach()
+string(JSON same EQUAL "${index_A}" "${index_B}")
+if(NOT same)
+  message(FATAL_ERROR "${A}/index.json and ${B}/index.json differ (wall_s aside):\n${index_A}\n---\n${index_B}")
+endif()
+message(STATUS "${done_count} of ${job_count} jobs done; index.json the same in ${A} and ${B} apart from wall_s")
