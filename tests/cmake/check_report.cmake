@@ -3,39 +3,12 @@
 # PNGs, one bar (<rect>) per pass of timings.json in the timing chart, one light-map
 # image per light*_transmittance.png in DIR and one memory row per light of memory.json;
 # the shadow-quality table and images when quality.json is there, and the texel curves.
-# Chromium's stderr (dbus and similar noise) is ignored unless it fails to run.
-find_program(CHROMIUM NAMES chromium chromium-browser)
-if(NOT CHROMIUM)
-  message(FATAL_ERROR "chromium not found (neither chromium nor chromium-browser is on PATH): "
-                      "install it with tools/install-deps.sh (Debian package 'chromium')")
-endif()
 set(report "${DIR}/report.html")
 if(NOT EXISTS "${report}")
   message(FATAL_ERROR "missing ${report}: did avsm-capture --report run?")
 endif()
-
-# A profile folder of its own: Chromium writes one even headless.
-if(DEFINED ENV{HOME})
-  set(profile "$ENV{HOME}/profile")
-else()
-  set(profile "${DIR}/chromium_profile")
-endif()
-file(MAKE_DIRECTORY "${profile}")
-string(REPLACE " " "%20" url "file://${report}")
-execute_process(COMMAND "${CHROMIUM}" --headless --no-sandbox --disable-gpu --no-first-run
-                        --user-data-dir=${profile} --dump-dom "${url}"
-                TIMEOUT 60 RESULT_VARIABLE result OUTPUT_VARIABLE dom ERROR_VARIABLE errors)
-if(NOT result EQUAL 0)
-  string(LENGTH "${errors}" errors_length)
-  if(errors_length GREATER 4000)
-    math(EXPR tail_start "${errors_length} - 4000")
-    string(SUBSTRING "${errors}" ${tail_start} -1 errors)
-  endif()
-  message(FATAL_ERROR "${CHROMIUM} --dump-dom ${url} failed (${result}):\n${errors}")
-endif()
-if(NOT dom MATCHES "</html>")
-  message(FATAL_ERROR "${CHROMIUM} printed no DOM for ${url}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/chromium_dom.cmake")
+chromium_dump_dom("${report}" "${DIR}" dom)
 
 set(missing "")
 foreach(id IN ITEMS frame-image timing-chart frame-summary memory-table light-images graph-passes graph-resources
