@@ -11,13 +11,8 @@ include("${CMAKE_CURRENT_LIST_DIR}/chromium_dom.cmake")
 chromium_dump_dom("${report}" "${DIR}" dom)
 
 set(missing "")
-foreach(id IN ITEMS frame-image timing-chart frame-summary memory-table light-images graph-passes graph-resources
+require_element_ids("${dom}" frame-image timing-chart frame-summary memory-table light-images graph-passes graph-resources
                     graph-dot)
-  string(FIND "${dom}" "id=\"${id}\"" at)
-  if(at EQUAL -1)
-    list(APPEND missing "an element with id=\"${id}\"")
-  endif()
-endforeach()
 
 if(NOT dom MATCHES "<img[^>]*src=\"data:image/png;base64,")
   list(APPEND missing "an <img> with a data:image/png;base64 source")
@@ -99,10 +94,7 @@ if(curve_file_count GREATER 0 AND NOT dom MATCHES "class=\"texel-curve\"[^>]*src
   list(APPEND missing "the texel curves embedded as data:image/svg+xml;base64")
 endif()
 
-if(missing)
-  list(JOIN missing "\n  " missing_text)
-  message(FATAL_ERROR "${report} as rendered by Chromium lacks:\n  ${missing_text}")
-endif()
+fail_if_missing("${report}")
 string(LENGTH "${dom}" dom_length)
 message(STATUS "report.html OK: ${pass_count} timing bars, ${light_image_count} light images, ${light_count} lights, "
                "${dom_length} characters of DOM")

@@ -32,3 +32,23 @@ function(chromium_dump_dom html profile_parent out)
   endif()
   set(${out} "${dom}" PARENT_SCOPE)
 endfunction()
+
+# Appends to the caller's list `missing` an entry for each of the ids (after DOM) that
+# no element of DOM has.
+function(require_element_ids dom)
+  foreach(id IN LISTS ARGN)
+    string(FIND "${dom}" "id=\"${id}\"" at)
+    if(at EQUAL -1)
+      list(APPEND missing "an element with id=\"${id}\"")
+    endif()
+  endforeach()
+  set(missing "${missing}" PARENT_SCOPE)
+endfunction()
+
+# Fails listing what the caller's `missing` holds, if anything.
+function(fail_if_missing report)
+  if(missing)
+    list(JOIN missing "\n  " missing_text)
+    message(FATAL_ERROR "${report} as rendered by Chromium lacks:\n  ${missing_text}")
+  endif()
+endfunction()
