@@ -31,10 +31,10 @@ inline constexpr const char* kNoValue = "\u2013";
 
 // printf's `pattern` with one double; kNoValue when it is not finite.
 std::string format_value(const char* pattern, double value);
-std::string ms_text(double value);      // "1.250 ms"
+std::string ms_text(double value);             // "1.250 ms"
 std::string bytes_short_text(uint64_t bytes);  // "2.00 MiB"
 std::string bytes_text(uint64_t bytes);        // "2.00 MiB (2097152 B)"
-std::string svg_number(double value);   // coordinates: "%.2f"
+std::string svg_number(double value);          // coordinates: "%.2f"
 
 // A round step (1, 2 or 5 times a power of ten) giving about `ticks` ticks up to `max`.
 double nice_step(double max, int ticks);

@@ -84,13 +84,13 @@ JobResult read_job(const fs::path& sweep_dir, const JobRecord& job) {
 void compare_to_reference(const fs::path& sweep_dir, JobResult& result, const std::vector<JobResult>& results) {
   const std::string& reference_id = result.job.settings.reference_job;
   if (reference_id.empty() || !result.frame) return;
-  const auto reference = std::find_if(results.begin(), results.end(),
-                                      [&](const JobResult& r) { return r.job.id == reference_id; });
+  const auto reference =
+      std::find_if(results.begin(), results.end(), [&](const JobResult& r) { return r.job.id == reference_id; });
   if (reference == results.end()) {
     result.image_error_problem = "reference job '" + reference_id + "' is not in the sweep";
   } else if (!reference->frame) {
-    result.image_error_problem = "reference job '" + reference_id + "' has no capture (" +
-                                 std::string(to_string(reference->job.status)) + ")";
+    result.image_error_problem =
+        "reference job '" + reference_id + "' has no capture (" + std::string(to_string(reference->job.status)) + ")";
   } else {
     try {
       result.image_error = capture::exr_difference(sweep_dir / result.job.output / "frame.exr",
@@ -197,8 +197,8 @@ void write_summary(std::ostringstream& html, const fs::path& sweep_dir, const Sw
   size_t counts[4] = {};
   for (const JobResult& r : results) ++counts[size_t(r.job.status)];
   html << "<h1>avsm-sweep report</h1>\n<p class=\"note\" id=\"sweep-summary\">" << escape_markup(sweep_dir.string())
-       << " \u2013 manifest " << escape_markup(index.manifest) << "<br>" << results.size() << " jobs: "
-       << counts[size_t(JobStatus::done)] << " done, " << counts[size_t(JobStatus::failed)] << " failed, "
+       << " \u2013 manifest " << escape_markup(index.manifest) << "<br>" << results.size()
+       << " jobs: " << counts[size_t(JobStatus::done)] << " done, " << counts[size_t(JobStatus::failed)] << " failed, "
        << counts[size_t(JobStatus::pending)] + counts[size_t(JobStatus::running)] << " not finished.</p>\n";
 }
 
@@ -258,6 +258,28 @@ void write_jobs_table(std::ostringstream& html, const std::vector<JobResult>& re
   html << "</tbody>\n</table></div>\n</section>\n";
 }
 
+// The job's frame.png at `scale` CSS pixels per pixel, or a box of the frame's size
+// saying why there is none.
+void write_frame_figure(std::ostringstream& html, const fs::path& sweep_dir, const JobResult& r, double scale) {
+  std::string missing = r.frame ? "" : r.problem.empty() ? std::string(to_string(r.job.status)) : "unreadable";
+  html << "<figure>";
+  if (r.frame) {
+    try {
+      const capture::PngImage png = capture::embed_png(sweep_dir / r.job.output / "frame.png");
+      html << "<img class=\"frame-image\" data-job=\"" << escape_markup(r.job.id) << "\" alt=\""
+           << escape_markup(r.job.id) << "\" style=\"width:" << svg_number(png.width * scale)
+           << "px;height:" << svg_number(png.height * scale) << "px\" src=\"" << png.data_uri << "\">";
+    } catch (const std::exception& e) {
+      missing = e.what();
+    }
+  }
+  if (!missing.empty())
+    html << "<div class=\"missing-image\" data-job=\"" << escape_markup(r.job.id)
+         << "\" style=\"width:" << svg_number(r.job.settings.width * scale)
+         << "px;height:" << svg_number(r.job.settings.height * scale) << "px\">" << escape_markup(missing) << "</div>";
+  html << "<figcaption>" << escape_markup(r.job.id) << "</figcaption></figure>";
+}
+
 // A row per scene, a column per technique label (first appearances in manifest order),
 // every frame at one scale: the widest frame as wide as a column can be for the columns
 // to fit the page (160 to 320 CSS pixels; more columns scroll).
@@ -271,35 +293,18 @@ void write_images(std::ostringstream& html, const fs::path& sweep_dir, const std
   }
   const double column_width = std::clamp(1100.0 / double(std::max<size_t>(techniques.size(), 1)) - 16, 160.0, 320.0);
   const double scale = widest ? column_width / widest : 1.0;
-  html << "<section>\n<h2>Frames</h2>\n<p class=\"note\">frame.png of every job at one scale (" << format_value("%.3g", scale)
-       << " CSS pixels per pixel): a row per scene, a column per technique.</p>\n<div class=\"wide\"><table id=\"image-grid\">\n<tr><th></th>";
+  html << "<section>\n<h2>Frames</h2>\n<p class=\"note\">frame.png of every job at one scale ("
+       << format_value("%.3g", scale) << " CSS pixels per pixel): a row per scene, a column per technique.</p>\n"
+       << "<div class=\"wide\"><table id=\"image-grid\">\n<tr><th></th>";
   for (const std::string& technique : techniques) html << "<th>" << escape_markup(technique) << "</th>";
   html << "</tr>\n";
   for (const std::string& scene : scenes) {
     html << "<tr><th>" << escape_markup(scene) << "</th>";
     for (const std::string& technique : techniques) {
       html << "<td>";
-      for (const JobResult& r : results) {
-        if (scene_name(r.job.settings) != scene || r.technique != technique) continue;
-        const std::string width = svg_number(r.job.settings.width * scale),
-                          height = svg_number(r.job.settings.height * scale);
-        html << "<figure>";
-        std::string missing = r.frame ? "" : std::string(to_string(r.job.status));
-        if (r.frame) {
-          try {
-            const capture::PngImage png = capture::embed_png(sweep_dir / r.job.output / "frame.png");
-            html << "<img class=\"frame-image\" data-job=\"" << escape_markup(r.job.id) << "\" alt=\""
-                 << escape_markup(r.job.id) << "\" style=\"width:" << svg_number(png.width * scale)
-                 << "px;height:" << svg_number(png.height * scale) << "px\" src=\"" << png.data_uri << "\">";
-          } catch (const std::exception& e) {
-            missing = e.what();
-          }
-        }
-        if (!missing.empty())
-          html << "<div class=\"missing-image\" data-job=\"" << escape_markup(r.job.id) << "\" style=\"width:" << width
-               << "px;height:" << height << "px\">" << escape_markup(missing) << "</div>";
-        html << "<figcaption>" << escape_markup(r.job.id) << "</figcaption></figure>";
-      }
+      for (const JobResult& r : results)
+        if (scene_name(r.job.settings) == scene && r.technique == technique)
+          write_frame_figure(html, sweep_dir, r, scale);
       html << "</td>";
     }
     html << "</tr>\n";
@@ -336,15 +341,16 @@ struct LabelPlace {
 // (the first of equals); the label's box is then taken.
 LabelPlace place_label(double x, double y, const std::string& label, const Box& area, std::vector<Box>& taken) {
   const double w = 7.0 * double(label.size()), h = 12;
-  const LabelPlace places[] = {{x + 7, y - 6, "start"},  {x + 7, y + 15, "start"}, {x - 7, y - 6, "end"},
-                               {x - 7, y + 15, "end"},   {x + 7, y - 20, "start"}, {x - 7, y - 20, "end"}};
+  const LabelPlace places[] = {{x + 7, y - 6, "start"}, {x + 7, y + 15, "start"}, {x - 7, y - 6, "end"},
+                               {x - 7, y + 15, "end"},  {x + 7, y - 20, "start"}, {x - 7, y - 20, "end"}};
   auto box_of = [&](const LabelPlace& place) {
     return Box{place.anchor[0] == 's' ? place.x : place.x - w, place.y - h + 2, w, h};
   };
   auto cost = [&](const Box& box) {
-    const bool inside = box.x >= area.x && box.y >= area.y && box.x + box.w <= area.x + area.w &&
-                        box.y + box.h <= area.y + area.h;
-    return (inside ? 0 : 1000) + std::count_if(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); });
+    const bool inside =
+        box.x >= area.x && box.y >= area.y && box.x + box.w <= area.x + area.w && box.y + box.h <= area.y + area.h;
+    return (inside ? 0 : 1000) +
+           std::count_if(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); });
   };
   const LabelPlace* best = &places[0];
   for (const LabelPlace& place : places)
@@ -368,15 +374,14 @@ void write_scatter(std::ostringstream& html, const std::string& id, const std::s
   auto y_of = [&](double y) { return top + plot_h - y / y_axis * plot_h; };
 
   html << "<svg id=\"" << id << "\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << svg_number(width)
-       << "\" height=\"" << svg_number(height) << "\" viewBox=\"0 0 " << svg_number(width) << " "
-       << svg_number(height) << "\" role=\"img\" aria-label=\"mean transmittance error against " << escape_markup(x_label)
-       << "\">\n";
+       << "\" height=\"" << svg_number(height) << "\" viewBox=\"0 0 " << svg_number(width) << " " << svg_number(height)
+       << "\" role=\"img\" aria-label=\"mean transmittance error against " << escape_markup(x_label) << "\">\n";
   const double epsilon = 1e-6;
   for (int k = 0; double(k) * x_step <= x_axis * (1 + epsilon); ++k) {
     const double x = x_of(double(k) * x_step);
-    html << "<line x1=\"" << svg_number(x) << "\" y1=\"" << svg_number(top) << "\" x2=\"" << svg_number(x)
-         << "\" y2=\"" << svg_number(top + plot_h) << "\" stroke=\"#e3e3e3\"/><text x=\"" << svg_number(x)
-         << "\" y=\"" << svg_number(top + plot_h + 16) << "\" text-anchor=\"middle\" fill=\"#666\">"
+    html << "<line x1=\"" << svg_number(x) << "\" y1=\"" << svg_number(top) << "\" x2=\"" << svg_number(x) << "\" y2=\""
+         << svg_number(top + plot_h) << "\" stroke=\"#e3e3e3\"/><text x=\"" << svg_number(x) << "\" y=\""
+         << svg_number(top + plot_h + 16) << "\" text-anchor=\"middle\" fill=\"#666\">"
          << format_value("%g", double(k) * x_step) << "</text>\n";
   }
   for (int k = 0; double(k) * y_step <= y_axis * (1 + epsilon); ++k) {
@@ -423,7 +428,8 @@ void write_tradeoff(std::ostringstream& html, const std::vector<JobResult>& resu
   std::vector<Point> shadow_points, frame_points;
   for (const JobResult& r : results) {
     if (!r.frame || !r.shadow_error || !r.shadow_error->receivers) {
-      unplotted.push_back(r.job.id + (r.frame ? " (no quality.json)" : " (" + std::string(to_string(r.job.status)) + ")"));
+      unplotted.push_back(r.job.id +
+                          (r.frame ? " (no quality.json)" : " (" + std::string(to_string(r.job.status)) + ")"));
       continue;
     }
     const std::string scene = scene_name(r.job.settings);
@@ -463,7 +469,8 @@ void write_sweep_report(const fs::path& sweep_dir, const fs::path& html_path) {
   write_jobs_table(html, results);
   write_images(html, sweep_dir, results);
   write_tradeoff(html, results);
-  html << "<footer>\n<p class=\"note\">Written by avsm-sweep report from " << escape_markup(index_file(sweep_dir).string())
+  html << "<footer>\n<p class=\"note\">Written by avsm-sweep report from "
+       << escape_markup(index_file(sweep_dir).string())
        << " and the jobs' capture folders.</p>\n</footer>\n</body>\n</html>\n";
   capture::write_text(html_path, html.str());
 }

@@ -1,12 +1,13 @@
 // Frame against frame (capture/image_difference.h): mean absolute error and PSNR of the
 // linear RGB, through frame.exr files as the sweep report reads them.
+#include "capture/image_difference.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
-#include "capture/image_difference.h"
 #include "io/image_io.h"
 
 namespace avsm::capture {

@@ -1,12 +1,12 @@
 // The passes' grouping into the stages of a shadowed frame (capture/pass_stages.h), by
 // the names the passes give themselves.
+#include "capture/pass_stages.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "capture/pass_stages.h"
 
 namespace avsm::capture {
 namespace {
@@ -60,9 +60,14 @@ TEST(PassStages, StageTimesSumTheirPassesMedians) {
     p.gpu_ms = {median / 2, median, median * 2};
     return p;
   };
-  timings.passes = {pass("light 0 clear lists", 0.5), pass("light 0 capture opaque", 1.0), pass("light 0 sort lists", 2.0),
-                    pass("light 0 avsm resolve", 4.0), pass("light 0 avsm mips level 1", 8.0), pass("opaque", 16.0),
-                    pass("hair", 32.0), pass("tonemap", 64.0)};
+  timings.passes = {pass("light 0 clear lists", 0.5),
+                    pass("light 0 capture opaque", 1.0),
+                    pass("light 0 sort lists", 2.0),
+                    pass("light 0 avsm resolve", 4.0),
+                    pass("light 0 avsm mips level 1", 8.0),
+                    pass("opaque", 16.0),
+                    pass("hair", 32.0),
+                    pass("tonemap", 64.0)};
   const StageTimes stages = stage_gpu_ms(timings);
   EXPECT_DOUBLE_EQ(stages[size_t(PassStage::shadow_capture)], 1.5);
   EXPECT_DOUBLE_EQ(stages[size_t(PassStage::sort)], 2.0);

@@ -2,6 +2,8 @@
 // here from typed reports: per-stage times, errors against uncompressed and against the
 // reference job's frame, failed and unreadable jobs kept with their reasons; and the
 // page shows them. CPU only (report.html in Chromium: tests/cmake/check_sweep_report.cmake).
+#include "sweep/sweep_report.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +14,6 @@
 
 #include "capture/files.h"
 #include "io/image_io.h"
-#include "sweep/sweep_report.h"
 
 namespace avsm::sweep {
 namespace {
@@ -23,7 +24,9 @@ capture::TimingReport timings() {
   t.width = 4;
   t.height = 2;
   for (const auto& [name, ms] : {std::pair<const char*, double>{"light 0 capture opaque", 1.0},
-                                 {"light 0 sort lists", 2.0}, {"light 0 avsm resolve", 4.0}, {"opaque", 8.0},
+                                 {"light 0 sort lists", 2.0},
+                                 {"light 0 avsm resolve", 4.0},
+                                 {"opaque", 8.0},
                                  {"shadow quality", 16.0}}) {
     capture::PassTiming pass;
     pass.name = name;
