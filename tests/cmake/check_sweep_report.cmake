@@ -1,7 +1,20 @@
-# Opens DIR/report.html (avsm-sweep report DIR) in headless Chromium, dumps the DOM it
-# built and checks it against DIR/index.json: the jobs table with a row per job, a frame
-# (embedded PNG) per done job, a point per job with quality.json in each error-against-
-# cost scatter, and every failed job's error in its row.
+# With SWEEP (the avsm-sweep executable) and MANIFEST: runs the sweep into DIR (2 jobs at
+# once, --force; some jobs may fail on purpose) and `avsm-sweep report DIR` first.
+# Then opens DIR/report.html in headless Chromium, dumps the DOM it built and checks it
+# against DIR/index.json: the jobs table with a row per job, a frame (embedded PNG) per
+# done job, a point per job with quality.json in each error-against-cost scatter, and
+# every failed job's error in its row.
+if(DEFINED SWEEP AND DEFINED MANIFEST)
+  execute_process(COMMAND "${SWEEP}" run "${MANIFEST}" --out "${DIR}" --jobs 2 --force RESULT_VARIABLE status
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0 AND NOT status EQUAL 1)  # 1: a job failed
+    message(FATAL_ERROR "avsm-sweep run ${MANIFEST} exited ${status}\n${out}${err}")
+  endif()
+  execute_process(COMMAND "${SWEEP}" report "${DIR}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "avsm-sweep report ${DIR} exited ${status}\n${out}${err}")
+  endif()
+endif()
 set(report "${DIR}/report.html")
 if(NOT EXISTS "${report}")
   message(FATAL_ERROR "missing ${report}: did avsm-sweep report run?")
