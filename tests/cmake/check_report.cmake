@@ -34,33 +34,20 @@ else()
   else()
     string(SUBSTRING "${chart}" 0 ${chart_end} chart)
   endif()
-  string(REGEX MATCHALL "<rect[ />]" bars "${chart}")
-  list(LENGTH bars bar_count)
-  if(NOT bar_count EQUAL pass_count)
-    list(APPEND missing "one <rect> per pass in the timing chart (timings.json lists ${pass_count} passes, "
-                        "the chart has ${bar_count})")
-  endif()
+  require_count("${chart}" "<rect[ />]" ${pass_count} "one <rect> per pass of timings.json in the timing chart" bar_count)
 endif()
 
 # Every light*_transmittance.png in the folder, as an <img class="light-map">.
 file(GLOB light_files "${DIR}/light*_transmittance.png")
 list(LENGTH light_files light_file_count)
-string(REGEX MATCHALL "<img[^>]*class=\"light-map\"" light_images "${dom}")
-list(LENGTH light_images light_image_count)
-if(NOT light_image_count EQUAL light_file_count)
-  list(APPEND missing "one <img class=\"light-map\"> per light*_transmittance.png (${light_file_count} files, "
-                      "${light_image_count} images)")
-endif()
+require_count("${dom}" "<img[^>]*class=\"light-map\"" ${light_file_count}
+              "one <img class=\"light-map\"> per light*_transmittance.png" light_image_count)
 
 # The memory table: a row per light of memory.json.
 file(READ "${DIR}/memory.json" memory)
 string(JSON light_count LENGTH "${memory}" lights)
-string(REGEX MATCHALL "<tr class=\"light\">" light_rows "${dom}")
-list(LENGTH light_rows light_row_count)
-if(NOT light_row_count EQUAL light_count)
-  list(APPEND missing "one memory-table row per light (memory.json lists ${light_count}, the table has "
-                      "${light_row_count})")
-endif()
+require_count("${dom}" "<tr class=\"light\">" ${light_count} "one memory-table row per light of memory.json"
+              light_row_count)
 
 # With --compare-to uncompressed: the quality table, one error image per light of
 # quality.json; with --plot-texel: one <img class="texel-curve"> per curve_*.svg.
@@ -71,25 +58,16 @@ if(EXISTS "${DIR}/quality.json")
   if(at EQUAL -1)
     list(APPEND missing "an element with id=\"quality-table\" (quality.json is in the folder)")
   endif()
-  # (Patterns without ';': MATCHALL returns a list.)
-  string(REGEX MATCHALL "<img[^>;]*class=\"error-image\"" error_images "${dom}")
-  list(LENGTH error_images error_image_count)
-  if(NOT error_image_count EQUAL quality_lights)
-    list(APPEND missing "one <img class=\"error-image\"> per light of quality.json (${quality_lights} lights, "
-                        "${error_image_count} images)")
-  endif()
+  require_count("${dom}" "<img[^>;]*class=\"error-image\"" ${quality_lights}
+                "one <img class=\"error-image\"> per light of quality.json" error_image_count)
   if(quality_lights GREATER 0 AND NOT dom MATCHES "class=\"error-image\"[^>]*src=\"data:image/png;base64,")
     list(APPEND missing "the error images embedded as data:image/png;base64")
   endif()
 endif()
 file(GLOB curve_files "${DIR}/curve_*.svg")
 list(LENGTH curve_files curve_file_count)
-string(REGEX MATCHALL "<img[^>;]*class=\"texel-curve\"" curve_images "${dom}")
-list(LENGTH curve_images curve_image_count)
-if(NOT curve_image_count EQUAL curve_file_count)
-  list(APPEND missing "one <img class=\"texel-curve\"> per curve_*.svg (${curve_file_count} files, "
-                      "${curve_image_count} images)")
-endif()
+require_count("${dom}" "<img[^>;]*class=\"texel-curve\"" ${curve_file_count}
+              "one <img class=\"texel-curve\"> per curve_*.svg" curve_image_count)
 if(curve_file_count GREATER 0 AND NOT dom MATCHES "class=\"texel-curve\"[^>]*src=\"data:image/svg\\+xml;base64,")
   list(APPEND missing "the texel curves embedded as data:image/svg+xml;base64")
 endif()

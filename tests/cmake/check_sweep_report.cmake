@@ -99,18 +99,10 @@ endforeach()
 
 # No more than that: a point per job with quality.json, an image per done job.
 foreach(plot IN ITEMS shadow_plot frame_plot)
-  string(REGEX MATCHALL "<circle class=\"point\"" points "${${plot}}")
-  list(LENGTH points point_count)
-  if(NOT point_count EQUAL with_quality)
-    list(APPEND missing "one point per job with quality.json in the ${plot} scatter (${with_quality} jobs, "
-                        "${point_count} points)")
-  endif()
+  require_count("${${plot}}" "<circle class=\"point\"" ${with_quality}
+                "one point per job with quality.json in the ${plot} scatter" point_count)
 endforeach()
-string(REGEX MATCHALL "<img class=\"frame-image\"" frames "${images}")
-list(LENGTH frames frame_count)
-if(NOT frame_count EQUAL done_count)
-  list(APPEND missing "one frame image per done job (${done_count} done, ${frame_count} images)")
-endif()
+require_count("${images}" "<img class=\"frame-image\"" ${done_count} "one frame image per done job" frame_count)
 
 fail_if_missing("${report}")
 string(LENGTH "${dom}" dom_length)

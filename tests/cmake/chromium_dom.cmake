@@ -52,3 +52,15 @@ function(fail_if_missing report)
     message(FATAL_ERROR "${report} as rendered by Chromium lacks:\n  ${missing_text}")
   endif()
 endfunction()
+
+# Sets COUNT_VAR to how often PATTERN (no ';': MATCHALL returns a list) matches TEXT and
+# appends WHAT to the caller's `missing`, with both counts, unless that is EXPECTED.
+function(require_count text pattern expected what count_var)
+  string(REGEX MATCHALL "${pattern}" matches "${text}")
+  list(LENGTH matches count)
+  if(NOT count EQUAL expected)
+    list(APPEND missing "${what} (expected ${expected}, found ${count})")
+  endif()
+  set(missing "${missing}" PARENT_SCOPE)
+  set(${count_var} ${count} PARENT_SCOPE)
+endfunction()
