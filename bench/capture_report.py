@@ -25,13 +25,15 @@ class Spread:  # of one figure over the measured frames
 @dataclass
 class PassTiming:
     name: str
+    stage: str  # the engine's grouping of passes (engine/capture/pass_stages.h): "shadow capture", "sort", ...
     queue: str
     gpu_ms: Spread
     cpu_record_ms: Spread
 
     @staticmethod
     def from_json(j):
-        return PassTiming(j["name"], j["queue"], Spread.from_json(j["gpu_ms"]), Spread.from_json(j["cpu_record_ms"]))
+        return PassTiming(j["name"], j["stage"], j["queue"], Spread.from_json(j["gpu_ms"]),
+                          Spread.from_json(j["cpu_record_ms"]))
 
 
 @dataclass

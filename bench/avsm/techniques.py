@@ -8,14 +8,14 @@ casters, no lists), with a line comparing fixed to lists.
 Renders the default scene once per technique with avsm-capture, reads the
 per-pass GPU timings (timings.json) and probes every light's transmittance at a
 grid of points through the scene (probes.json), then prints per technique:
-capture, sort, resolve, mips, camera (shading with lookups) and frame ms, the
-map memory, and the mean/max transmittance error against the uncompressed lists
-at the receivers: a 20x12x16 grid through the scene's bounds, counting the points
-whose reference transmittance is strictly between 0 and 1 (partially shadowed:
-where a compressed curve can be wrong). Then each row's frame time over AVSM-8's and
-the ns per segment put into the maps (the build passes' time over the segments
-they took). "trans MiB": the transient bytes besides the map (the lists, or the
-fixed build's depth image and hair bins).
+capture, sort, resolve, mips, camera (shading with lookups; the engine's stages of the
+passes, engine/capture/pass_stages.h) and frame ms, the map memory, and the mean/max
+transmittance error against the uncompressed lists at the receivers: a 20x12x16 grid
+through the scene's bounds, counting the points whose reference transmittance is
+strictly between 0 and 1 (partially shadowed: where a compressed curve can be wrong).
+Then each row's frame time over AVSM-8's and the ns per segment put into the maps (the
+build passes' time over the segments they took). "trans MiB": the transient bytes
+besides the map (the lists, or the fixed build's depth image and hair bins).
 
 --rows REGEX measures only the rows whose label matches (the uncompressed reference and
 AVSM-8, which the errors and ratios are taken against, always run); the ratio lines then
@@ -49,19 +49,10 @@ def grid_points(lo, hi, counts):
     return points
 
 
-def stage(name):
-    # The fixed build's light depth image and hair bins stand where the lists' capture does.
-    if "capture" in name or "clear lists" in name or "light depth" in name or "hair bins" in name:
-        return "capture"
-    if "sort" in name:
-        return "sort"
-    if "resolve" in name or "build" in name or "dsm clear" in name:
-        return "resolve"
-    if "mips" in name:
-        return "mips"
-    if name in ("opaque", "hair", "volumes"):
-        return "camera"
-    return "other"
+# The engine's stages of a frame (timings.json "stage", engine/capture/pass_stages.h) as this
+# table's columns.
+COLUMN_OF_STAGE = {"shadow capture": "capture", "sort": "sort", "resolve / build": "resolve", "mips": "mips",
+                   "camera shading": "camera", "other": "other"}
 
 
 def run(capture, scene, out, args, technique, nodes, probe_file, params=(), build="lists"):
@@ -80,7 +71,8 @@ def run(capture, scene, out, args, technique, nodes, probe_file, params=(), buil
     probes = capture_report.probes(out)
     ms = {}
     for p in timings.passes:
-        ms[stage(p.name)] = ms.get(stage(p.name), 0.0) + p.gpu_ms.median
+        column = COLUMN_OF_STAGE[p.stage]
+        ms[column] = ms.get(column, 0.0) + p.gpu_ms.median
     ms["frame"] = timings.frame_gpu_ms.median
     map_bytes = sum(light.map_bytes for light in memory.lights)
     # Transient bytes besides the map: the lists, or the fixed build's depth image and bins.

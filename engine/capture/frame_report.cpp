@@ -7,6 +7,7 @@
 
 #include "capture/frame_outputs.h"
 #include "capture/json_read.h"
+#include "capture/pass_stages.h"
 #include "passes/techniques/techniques.h"
 
 namespace avsm::capture {
@@ -70,8 +71,11 @@ Spread spread_from_json(const json& in) {
   return {value_of<double>(in, "min"), value_of<double>(in, "median"), value_of<double>(in, "max")};
 }
 
+// "stage" is derived from the name (capture/pass_stages.h), written for scripts that sum
+// per-stage times (bench/avsm/techniques.py) and not read back.
 json to_json(const PassTiming& pass) {
   return {{"name", pass.name},
+          {"stage", std::string(to_string(pass_stage(pass.name)))},
           {"queue", rg::to_string(pass.queue)},
           {"gpu_ms", to_json(pass.gpu_ms)},
           {"cpu_record_ms", to_json(pass.cpu_record_ms)}};

@@ -16,7 +16,7 @@
 #include "gpu/resources.h"
 #include "capture/files.h"
 #include "capture/frame_report.h"
-#include "capture/report.h"
+#include "capture/html.h"
 #include "io/image_io.h"
 #include "passes/shadow_maps.h"
 #include "passes/techniques/techniques.h"

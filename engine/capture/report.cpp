@@ -1,5 +1,8 @@
 #include "capture/report.h"
 
+#include "capture/files.h"
+#include "capture/html.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,59 +24,6 @@ namespace fs = std::filesystem;
 namespace {
 
 // ---- files ----
-
-std::string read_bytes(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw std::runtime_error(path.string() + ": missing (the report needs it; run the capture first)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read");
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::string base64(std::string_view bytes) {
-  static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  size_t i = 0;
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
-    out += kAlphabet[n >> 18 & 63];
-    out += kAlphabet[n >> 12 & 63];
-    out += kAlphabet[n >> 6 & 63];
-    out += kAlphabet[n & 63];
-  }
-  if (const size_t rest = bytes.size() - i; rest > 0) {
-    uint32_t n = uint32_t(uint8_t(bytes[i])) << 16;
-    if (rest == 2) n |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-    out += kAlphabet[n >> 18 & 63];
-    out += kAlphabet[n >> 12 & 63];
-    out += rest == 2 ? kAlphabet[n >> 6 & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
-
-struct PngImage {
-  std::string data_uri;
-  uint32_t width = 0, height = 0;  // from the IHDR chunk; 0 when not a PNG
-};
-
-PngImage embed_png(const fs::path& path) {
-  const std::string bytes = read_bytes(path);
-  PngImage image;
-  image.data_uri = "data:image/png;base64," + base64(bytes);
-  static const char kSignature[] = "\x89PNG\r\n\x1a\n";
-  if (bytes.size() >= 24 && bytes.compare(0, 8, kSignature, 8) == 0 && bytes.compare(12, 4, "IHDR") == 0) {
-    auto be32 = [&](size_t at) {
-      return uint32_t(uint8_t(bytes[at])) << 24 | uint32_t(uint8_t(bytes[at + 1])) << 16 |
-             uint32_t(uint8_t(bytes[at + 2])) << 8 | uint8_t(bytes[at + 3]);
-    };
-    image.width = be32(16);
-    image.height = be32(20);
-  }
-  return image;
-}
 
 // light<i>_transmittance.png in out_dir, by light index.
 std::vector<std::pair<long, fs::path>> light_images(const fs::path& out_dir) {
@@ -101,29 +51,6 @@ std::vector<std::pair<long, fs::path>> light_images(const fs::path& out_dir) {
 
 // ---- text ----
 
-std::string escape(std::string_view text) { return escape_markup(text); }
-
-const char* const kDash = "\u2013";  // in place of a value there is none of
-
-std::string format(const char* pattern, double value) {
-  if (!std::isfinite(value)) return "\u2013";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
-std::string ms(double value) { return std::isfinite(value) ? format("%.3f", value) + " ms" : kDash; }
-
-std::string bytes_text(uint64_t bytes) {
-  const double b = double(bytes);
-  std::string human;
-  if (b >= 1024.0 * 1024 * 1024) human = format("%.2f GiB", b / (1024.0 * 1024 * 1024));
-  else if (b >= 1024.0 * 1024) human = format("%.2f MiB", b / (1024.0 * 1024));
-  else if (b >= 1024.0) human = format("%.1f KiB", b / 1024.0);
-  else return std::to_string(bytes) + " B";
-  return human + " (" + std::to_string(bytes) + " B)";
-}
-
 const char* queue_colour(rg::QueueType queue) {
   switch (queue) {
     case rg::QueueType::Graphics: return "#4e79a7";
@@ -134,52 +61,30 @@ const char* queue_colour(rg::QueueType queue) {
 }
 
 std::string spread_text(const Spread& s) {
-  return ms(s.median) + " median (" + ms(s.min) + " \u2013 " + ms(s.max) + ")";
+  return ms_text(s.median) + " median (" + ms_text(s.min) + " \u2013 " + ms_text(s.max) + ")";
 }
 
 // As JSON spells them: what the report said when it read graph.json.
 std::string bool_text(bool value) { return value ? "true" : "false"; }
 
-// A round step (1, 2 or 5 times a power of ten) giving about `ticks` ticks up to `max`.
-double nice_step(double max, int ticks) {
-  if (!(max > 0)) return 1;
-  const double raw = max / ticks;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (raw <= m * power) return m * power;
-  return 10 * power;
-}
-
 // ---- sections ----
 
 void write_head(std::ostringstream& html, const TimingReport& timings) {
-  html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-       << "<title>avsm-capture report: " << escape(timings.device) << "</title>\n"
-       << "<style>\n"
-          "body{font:14px/1.4 system-ui,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#222}\n"
-          "h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ddd}\n"
-          "table{border-collapse:collapse;margin:.5em 0}th,td{padding:2px 8px;border-bottom:1px solid #eee;"
-          "text-align:left;vertical-align:top}\n"
-          "td.num,th.num{text-align:right;font-variant-numeric:tabular-nums}\n"
-          "tr.group th{background:#f4f4f4}\n"
-          "img{image-rendering:pixelated}#frame-image{width:100%;max-width:960px;height:auto;border:1px solid #ccc}\n"
-          "#light-images{display:flex;flex-wrap:wrap;gap:1em}figure{margin:0}\n"
-          "img.light-map{width:256px;height:auto;border:1px solid #ccc}\n"
-          "svg text{font:12px system-ui,sans-serif}\n"
-          "pre{background:#f7f7f7;padding:.5em;overflow:auto;max-height:40em}\n"
-          ".note{color:#666}\n"
-          "</style>\n</head>\n<body>\n";
+  write_html_head(html, "avsm-capture report: " + timings.device,
+                  "#frame-image{width:100%;max-width:960px;height:auto;border:1px solid #ccc}\n"
+                  "#light-images{display:flex;flex-wrap:wrap;gap:1em}\n"
+                  "img.light-map{width:256px;height:auto;border:1px solid #ccc}\n");
 }
 
 void write_frame(std::ostringstream& html, const fs::path& out_dir, const TimingReport& timings) {
   const PngImage frame = embed_png(out_dir / "frame.png");
-  html << "<h1>avsm-capture report</h1>\n<p class=\"note\">" << escape(out_dir.string()) << "</p>\n"
+  html << "<h1>avsm-capture report</h1>\n<p class=\"note\">" << escape_markup(out_dir.string()) << "</p>\n"
        << "<section>\n<h2>Frame</h2>\n<img id=\"frame-image\" alt=\"frame.png\"";
   if (frame.width && frame.height) html << " width=\"" << frame.width << "\" height=\"" << frame.height << "\"";
   html << " src=\"" << frame.data_uri << "\">\n";
 
   auto row = [&](const std::string& name, const std::string& value) {
-    html << "<tr><th>" << escape(name) << "</th><td>" << escape(value) << "</td></tr>\n";
+    html << "<tr><th>" << escape_markup(name) << "</th><td>" << escape_markup(value) << "</td></tr>\n";
   };
   html << "<table id=\"frame-summary\">\n";
   row("device", timings.device);
@@ -204,8 +109,8 @@ void write_light_images(std::ostringstream& html, const fs::path& out_dir,
       caption = "light " + std::to_string(index) + ": " + lights[size_t(index)].light;
     if (image.width && image.height)
       caption += " (" + std::to_string(image.width) + "\u00d7" + std::to_string(image.height) + ")";
-    html << "<figure><img class=\"light-map\" alt=\"" << escape(path.filename().string()) << "\" src=\""
-         << image.data_uri << "\"><figcaption>" << escape(caption) << "</figcaption></figure>\n";
+    html << "<figure><img class=\"light-map\" alt=\"" << escape_markup(path.filename().string()) << "\" src=\""
+         << image.data_uri << "\"><figcaption>" << escape_markup(caption) << "</figcaption></figure>\n";
   }
   html << "</div>\n";
   if (images.empty()) html << "<p class=\"note\">No light*_transmittance.png in the folder.</p>\n";
@@ -237,11 +142,11 @@ void write_timing_chart(std::ostringstream& html, const TimingReport& timings) {
   const double step = nice_step(scale_max, 5);
   const double axis_max = scale_max > 0 ? std::ceil(scale_max / step - 1e-9) * step : 1;
   auto x_of = [&](double v) { return label_w + (std::isfinite(v) ? std::max(v, 0.0) : 0.0) / axis_max * plot_w; };
-  auto num = [](double v) { return format("%.2f", v); };
+  auto num = svg_number;
 
   html << "<section>\n<h2>GPU time per pass</h2>\n<p class=\"note\">Median over the measured frames; whiskers "
           "span min \u2013 max. Sum of medians: "
-       << escape(ms(total)) << ".</p>\n"
+       << escape_markup(ms_text(total)) << ".</p>\n"
        << "<svg id=\"timing-chart\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\""
        << num(height) << "\" viewBox=\"0 0 " << num(width) << " " << num(height)
        << "\" role=\"img\" aria-label=\"GPU time per pass\">\n";
@@ -252,27 +157,27 @@ void write_timing_chart(std::ostringstream& html, const TimingReport& timings) {
     html << "<line x1=\"" << num(x) << "\" y1=\"" << num(top - 4) << "\" x2=\"" << num(x) << "\" y2=\""
          << num(top + row_h * double(bars.size())) << "\" stroke=\"#e3e3e3\"/>"
          << "<text x=\"" << num(x) << "\" y=\"" << num(top - 8) << "\" text-anchor=\"middle\" fill=\"#666\">"
-         << escape(format(step < 1 ? "%.2f" : "%.0f", t)) << (last ? " ms" : "") << "</text>\n";
+         << escape_markup(format_value(step < 1 ? "%.2f" : "%.0f", t)) << (last ? " ms" : "") << "</text>\n";
   }
   for (size_t i = 0; i < bars.size(); ++i) {
     const Bar& bar = bars[i];
     const double y = top + row_h * double(i), mid = y + row_h / 2;
-    const std::string tooltip = bar.name + " (" + rg::to_string(bar.queue) + "): " + ms(bar.median) + " median, " + ms(bar.min) +
-                                " min, " + ms(bar.max) + " max; CPU record " + ms(bar.cpu);
+    const std::string tooltip = bar.name + " (" + rg::to_string(bar.queue) + "): " + ms_text(bar.median) + " median, " + ms_text(bar.min) +
+                                " min, " + ms_text(bar.max) + " max; CPU record " + ms_text(bar.cpu);
     html << "<text x=\"" << num(label_w - 6) << "\" y=\"" << num(mid + 4) << "\" text-anchor=\"end\">"
-         << escape(bar.name) << "</text>"
+         << escape_markup(bar.name) << "</text>"
          << "<rect x=\"" << num(label_w) << "\" y=\"" << num(y + 3) << "\" width=\""
          << num(x_of(bar.median) - label_w) << "\" height=\"" << num(row_h - 6) << "\" fill=\""
-         << queue_colour(bar.queue) << "\"><title>" << escape(tooltip) << "</title></rect>";
+         << queue_colour(bar.queue) << "\"><title>" << escape_markup(tooltip) << "</title></rect>";
     if (std::isfinite(bar.min) && std::isfinite(bar.max)) {
       const double x0 = x_of(bar.min), x1 = x_of(bar.max);
       html << "<path d=\"M" << num(x0) << " " << num(mid) << "H" << num(x1) << "M" << num(x0) << " " << num(mid - 4)
            << "V" << num(mid + 4) << "M" << num(x1) << " " << num(mid - 4) << "V" << num(mid + 4)
            << "\" stroke=\"#333\" fill=\"none\"/>";
     }
-    std::string value = ms(bar.median);
-    if (total > 0 && std::isfinite(bar.median)) value += format(" (%.1f%%)", bar.median / total * 100);
-    html << "<text x=\"" << num(label_w + plot_w + 8) << "\" y=\"" << num(mid + 4) << "\">" << escape(value)
+    std::string value = ms_text(bar.median);
+    if (total > 0 && std::isfinite(bar.median)) value += format_value(" (%.1f%%)", bar.median / total * 100);
+    html << "<text x=\"" << num(label_w + plot_w + 8) << "\" y=\"" << num(mid + 4) << "\">" << escape_markup(value)
          << "</text>\n";
   }
   // Legend: one swatch per queue that appears.
@@ -285,7 +190,7 @@ void write_timing_chart(std::ostringstream& html, const TimingReport& timings) {
     const std::string name = rg::to_string(queue);
     html << "<circle cx=\"" << num(legend_x + 5) << "\" cy=\"" << num(legend_y - 4) << "\" r=\"5\" fill=\""
          << queue_colour(queue) << "\"/><text x=\"" << num(legend_x + 14) << "\" y=\"" << num(legend_y) << "\">"
-         << escape(name) << "</text>\n";
+         << escape_markup(name) << "</text>\n";
     legend_x += 24 + 7.0 * double(name.size()) + 12;
   }
   html << "</svg>\n";
@@ -295,9 +200,9 @@ void write_timing_chart(std::ostringstream& html, const TimingReport& timings) {
 
 void write_memory(std::ostringstream& html, const MemoryReport& memory) {
   const uint64_t aliased = memory.transient_bytes_aliased, unaliased = memory.transient_bytes_unaliased;
-  std::string saving = kDash;
+  std::string saving = kNoValue;
   if (unaliased > 0)
-    saving = format("%.1f%%", (double(unaliased) - double(aliased)) / double(unaliased) * 100) + ": " +
+    saving = format_value("%.1f%%", (double(unaliased) - double(aliased)) / double(unaliased) * 100) + ": " +
              bytes_text(unaliased >= aliased ? unaliased - aliased : 0);
 
   static const char* kLightColumns[] = {"light",    "technique", "nodes",           "resolution",
@@ -306,7 +211,7 @@ void write_memory(std::ostringstream& html, const MemoryReport& memory) {
   const int columns = int(std::size(kLightColumns));
   html << "<section>\n<h2>Memory</h2>\n<table id=\"memory-table\">\n<tbody>\n";
   auto row = [&](const std::string& name, const std::string& value) {
-    html << "<tr><th colspan=\"3\">" << escape(name) << "</th><td colspan=\"" << columns - 3 << "\">" << escape(value)
+    html << "<tr><th colspan=\"3\">" << escape_markup(name) << "</th><td colspan=\"" << columns - 3 << "\">" << escape_markup(value)
          << "</td></tr>\n";
   };
   row("transient memory without aliasing", bytes_text(unaliased));
@@ -321,12 +226,12 @@ void write_memory(std::ostringstream& html, const MemoryReport& memory) {
   uint64_t light_total = 0;
   for (const passes::LightShadowStats& light : memory.lights) {
     light_total += light.map_bytes + light.capture_bytes;
-    html << "<tr class=\"light\"><td>" << escape(light.light) << "</td><td>"
-         << escape(light.technique) << "</td>";
+    html << "<tr class=\"light\"><td>" << escape_markup(light.light) << "</td><td>"
+         << escape_markup(light.technique) << "</td>";
     for (uint64_t value : {light.nodes, light.resolution, light.mip_levels})
       html << "<td class=\"num\">" << value << "</td>";
-    html << "<td class=\"num\">" << escape(bytes_text(light.map_bytes)) << "</td><td class=\"num\">"
-         << escape(bytes_text(light.capture_bytes)) << "</td>";
+    html << "<td class=\"num\">" << escape_markup(bytes_text(light.map_bytes)) << "</td><td class=\"num\">"
+         << escape_markup(bytes_text(light.capture_bytes)) << "</td>";
     for (uint64_t value : {light.capture_requested, light.capture_capacity, light.next_capture_capacity})
       html << "<td class=\"num\">" << value << "</td>";
     html << "<td>" << (light.overflowed ? "yes" : "no") << "</td></tr>\n";
@@ -334,24 +239,24 @@ void write_memory(std::ostringstream& html, const MemoryReport& memory) {
   if (memory.lights.empty()) html << "<tr><td colspan=\"" << columns << "\" class=\"note\">no lights</td></tr>\n";
   else
     html << "<tr><th>all lights</th><td colspan=\"4\"></td><td class=\"num\" colspan=\"2\">"
-         << escape(bytes_text(light_total)) << " (maps + capture buffers)</td><td colspan=\"4\"></td></tr>\n";
+         << escape_markup(bytes_text(light_total)) << " (maps + capture buffers)</td><td colspan=\"4\"></td></tr>\n";
   html << "</tbody>\n</table>\n</section>\n";
 }
 
 void write_probes(std::ostringstream& html, const ProbeReport& probes) {
   html << "<section>\n<h2>Probes</h2>\n<table id=\"probes-table\">\n<tr><th>point</th>";
   for (const ProbeLight& light : probes.lights)
-    html << "<th class=\"num\">" << escape(light.light) << " (" << escape(light.settings.technique)
+    html << "<th class=\"num\">" << escape_markup(light.light) << " (" << escape_markup(light.settings.technique)
          << ")</th>";
   html << "</tr>\n";
   for (size_t p = 0; p < probes.points.size(); ++p) {
     const glm::vec3& point = probes.points[p];
     const std::string coordinates =
-        format("%.4g", point.x) + ", " + format("%.4g", point.y) + ", " + format("%.4g", point.z);
-    html << "<tr><td>(" << escape(coordinates) << ")</td>";
+        format_value("%.4g", point.x) + ", " + format_value("%.4g", point.y) + ", " + format_value("%.4g", point.z);
+    html << "<tr><td>(" << escape_markup(coordinates) << ")</td>";
     for (const ProbeLight& light : probes.lights)
       html << "<td class=\"num\">"
-           << (p < light.transmittance.size() ? format("%.4f", light.transmittance[p]) : kDash) << "</td>";
+           << (p < light.transmittance.size() ? format_value("%.4f", light.transmittance[p]) : kNoValue) << "</td>";
     html << "</tr>\n";
   }
   html << "</table>\n</section>\n";
@@ -371,7 +276,7 @@ std::vector<fs::path> curve_plots(const fs::path& out_dir) {
 }
 
 std::string error_text(const ErrorStats& errors, double value) {
-  return errors.receivers ? format("%.4f", value) : kDash;
+  return errors.receivers ? format_value("%.4f", value) : kNoValue;
 }
 std::string mean_text(const ErrorStats& errors) { return error_text(errors, errors.mean()); }
 std::string max_text(const ErrorStats& errors) { return error_text(errors, errors.max); }
@@ -381,8 +286,8 @@ std::string max_text(const ErrorStats& errors) { return error_text(errors, error
 void write_quality_table(std::ostringstream& html, const fs::path& out_dir, const QualityReport& quality) {
   html << "<p class=\"note\">|T &minus; T<sub>exact</sub>| against each light's capture lists at the receivers "
           "the camera sees; images: error \u00d7"
-       << format("%g", kErrorImageScale) << ", " << escape(kErrorImageColours)
-       << ". Hair: " << escape(hair_receivers_rule()) << ".</p>\n"
+       << format_value("%g", kErrorImageScale) << ", " << escape_markup(kErrorImageColours)
+       << ". Hair: " << escape_markup(hair_receivers_rule()) << ".</p>\n"
        << "<table id=\"quality-table\">\n<tr><th>light</th><th>technique</th><th class=\"num\">receivers</th>"
           "<th class=\"num\">mean</th><th class=\"num\">max</th><th class=\"num\">surface mean / max</th>"
           "<th class=\"num\">smoke mean / max</th></tr>\n";
@@ -390,8 +295,8 @@ void write_quality_table(std::ostringstream& html, const fs::path& out_dir, cons
     const ErrorStats all = light.all();
     const std::string receivers = std::to_string(all.receivers) + " (" + std::to_string(light.surface.receivers) +
                                   " + " + std::to_string(light.smoke.receivers) + ")";
-    html << "<tr><td>" << escape(light.light) << "</td><td>" << escape(technique_label(light.settings))
-         << "</td><td class=\"num\">" << escape(receivers) << "</td><td class=\"num\">" << mean_text(all)
+    html << "<tr><td>" << escape_markup(light.light) << "</td><td>" << escape_markup(technique_label(light.settings))
+         << "</td><td class=\"num\">" << escape_markup(receivers) << "</td><td class=\"num\">" << mean_text(all)
          << "</td><td class=\"num\">" << max_text(all) << "</td><td class=\"num\">" << mean_text(light.surface)
          << " / " << max_text(light.surface) << "</td><td class=\"num\">" << mean_text(light.smoke) << " / "
          << max_text(light.smoke) << "</td></tr>\n";
@@ -402,8 +307,8 @@ void write_quality_table(std::ostringstream& html, const fs::path& out_dir, cons
     std::error_code ec;
     if (!fs::is_regular_file(out_dir / file, ec)) continue;
     html << "<figure><img class=\"error-image\" style=\"width:320px;height:auto;border:1px solid #ccc\" alt=\""
-         << escape(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
-         << escape(quality.lights[i].light + ": " + technique_label(quality.lights[i].settings) + " error")
+         << escape_markup(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
+         << escape_markup(quality.lights[i].light + ": " + technique_label(quality.lights[i].settings) + " error")
          << "</figcaption></figure>\n";
   }
   html << "</div>\n";
@@ -418,7 +323,7 @@ void write_quality(std::ostringstream& html, const fs::path& out_dir, const std:
     html << "<div id=\"texel-curves\">\n";
     for (const fs::path& path : curves)
       html << "<figure><img class=\"texel-curve\" style=\"max-width:100%\" alt=\""
-           << escape(path.filename().string()) << "\" src=\"data:image/svg+xml;base64," << base64(read_bytes(path))
+           << escape_markup(path.filename().string()) << "\" src=\"data:image/svg+xml;base64," << base64(read_file_bytes(path))
            << "\"></figure>\n";
     html << "</div>\n";
   }
@@ -431,7 +336,7 @@ std::string hex(uint64_t value) {
   return text;
 }
 
-std::string index_text(std::optional<uint32_t> index) { return index ? std::to_string(*index) : kDash; }
+std::string index_text(std::optional<uint32_t> index) { return index ? std::to_string(*index) : kNoValue; }
 
 void write_graph(std::ostringstream& html, const PlanSummary& plan, const std::string& dot,
                  const TimingReport& timings) {
@@ -450,14 +355,14 @@ void write_graph(std::ostringstream& html, const PlanSummary& plan, const std::s
   for (size_t i = 0; i < plan.passes.size(); ++i) {
     const PlanPassSummary& pass = plan.passes[i];
     const std::optional<double> median = timings.median_gpu_ms(pass.name);
-    html << "<tr><td class=\"num\">" << i << "</td><td>" << escape(pass.name) << "</td><td>"
+    html << "<tr><td class=\"num\">" << i << "</td><td>" << escape_markup(pass.name) << "</td><td>"
          << rg::to_string(pass.queue) << "</td><td class=\"num\">" << pass.barrier_count
-         << "</td><td class=\"num\">" << escape(median ? ms(*median) : kDash) << "</td></tr>\n";
+         << "</td><td class=\"num\">" << escape_markup(median ? ms_text(*median) : kNoValue) << "</td></tr>\n";
   }
   html << "</table>\n";
   if (!plan.culled_passes.empty()) {
     html << "<p>Culled (never recorded):";
-    for (const std::string& name : plan.culled_passes) html << " " << escape(name) << ";";
+    for (const std::string& name : plan.culled_passes) html << " " << escape_markup(name) << ";";
     html << "</p>\n";
   }
 
@@ -471,22 +376,22 @@ void write_graph(std::ostringstream& html, const PlanSummary& plan, const std::s
       imported.push_back(resource.name);
       continue;
     }
-    html << "<tr><td class=\"num\">" << r << "</td><td>" << escape(resource.name) << "</td><td>"
-         << rg::to_string(resource.kind) << "</td><td>" << escape(resource.description) << "</td><td class=\"num\">"
-         << escape(bytes_text(resource.size)) << "</td><td class=\"num\">" << escape(index_text(resource.heap))
+    html << "<tr><td class=\"num\">" << r << "</td><td>" << escape_markup(resource.name) << "</td><td>"
+         << rg::to_string(resource.kind) << "</td><td>" << escape_markup(resource.description) << "</td><td class=\"num\">"
+         << escape_markup(bytes_text(resource.size)) << "</td><td class=\"num\">" << escape_markup(index_text(resource.heap))
          << "</td><td class=\"num\">" << resource.offset << "</td>";
     if (!resource.used) html << "<td colspan=\"2\" class=\"note\">unused</td></tr>\n";
     else
-      html << "<td>" << escape(pass_name(resource.first_pass)) << "</td><td>" << escape(pass_name(resource.last_pass))
+      html << "<td>" << escape_markup(pass_name(resource.first_pass)) << "</td><td>" << escape_markup(pass_name(resource.last_pass))
            << "</td></tr>\n";
   }
   html << "</table>\n";
   if (!imported.empty()) {
     html << "<p class=\"note\">Imported (owned outside the graph):";
-    for (size_t i = 0; i < imported.size(); ++i) html << (i ? ", " : " ") << escape(imported[i]);
+    for (size_t i = 0; i < imported.size(); ++i) html << (i ? ", " : " ") << escape_markup(imported[i]);
     html << ".</p>\n";
   }
-  html << "<details><summary>graph.dot (Graphviz source)</summary>\n<pre id=\"graph-dot\">" << escape(dot)
+  html << "<details><summary>graph.dot (Graphviz source)</summary>\n<pre id=\"graph-dot\">" << escape_markup(dot)
        << "</pre>\n</details>\n</section>\n";
 }
 
@@ -497,7 +402,7 @@ void write_footer(std::ostringstream& html, const fs::path& out_dir) {
     if (it->is_regular_file(ec) && it->path().extension() != ".html") names.push_back(it->path().filename().string());
   std::sort(names.begin(), names.end());
   html << "<footer>\n<p class=\"note\">Written by avsm-capture --report. Files in the folder:";
-  for (size_t i = 0; i < names.size(); ++i) html << (i ? ", " : " ") << escape(names[i]);
+  for (size_t i = 0; i < names.size(); ++i) html << (i ? ", " : " ") << escape_markup(names[i]);
   html << ".</p>\n</footer>\n</body>\n</html>\n";
 }
 
@@ -516,27 +421,7 @@ void write_report(const fs::path& out_dir, const FrameReport& report, const fs::
   write_graph(html, report.plan, report.plan_dot, report.timings);
   write_footer(html, out_dir);
 
-  std::ofstream out(html_path, std::ios::binary);
-  if (!out) throw std::runtime_error(html_path.string() + ": cannot write");
-  out << html.str();
-  out.close();
-  if (!out) throw std::runtime_error(html_path.string() + ": write failed");
-}
-
-std::string escape_markup(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
+  write_text(html_path, html.str());
 }
 
 }  // namespace avsm::capture

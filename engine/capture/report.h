@@ -5,10 +5,9 @@
 // transmittance images, a per-pass GPU timing chart, the frame summary, the memory
 // figures and the compiled frame graph. What --report writes.
 #include <filesystem>
-#include <string>
-#include <string_view>
 
 #include "capture/frame_report.h"
+#include "capture/html.h"  // escape_markup, for callers that write markup of their own
 
 namespace avsm::capture {
 
@@ -17,8 +16,5 @@ namespace avsm::capture {
 // and curve_*.svg from out_dir when present; writes html_path.
 void write_report(const std::filesystem::path& out_dir, const FrameReport& report,
                   const std::filesystem::path& html_path);
-
-// Text for HTML and SVG: &, <, >, " and ' escaped.
-std::string escape_markup(std::string_view text);
 
 }  // namespace avsm::capture

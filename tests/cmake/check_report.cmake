@@ -3,48 +3,16 @@
 # PNGs, one bar (<rect>) per pass of timings.json in the timing chart, one light-map
 # image per light*_transmittance.png in DIR and one memory row per light of memory.json;
 # the shadow-quality table and images when quality.json is there, and the texel curves.
-# Chromium's stderr (dbus and similar noise) is ignored unless it fails to run.
-find_program(CHROMIUM NAMES chromium chromium-browser)
-if(NOT CHROMIUM)
-  message(FATAL_ERROR "chromium not found (neither chromium nor chromium-browser is on PATH): "
-                      "install it with tools/install-deps.sh (Debian package 'chromium')")
-endif()
 set(report "${DIR}/report.html")
 if(NOT EXISTS "${report}")
   message(FATAL_ERROR "missing ${report}: did avsm-capture --report run?")
 endif()
-
-# A profile folder of its own: Chromium writes one even headless.
-if(DEFINED ENV{HOME})
-  set(profile "$ENV{HOME}/profile")
-else()
-  set(profile "${DIR}/chromium_profile")
-endif()
-file(MAKE_DIRECTORY "${profile}")
-string(REPLACE " " "%20" url "file://${report}")
-execute_process(COMMAND "${CHROMIUM}" --headless --no-sandbox --disable-gpu --no-first-run
-                        --user-data-dir=${profile} --dump-dom "${url}"
-                TIMEOUT 60 RESULT_VARIABLE result OUTPUT_VARIABLE dom ERROR_VARIABLE errors)
-if(NOT result EQUAL 0)
-  string(LENGTH "${errors}" errors_length)
-  if(errors_length GREATER 4000)
-    math(EXPR tail_start "${errors_length} - 4000")
-    string(SUBSTRING "${errors}" ${tail_start} -1 errors)
-  endif()
-  message(FATAL_ERROR "${CHROMIUM} --dump-dom ${url} failed (${result}):\n${errors}")
-endif()
-if(NOT dom MATCHES "</html>")
-  message(FATAL_ERROR "${CHROMIUM} printed no DOM for ${url}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/chromium_dom.cmake")
+chromium_dump_dom("${report}" "${DIR}" dom)
 
 set(missing "")
-foreach(id IN ITEMS frame-image timing-chart frame-summary memory-table light-images graph-passes graph-resources
+require_element_ids("${dom}" frame-image timing-chart frame-summary memory-table light-images graph-passes graph-resources
                     graph-dot)
-  string(FIND "${dom}" "id=\"${id}\"" at)
-  if(at EQUAL -1)
-    list(APPEND missing "an element with id=\"${id}\"")
-  endif()
-endforeach()
 
 if(NOT dom MATCHES "<img[^>]*src=\"data:image/png;base64,")
   list(APPEND missing "an <img> with a data:image/png;base64 source")
@@ -66,33 +34,20 @@ else()
   else()
     string(SUBSTRING "${chart}" 0 ${chart_end} chart)
   endif()
-  string(REGEX MATCHALL "<rect[ />]" bars "${chart}")
-  list(LENGTH bars bar_count)
-  if(NOT bar_count EQUAL pass_count)
-    list(APPEND missing "one <rect> per pass in the timing chart (timings.json lists ${pass_count} passes, "
-                        "the chart has ${bar_count})")
-  endif()
+  require_count("${chart}" "<rect[ />]" ${pass_count} "one <rect> per pass of timings.json in the timing chart" bar_count)
 endif()
 
 # Every light*_transmittance.png in the folder, as an <img class="light-map">.
 file(GLOB light_files "${DIR}/light*_transmittance.png")
 list(LENGTH light_files light_file_count)
-string(REGEX MATCHALL "<img[^>]*class=\"light-map\"" light_images "${dom}")
-list(LENGTH light_images light_image_count)
-if(NOT light_image_count EQUAL light_file_count)
-  list(APPEND missing "one <img class=\"light-map\"> per light*_transmittance.png (${light_file_count} files, "
-                      "${light_image_count} images)")
-endif()
+require_count("${dom}" "<img[^>]*class=\"light-map\"" ${light_file_count}
+              "one <img class=\"light-map\"> per light*_transmittance.png" light_image_count)
 
 # The memory table: a row per light of memory.json.
 file(READ "${DIR}/memory.json" memory)
 string(JSON light_count LENGTH "${memory}" lights)
-string(REGEX MATCHALL "<tr class=\"light\">" light_rows "${dom}")
-list(LENGTH light_rows light_row_count)
-if(NOT light_row_count EQUAL light_count)
-  list(APPEND missing "one memory-table row per light (memory.json lists ${light_count}, the table has "
-                      "${light_row_count})")
-endif()
+require_count("${dom}" "<tr class=\"light\">" ${light_count} "one memory-table row per light of memory.json"
+              light_row_count)
 
 # With --compare-to uncompressed: the quality table, one error image per light of
 # quality.json; with --plot-texel: one <img class="texel-curve"> per curve_*.svg.
@@ -103,33 +58,21 @@ if(EXISTS "${DIR}/quality.json")
   if(at EQUAL -1)
     list(APPEND missing "an element with id=\"quality-table\" (quality.json is in the folder)")
   endif()
-  # (Patterns without ';': MATCHALL returns a list.)
-  string(REGEX MATCHALL "<img[^>;]*class=\"error-image\"" error_images "${dom}")
-  list(LENGTH error_images error_image_count)
-  if(NOT error_image_count EQUAL quality_lights)
-    list(APPEND missing "one <img class=\"error-image\"> per light of quality.json (${quality_lights} lights, "
-                        "${error_image_count} images)")
-  endif()
+  require_count("${dom}" "<img[^>;]*class=\"error-image\"" ${quality_lights}
+                "one <img class=\"error-image\"> per light of quality.json" error_image_count)
   if(quality_lights GREATER 0 AND NOT dom MATCHES "class=\"error-image\"[^>]*src=\"data:image/png;base64,")
     list(APPEND missing "the error images embedded as data:image/png;base64")
   endif()
 endif()
 file(GLOB curve_files "${DIR}/curve_*.svg")
 list(LENGTH curve_files curve_file_count)
-string(REGEX MATCHALL "<img[^>;]*class=\"texel-curve\"" curve_images "${dom}")
-list(LENGTH curve_images curve_image_count)
-if(NOT curve_image_count EQUAL curve_file_count)
-  list(APPEND missing "one <img class=\"texel-curve\"> per curve_*.svg (${curve_file_count} files, "
-                      "${curve_image_count} images)")
-endif()
+require_count("${dom}" "<img[^>;]*class=\"texel-curve\"" ${curve_file_count}
+              "one <img class=\"texel-curve\"> per curve_*.svg" curve_image_count)
 if(curve_file_count GREATER 0 AND NOT dom MATCHES "class=\"texel-curve\"[^>]*src=\"data:image/svg\\+xml;base64,")
   list(APPEND missing "the texel curves embedded as data:image/svg+xml;base64")
 endif()
 
-if(missing)
-  list(JOIN missing "\n  " missing_text)
-  message(FATAL_ERROR "${report} as rendered by Chromium lacks:\n  ${missing_text}")
-endif()
+fail_if_missing("${report}")
 string(LENGTH "${dom}" dom_length)
 message(STATUS "report.html OK: ${pass_count} timing bars, ${light_image_count} light images, ${light_count} lights, "
                "${dom_length} characters of DOM")

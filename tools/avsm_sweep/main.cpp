@@ -14,6 +14,7 @@
 #include "sweep/runner.h"
 #include "sweep/slurm.h"
 #include "sweep/sweep_index.h"
+#include "sweep/sweep_report.h"
 
 namespace {
 
@@ -37,6 +38,7 @@ const char* kUsage =
     "                   seconds), then status\n"
     "  avsm-sweep status DIR                   a table of the jobs; exit 0 all done, 1 some\n"
     "                   failed, 3 some not finished\n"
+    "  avsm-sweep report DIR                   collect, then DIR/report.html: one page over every job\n"
     "Each job runs avsm-capture (the one next to avsm-sweep, or $AVSM_CAPTURE) into DIR/<job id>/.\n"
     "Exit 2: a bad command line, manifest or sweep folder.\n";
 
@@ -202,12 +204,21 @@ int wait_command(const std::vector<std::string>& args) {
   return status({a.positional()});
 }
 
+int report(const std::vector<std::string>& args) {
+  const Arguments a(args, {}, {});
+  collect(a.positional());  // the jobs' latest job.json, as status reads them
+  const fs::path html = fs::path(a.positional()) / "report.html";
+  write_sweep_report(a.positional(), html);
+  std::printf("%s\n", html.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands = {
       {"run", run}, {"prepare", prepare}, {"task", task}, {"collect", collect_command}, {"status", status},
-      {"slurm", slurm},    {"wait", wait_command}};
+      {"slurm", slurm}, {"wait", wait_command}, {"report", report}};
   const std::vector<std::string> args(argv + std::min(argc, 2), argv + argc);
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "--help" || command == "-h") {

@@ -1,0 +1,110 @@
+# With SWEEP (the avsm-sweep executable) and MANIFEST: runs the sweep into DIR (2 jobs at
+# once, --force; some jobs may fail on purpose) and `avsm-sweep report DIR` first.
+# Then opens DIR/report.html in headless Chromium, dumps the DOM it built and checks it
+# against DIR/index.json: the jobs table with a row per job, a frame (embedded PNG) per
+# done job, a point per job with quality.json in each error-against-cost scatter, and
+# every failed job's error in its row.
+if(DEFINED SWEEP AND DEFINED MANIFEST)
+  execute_process(COMMAND "${SWEEP}" run "${MANIFEST}" --out "${DIR}" --jobs 2 --force RESULT_VARIABLE status
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0 AND NOT status EQUAL 1)  # 1: a job failed
+    message(FATAL_ERROR "avsm-sweep run ${MANIFEST} exited ${status}\n${out}${err}")
+  endif()
+  execute_process(COMMAND "${SWEEP}" report "${DIR}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "avsm-sweep report ${DIR} exited ${status}\n${out}${err}")
+  endif()
+endif()
+set(report "${DIR}/report.html")
+if(NOT EXISTS "${report}")
+  message(FATAL_ERROR "missing ${report}: did avsm-sweep report run?")
+endif()
+include("${CMAKE_CURRENT_LIST_DIR}/chromium_dom.cmake")
+chromium_dump_dom("${report}" "${DIR}" dom)
+
+set(missing "")
+require_element_ids("${dom}" sweep-summary jobs-table image-grid tradeoff-shadow tradeoff-frame)
+
+# The part of the DOM from the element with id=ID to its end tag </TAG>.
+function(element_of id tag out)
+  string(FIND "${dom}" "id=\"${id}\"" begin)
+  set(part "")
+  if(NOT begin EQUAL -1)
+    string(SUBSTRING "${dom}" ${begin} -1 part)
+    string(FIND "${part}" "</${tag}>" end)
+    if(NOT end EQUAL -1)
+      string(SUBSTRING "${part}" 0 ${end} part)
+    endif()
+  endif()
+  set(${out} "${part}" PARENT_SCOPE)
+endfunction()
+element_of(jobs-table table table)
+element_of(image-grid table images)
+element_of(tradeoff-shadow svg shadow_plot)
+element_of(tradeoff-frame svg frame_plot)
+
+# HTML text as the DOM serializes it.
+function(as_html text out)
+  string(REPLACE "&" "&amp;" text "${text}")
+  string(REPLACE "<" "&lt;" text "${text}")
+  string(REPLACE ">" "&gt;" text "${text}")
+  string(REPLACE "\n" " " text "${text}")
+  set(${out} "${text}" PARENT_SCOPE)
+endfunction()
+
+file(READ "${DIR}/index.json" index)
+string(JSON job_count LENGTH "${index}" jobs)
+set(done_count 0)
+set(failed_count 0)
+set(with_quality 0)
+math(EXPR last "${job_count} - 1")
+foreach(i RANGE ${last})
+  string(JSON id GET "${index}" jobs ${i} id)
+  string(JSON status GET "${index}" jobs ${i} status)
+  string(JSON output GET "${index}" jobs ${i} output)
+  # A row per job, with its status as its class.
+  string(REGEX MATCH "<tr class=\"job ${status}\" data-job=\"${id}\">.*" row "${table}")
+  if(NOT row)
+    list(APPEND missing "a jobs-table row <tr class=\"job ${status}\" data-job=\"${id}\">")
+  else()
+    string(FIND "${row}" "</tr>" row_end)
+    string(SUBSTRING "${row}" 0 ${row_end} row)
+  endif()
+  if(status STREQUAL "done")
+    math(EXPR done_count "${done_count} + 1")
+    if(NOT images MATCHES "<img class=\"frame-image\" data-job=\"${id}\"[^>]*src=\"data:image/png;base64,")
+      list(APPEND missing "job ${id}'s frame in the image grid (<img class=\"frame-image\" data-job=\"${id}\">, "
+                          "embedded as a PNG data URI)")
+    endif()
+    if(EXISTS "${DIR}/${output}/quality.json")
+      math(EXPR with_quality "${with_quality} + 1")
+      foreach(plot IN ITEMS shadow_plot frame_plot)
+        string(FIND "${${plot}}" "<circle class=\"point\" data-job=\"${id}\"" at)
+        if(at EQUAL -1)
+          list(APPEND missing "job ${id}'s point in the ${plot} scatter (it has quality.json)")
+        endif()
+      endforeach()
+    endif()
+  elseif(status STREQUAL "failed")
+    math(EXPR failed_count "${failed_count} + 1")
+    string(JSON error GET "${index}" jobs ${i} error)
+    as_html("${error}" error_html)
+    string(FIND "${row}" "class=\"job-error\"" at)
+    string(FIND "${row}" "${error_html}" error_at)
+    if(at EQUAL -1 OR error_at EQUAL -1 OR error STREQUAL "")
+      list(APPEND missing "failed job ${id}'s error '${error}' in its row (class=\"job-error\")")
+    endif()
+  endif()
+endforeach()
+
+# No more than that: a point per job with quality.json, an image per done job.
+foreach(plot IN ITEMS shadow_plot frame_plot)
+  require_count("${${plot}}" "<circle class=\"point\"" ${with_quality}
+                "one point per job with quality.json in the ${plot} scatter" point_count)
+endforeach()
+require_count("${images}" "<img class=\"frame-image\"" ${done_count} "one frame image per done job" frame_count)
+
+fail_if_missing("${report}")
+string(LENGTH "${dom}" dom_length)
+message(STATUS "sweep report.html OK: ${job_count} jobs (${done_count} done, ${failed_count} failed), ${frame_count} frames, "
+               "${with_quality} points per scatter, ${dom_length} characters of DOM")
