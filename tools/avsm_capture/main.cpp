@@ -19,6 +19,7 @@ const char* kUsage =
     "  --width N        image width (default 1280)\n"
     "  --height N       image height (default 720)\n"
     "  --frames K       frames to render; timings over all but the first (default 5)\n"
+    "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
@@ -131,6 +132,8 @@ int main(int argc, char** argv) {
       options.height = parse_count(arg, value());
     } else if (arg == "--frames") {
       options.frames = parse_count(arg, value());
+    } else if (arg == "--frames-in-flight") {
+      options.frames_in_flight = parse_count(arg, value());
     } else if (arg == "--device") {
       options.device = value();
     } else if (arg == "--validation") {
