@@ -33,20 +33,22 @@ inline rg::ImportState rewritten_after(rg::ImportState final_state) {
   return final_state;
 }
 
-// One buffer per frame slot, each as `desc` says (named "<name> (frame i)" when there
-// are several).
+// One buffer per frame slot, each as created (named "<name> (frame i)" when there are
+// several). Knows its number of frames in flight before it has buffers.
 class FrameBuffers {
  public:
-  FrameBuffers() = default;
-  FrameBuffers(const gpu::Context& ctx, gpu::BufferDesc desc, uint32_t frames);
+  // Makes the buffers, one per frame in flight, as `desc` says.
+  void create(const gpu::Context& ctx, gpu::BufferDesc desc);
+  // Another number of frames in flight (throws std::invalid_argument outside
+  // 1..kMaxFramesInFlight): buffers already created are made again (contents lost).
+  void set_frames(const gpu::Context& ctx, uint32_t frames);
 
   const gpu::Buffer& operator[](uint32_t slot) const { return buffers_.at(slot); }
-  uint32_t frames() const { return uint32_t(buffers_.size()); }
+  uint32_t frames() const { return frames_; }
   explicit operator bool() const { return !buffers_.empty(); }
-  // The same buffers for another number of frames in flight (contents lost).
-  void set_frames(const gpu::Context& ctx, uint32_t frames) { *this = FrameBuffers(ctx, desc_, frames); }
 
  private:
+  uint32_t frames_ = 1;
   gpu::BufferDesc desc_;
   std::vector<gpu::Buffer> buffers_;
 };

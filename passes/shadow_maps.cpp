@@ -167,31 +167,29 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   if (last_camera_) update_views(*last_camera_);
   unshadowed_.reserve(uint32_t(lights_.size()));
   const uint64_t entries = uint64_t(record_count_) * (options_.keep_reference ? 2 : 1);
-  parameters_ = FrameBuffers(ctx_,
-                             {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryLocation::DeviceLocal, "shadow parameters"},
-                             frames_in_flight_);
+  parameters_.create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            gpu::MemoryLocation::DeviceLocal, "shadow parameters"});
 }
 
 void ShadowMaps::set_frames_in_flight(uint32_t count) {
   check_frames_in_flight(count);
-  if (count == frames_in_flight_) return;
+  if (count == frames_in_flight()) return;
   vkDeviceWaitIdle(ctx_.device());  // frames in flight use the buffers replaced here
-  frames_in_flight_ = count;
-  if (parameters_) parameters_.set_frames(ctx_, count);
+  parameters_.set_frames(ctx_, count);
   for (MapState& map : maps_) create_frame_buffers(map);
 }
 
 // The counters a frame's passes write for finish_frame(), and what it declared, per slot.
 void ShadowMaps::create_frame_buffers(MapState& map) const {
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  map.counter = FrameBuffers(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " capture counter"},
-                             frames_in_flight_);
-  if (lights_[map.light].light.shadow.build == scene::ShadowBuild::fixed)
-    map.fixed_counter = FrameBuffers(
-        ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " fixed build counter"}, frames_in_flight_);
-  map.declared.assign(frames_in_flight_, DeclaredMap{});
+  map.counter.set_frames(ctx_, frames_in_flight());
+  map.counter.create(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " capture counter"});
+  if (lights_[map.light].light.shadow.build == scene::ShadowBuild::fixed) {
+    map.fixed_counter.set_frames(ctx_, frames_in_flight());
+    map.fixed_counter.create(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " fixed build counter"});
+  }
+  map.declared.assign(frames_in_flight(), DeclaredMap{});
 }
 
 void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const glm::vec3& direction) {
@@ -534,9 +532,9 @@ rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& 
 
 ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters,
                                       uint32_t slot) {
-  if (slot >= frames_in_flight_)
+  if (slot >= frames_in_flight())
     throw std::invalid_argument("ShadowMaps: frame slot " + std::to_string(slot) + " of " +
-                                std::to_string(frames_in_flight_) + " frames in flight");
+                                std::to_string(frames_in_flight()) + " frames in flight");
   ShadowInputs inputs = unshadowed_inputs();
   inputs.frame_slot = slot;
   if (lights_.empty()) return inputs;
@@ -752,9 +750,9 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
 }  // namespace
 
 void ShadowMaps::finish_frame(uint32_t slot) {
-  if (slot >= frames_in_flight_)
+  if (slot >= frames_in_flight())
     throw std::invalid_argument("ShadowMaps::finish_frame: frame slot " + std::to_string(slot) + " of " +
-                                std::to_string(frames_in_flight_) + " frames in flight");
+                                std::to_string(frames_in_flight()) + " frames in flight");
   bool remake = false;
   std::vector<LightShadowStats> per_light(lights_.size());
   std::vector<TechniqueMapState> before;

@@ -108,7 +108,7 @@ class ShadowMaps {
   // parameter blocks and capture counters get a copy per frame slot. Waits for the
   // device to idle.
   void set_frames_in_flight(uint32_t count);
-  uint32_t frames_in_flight() const { return frames_in_flight_; }
+  uint32_t frames_in_flight() const { return parameters_.frames(); }
   // Moves light `light` (its position and direction; the rest of its settings stay) for
   // the next frame, without waiting for frames in flight: its maps are fitted again.
   // A clustered light keeps its clusters. Throws std::out_of_range for a light it lacks.
@@ -241,7 +241,6 @@ class ShadowMaps {
   gpu::Buffer atlas_;              // every map, at MapState::atlas_offset
   gpu::Buffer list_heads_, list_nodes_;  // copies of the lists lookups read
   FrameBuffers parameters_;  // GpuShadow per record (and per exact reference), written in the frame
-  uint32_t frames_in_flight_ = 1;
   UnshadowedInputs unshadowed_;
 };
 

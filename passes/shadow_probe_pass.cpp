@@ -20,16 +20,8 @@ void ShadowProbePass::upload_points(std::vector<glm::vec4> packed, uint32_t coun
   light_count_ = light_count;
   mode_ = mode;
   points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
-  results_ = FrameBuffers(ctx_,
-                          {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "probe results"},
-                          frames_in_flight_);
-}
-
-void ShadowProbePass::set_frames_in_flight(uint32_t count) {
-  check_frames_in_flight(count);
-  frames_in_flight_ = count;
-  if (results_) results_.set_frames(ctx_, count);
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "probe results"});
 }
 
 void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t light_count) {
@@ -65,10 +57,9 @@ void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples)
   light_count_ = 1;  // results: two values per sample
   mode_ = Mode::texel_curves;
   points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "texel samples");
-  results_ = FrameBuffers(ctx_,
-                          {std::max<uint64_t>(uint64_t(point_count_) * 2, 1) * sizeof(float),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "texel sample results"},
-                          frames_in_flight_);
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * 2, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                         "texel sample results"});
 }
 
 void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows) {

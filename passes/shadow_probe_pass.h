@@ -48,7 +48,7 @@ class ShadowProbePass {
   // lie inside their light's level-0 map and lights be the scene's (texels of a light's first map).
   void set_texel_samples(const std::vector<TexelSample>& samples);
   // A results buffer per frame in flight (passes/frames_in_flight.h; 1 by default).
-  void set_frames_in_flight(uint32_t count);
+  void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
   // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
   // are ready after the frame, in its slot (shadows.frame_slot).
   void add_to_graph(rg::Graph& graph, const ShadowInputs& shadows);
@@ -68,7 +68,6 @@ class ShadowProbePass {
   gpu::Pipeline pipeline_;
   gpu::Buffer points_;
   FrameBuffers results_;
-  uint32_t frames_in_flight_ = 1;
   uint32_t point_count_ = 0, light_count_ = 0;
   Mode mode_ = Mode::points;
 };

@@ -29,16 +29,9 @@ void ShadowQualityHairPass::set_hair(const HairPass& hair, uint32_t light_count)
   stride_ = std::max(1u, (vertices + kMaxReceivers - 1) / kMaxReceivers);
   receiver_count_ = vertices / stride_;
   light_count_ = light_count;
-  results_ = FrameBuffers(
-      ctx_, {std::max<uint64_t>(uint64_t(receiver_count_) * light_count, 1) * sizeof(float),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "shadow quality hair errors"},
-      frames_in_flight_);
-}
-
-void ShadowQualityHairPass::set_frames_in_flight(uint32_t count) {
-  check_frames_in_flight(count);
-  frames_in_flight_ = count;
-  if (results_) results_.set_frames(ctx_, count);
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(receiver_count_) * light_count, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                         "shadow quality hair errors"});
 }
 
 void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {

@@ -36,16 +36,8 @@ void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light
   height_ = height;
   light_count_ = light_count;
   const uint64_t entries = std::max<uint64_t>(uint64_t(width) * height * light_count, 1);
-  results_ = FrameBuffers(ctx_,
-                          {entries * sizeof(PixelShadowError), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                           gpu::MemoryLocation::HostReadback, "shadow quality errors"},
-                          frames_in_flight_);
-}
-
-void ShadowQualityPass::set_frames_in_flight(uint32_t count) {
-  check_frames_in_flight(count);
-  frames_in_flight_ = count;
-  if (results_) results_.set_frames(ctx_, count);
+  results_.create(ctx_, {entries * sizeof(PixelShadowError), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         gpu::MemoryLocation::HostReadback, "shadow quality errors"});
 }
 
 void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {

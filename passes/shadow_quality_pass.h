@@ -39,7 +39,7 @@ class ShadowQualityPass {
   // Sizes the result buffer for `light_count` lights on a width x height image.
   void set_size(uint32_t width, uint32_t height, uint32_t light_count);
   // A result buffer per frame in flight (passes/frames_in_flight.h; 1 by default).
-  void set_frames_in_flight(uint32_t count);
+  void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
 
   // Adds "shadow quality" after the camera passes: reads `depth` (the opaque depth
   // buffer, D32_SFLOAT, width x height), the frame's volumes and shadows. The shadows
@@ -59,7 +59,6 @@ class ShadowQualityPass {
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
   FrameBuffers results_;
-  uint32_t frames_in_flight_ = 1;
   uint32_t width_ = 0, height_ = 0, light_count_ = 0;
 };
 

@@ -46,11 +46,8 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   lights_ = scene.lights;
   light_count_ = uint32_t(scene.lights.size());
   // At least one entry, which lights nothing, so that a scene without lights binds something.
-  light_buffers_ = passes::FrameBuffers(ctx_,
-                                        {std::max<uint64_t>(light_count_, 1) * sizeof(passes::GpuLight),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
-                                         "scene lights"},
-                                        frames_in_flight());
+  light_buffers_.create(ctx_, {std::max<uint64_t>(light_count_, 1) * sizeof(passes::GpuLight),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "scene lights"});
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
