@@ -27,8 +27,9 @@ void ShadowDebugPass::add_to_graph(rg::Graph& graph, const ShadowInputs& inputs)
   for (uint32_t light = 0; light < images_.size(); ++light) {
     gpu::Image& image = images_[light];
     const std::string name = "light " + std::to_string(light) + " debug image";
-    rg::TextureHandle handle =
-        rg::vulkan::import(graph, name, image, rg::ImportState::none(), rg::ImportState::of(rg::Usage::TransferSrc));
+    // Kept from frame to frame (read back, copied by the viewer): waits for the previous frame's readers.
+    const rg::ImportState after_frame = rg::ImportState::of(rg::Usage::TransferSrc);
+    rg::TextureHandle handle = rg::vulkan::import(graph, name, image, rewritten_after(after_frame), after_frame);
     struct Data {
       rg::TextureHandle image;
     };

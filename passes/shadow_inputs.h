@@ -39,6 +39,9 @@ struct ShadowInputs {
   std::vector<rg::BufferHandle> lists;  // the looked-up lists: regions of `list_heads`, `list_nodes`
   gpu::BufferRange atlas, list_heads, list_nodes;
   VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists
+  // The frame slot the graph records into (passes/frames_in_flight.h): passes with a
+  // buffer per frame in flight (readbacks) write this slot's.
+  uint32_t frame_slot = 0;
 
   // Declares the reads in a camera pass's setup.
   void declare_reads(rg::PassBuilder& builder) const;

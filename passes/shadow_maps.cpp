@@ -138,6 +138,7 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
                                 " samples per segment; use 1 to 255");
+  vkDeviceWaitIdle(ctx_.device());  // frames in flight may use the buffers replaced here
   options_ = options;
   casters_ = casters;
   objects_ = objects;
@@ -169,9 +170,38 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   if (last_camera_) update_views(*last_camera_);
   unshadowed_.reserve(uint32_t(lights_.size()));
   const uint64_t entries = uint64_t(record_count_) * (options_.keep_reference ? 2 : 1);
-  parameters_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                           gpu::MemoryLocation::DeviceLocal, "shadow parameters"});
+  parameters_.create(ctx_, {std::max<uint64_t>(entries, 1) * sizeof(GpuShadow),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            gpu::MemoryLocation::DeviceLocal, "shadow parameters"});
+}
+
+void ShadowMaps::set_frames_in_flight(uint32_t count) {
+  check_frames_in_flight(count);
+  if (count == frames_in_flight()) return;
+  vkDeviceWaitIdle(ctx_.device());  // frames in flight use the buffers replaced here
+  parameters_.set_frames(ctx_, count);
+  for (MapState& map : maps_) create_frame_buffers(map);
+}
+
+// The counters a frame's passes write for finish_frame(), and what it declared, per slot.
+void ShadowMaps::create_frame_buffers(MapState& map) const {
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  map.counter.set_frames(ctx_, frames_in_flight());
+  map.counter.create(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " capture counter"});
+  if (lights_[map.light].light.shadow.build == scene::ShadowBuild::fixed) {
+    map.fixed_counter.set_frames(ctx_, frames_in_flight());
+    map.fixed_counter.create(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " fixed build counter"});
+  }
+  map.declared.assign(frames_in_flight(), DeclaredMap{});
+}
+
+void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const glm::vec3& direction) {
+  LightState& light = lights_.at(index);
+  light.light.position = position;
+  light.light.direction = direction;
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) maps_[m].view = initial_view(maps_[m]);
+  // Maps fitted to the camera are fitted again by the next frame (update_views).
+  views_[index] = maps_[light.first_map].view;
 }
 
 // A map's view before any camera is known (update_views() fits the camera's).
@@ -219,12 +249,7 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   for (MapState& map : maps) {
     map.record = light.views == shared::kViewsSingle ? index : record_count_++;
     map.map_state = initial_map_state(light);
-    map.counter = gpu::Buffer::create(ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                             gpu::MemoryLocation::HostReadback, map.prefix + " capture counter"});
-    if (l.shadow.build == scene::ShadowBuild::fixed)
-      map.fixed_counter = gpu::Buffer::create(
-          ctx_, {16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                 gpu::MemoryLocation::HostReadback, map.prefix + " fixed build counter"});
+    create_frame_buffers(map);
     map.lookups_read_lists = light.technique->reads_capture_lists() || options_.keep_reference;
     maps_.push_back(std::move(map));
     maps_.back().view = initial_view(maps_.back());
@@ -485,9 +510,10 @@ std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
 // "shadow parameters": the frame's GpuShadow records, written by the GPU in the frame
 // (not through a mapped pointer while it is declared), so the camera passes' reads are
 // ordered after the write like any other graph access.
-rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& camera) const {
+// One block per frame slot: a frame in flight keeps reading its own while the next is written.
+rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& camera, uint32_t slot) const {
   std::vector<GpuShadow> records = frame_records(camera);
-  rg::BufferHandle buffer = rg::vulkan::import(graph, "shadow parameters", parameters_, rg::ImportState::none(),
+  rg::BufferHandle buffer = rg::vulkan::import(graph, "shadow parameters", parameters_[slot], rg::ImportState::none(),
                                                rg::ImportState::of(rg::Usage::StorageRead));
   struct Data {
     rg::BufferHandle records;
@@ -507,12 +533,17 @@ rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& 
       .records;
 }
 
-ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters) {
+ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters,
+                                      uint32_t slot) {
+  if (slot >= frames_in_flight())
+    throw std::invalid_argument("ShadowMaps: frame slot " + std::to_string(slot) + " of " +
+                                std::to_string(frames_in_flight()) + " frames in flight");
   ShadowInputs inputs = unshadowed_inputs();
+  inputs.frame_slot = slot;
   if (lights_.empty()) return inputs;
   update_views(camera);
-  inputs.parameters = parameters_.handle();
-  inputs.records = add_parameter_upload(graph, camera);
+  inputs.parameters = parameters_[slot].handle();
+  inputs.records = add_parameter_upload(graph, camera, slot);
   inputs.atlas = atlas_ ? gpu::BufferRange(atlas_) : gpu::BufferRange();
   inputs.list_heads = list_heads_ ? gpu::BufferRange(list_heads_) : gpu::BufferRange();
   inputs.list_nodes = list_nodes_ ? gpu::BufferRange(list_nodes_) : gpu::BufferRange();
@@ -525,15 +556,16 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
     // The fixed build needs no lists; they are still captured for lookups that read them
     // (the uncompressed reference).
     std::optional<CaptureLists> lists;
-    map.captured_lists = !fixed || map.lookups_read_lists;
-    map.hair_segments = map_casters.strands.segment_count;
-    if (map.captured_lists) lists = add_capture_lists(graph, map, map_casters);
+    DeclaredMap& declared = map.declared[slot];
+    declared = {map.capacity, map.map_state, !fixed || map.lookups_read_lists, map_casters.strands.segment_count};
+    if (declared.captured_lists) lists = add_capture_lists(graph, map, map_casters, slot);
     if (map.lookups_read_lists) add_list_copy(graph, map, *lists, inputs);
     if (!light.technique->has_map()) continue;
+    // The map persists from frame to frame: this frame's build waits for the previous one's lookups.
     rg::BufferHandle handle = rg::vulkan::import(graph, map.prefix + " " + settings.technique + " map", map.map,
-                                                 rg::ImportState::none(), map_state_after_frame());
+                                                 rewritten_after(map_state_after_frame()), map_state_after_frame());
     if (fixed) {
-      rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " fixed build counter", map.fixed_counter,
+      rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " fixed build counter", map.fixed_counter[slot],
                                                     rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
       inputs.maps.push_back(builder.add_fixed_to_graph({graph, map.prefix, handle, counter, map.view, settings,
                                                         map.map_state, map_casters, options_.smoke_samples_per_segment}));
@@ -546,10 +578,11 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
 }
 
 // A map's capture lists: cleared, every caster appended, sorted if its settings ask.
-CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters) const {
+CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
+                                           uint32_t slot) const {
   const scene::ShadowSettings& settings = lights_[map.light].light.shadow;
   const LightView& view = map.view;
-  rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " capture counter", map.counter,
+  rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " capture counter", map.counter[slot],
                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
   CaptureLists lists = add_capture_clear_pass(graph, map.prefix, view.resolution, map.capacity, counter);
   lists = capture_opaque_.add_to_graph(graph, map.prefix, lists, view, casters.meshes);
@@ -565,9 +598,9 @@ void ShadowMaps::add_list_copy(rg::Graph& graph, const MapState& map, const Capt
                                ShadowInputs& inputs) const {
   const rg::ImportState after = rg::ImportState::of(rg::Usage::StorageRead);
   rg::BufferHandle heads = rg::vulkan::import(graph, map.prefix + " looked-up list heads", map.list_heads,
-                                              rg::ImportState::none(), after);
+                                              rewritten_after(after), after);
   rg::BufferHandle nodes = rg::vulkan::import(graph, map.prefix + " looked-up list nodes", map.list_nodes,
-                                              rg::ImportState::none(), after);
+                                              rewritten_after(after), after);
   struct Data {
     rg::TextureHandle source_heads;
     rg::BufferHandle source_nodes, heads, nodes;
@@ -627,47 +660,57 @@ ShadowCasters ShadowMaps::casters_of(const MapState& map, const ShadowCasters& a
   return casters;
 }
 
-FixedBuildStats ShadowMaps::fixed_build_stats(const MapState& map) const {
+FixedBuildStats ShadowMaps::fixed_build_stats(const MapState& map, uint32_t slot) const {
   uint32_t counters[4] = {0, 0, 0, 0};  // kFixedCounter* (shared/hair_bins.h)
-  std::memcpy(counters, map.fixed_counter.mapped(), sizeof(counters));
-  const uint32_t resolution = map.map_state.layout.resolution;
+  std::memcpy(counters, map.fixed_counter[slot].mapped(), sizeof(counters));
+  const DeclaredMap& declared = map.declared[slot];
+  const uint32_t resolution = declared.map_state.layout.resolution;
   FixedBuildStats f;
   f.inserted_segments = counters[shared::kFixedCounterInserted];
-  const uint64_t entry_bytes = HairBinsPass::entry_bytes(map.hair_segments, ctx_.info().max_storage_buffer_range);
+  const uint64_t entry_bytes = HairBinsPass::entry_bytes(declared.hair_segments, ctx_.info().max_storage_buffer_range);
   f.light_depth_bytes = LightDepthPass::bytes(resolution);
-  f.hair_bin_capacity = map.hair_segments == 0 ? 0 : entry_bytes / sizeof(uint32_t);
+  f.hair_bin_capacity = declared.hair_segments == 0 ? 0 : entry_bytes / sizeof(uint32_t);
   f.hair_bin_bytes = HairBinsPass::tile_bytes(resolution) + entry_bytes;
   f.hair_bin_requested = counters[shared::kFixedCounterBinEntries];
   f.tiles_walked = counters[shared::kFixedCounterTilesWalked];
   return f;
 }
 
-// One map's figures of the completed frame; grows its capture (and the technique's
-// state) for the next. Returns them with `grew` set when the atlas or the list buffers
+// One map's figures of the frame completed in `slot`, read against what that frame
+// declared; grows its capture (and the technique's state) for the next frame declared,
+// from what later frames already have. Sets `remake` when the atlas or the list buffers
 // must be made again.
-LightShadowStats ShadowMaps::finish_map(MapState& map) {
+LightShadowStats ShadowMaps::finish_map(MapState& map, uint32_t slot, bool& remake) {
   const LightState& light = lights_[map.light];
+  const DeclaredMap& declared = map.declared[slot];
   LightShadowStats stats;
   uint32_t counters[3] = {0, 0, 0};  // capture segments, what the technique's build asked for
-  if (map.captured_lists) std::memcpy(counters, map.counter.mapped(), sizeof(counters));
+  if (declared.captured_lists) std::memcpy(counters, map.counter[slot].mapped(), sizeof(counters));
   const uint32_t requested = counters[0];
+  const AvsmMapLayout& layout = declared.map_state.layout;
   stats.technique = light.light.shadow.technique;
-  stats.nodes = map.map_state.layout.nodes;
-  stats.resolution = map.map_state.layout.resolution;
-  stats.mip_levels = map.map_state.layout.levels;
-  stats.capture_capacity = map.capacity;
+  stats.nodes = layout.nodes;
+  stats.resolution = layout.resolution;
+  stats.mip_levels = layout.levels;
+  stats.capture_capacity = declared.capacity;
   stats.capture_requested = requested;
-  const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
-  stats.capture_bytes = map.captured_lists ? map.capacity * kCaptureSegmentBytes + texels * 4 : 0;
-  if (light.light.shadow.build == scene::ShadowBuild::fixed) stats.fixed_build = fixed_build_stats(map);
-  stats.overflowed = requested > map.capacity;
-  if (stats.overflowed) {
+  const uint64_t texels = uint64_t(layout.resolution) * layout.resolution;
+  stats.capture_bytes = declared.captured_lists ? declared.capacity * kCaptureSegmentBytes + texels * 4 : 0;
+  if (light.light.shadow.build == scene::ShadowBuild::fixed) stats.fixed_build = fixed_build_stats(map, slot);
+  stats.overflowed = requested > declared.capacity;
+  if (requested > map.capacity) {
     const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
-    map.capacity = std::min(limit, round_up(requested + requested / 4, 1024));
+    const uint64_t grown = std::min(limit, round_up(requested + requested / 4, 1024));
+    remake = remake || grown > map.capacity;
+    map.capacity = std::max(map.capacity, grown);
   }
   stats.next_capture_capacity = map.capacity;
   stats.grew = stats.next_capture_capacity > stats.capture_capacity;
-  if (light.technique->finish_frame(counters, map.map_state, stats)) stats.grew = true;  // a larger map next frame
+  // The technique's figures against the state the frame had; its next state from the current one.
+  TechniqueMapState as_declared = declared.map_state;
+  if (light.technique->finish_frame(counters, as_declared, stats)) stats.grew = true;  // a larger map next frame
+  LightShadowStats against_current;
+  if (light.technique->finish_frame(counters, map.map_state, against_current)) remake = true;
   return stats;
 }
 
@@ -709,21 +752,24 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
 
 }  // namespace
 
-void ShadowMaps::finish_frame() {
-  bool grew = false;
+void ShadowMaps::finish_frame(uint32_t slot) {
+  if (slot >= frames_in_flight())
+    throw std::invalid_argument("ShadowMaps::finish_frame: frame slot " + std::to_string(slot) + " of " +
+                                std::to_string(frames_in_flight()) + " frames in flight");
+  bool remake = false;
   std::vector<LightShadowStats> per_light(lights_.size());
   std::vector<TechniqueMapState> before;
   for (const MapState& map : maps_) before.push_back(map.map_state);
   for (MapState& map : maps_) {
-    map.stats = finish_map(map);
-    grew = grew || map.stats.grew;
+    map.stats = finish_map(map, slot, remake);
     add_map_stats(per_light[map.light], map.stats);
   }
   // Maps that grew (deep shadow map pools) stay within the budget: past it they keep
   // their size, and the frames go on reporting what did not fit.
   if (atlas_bytes_needed() > map_budget())
     for (size_t m = 0; m < maps_.size(); ++m) maps_[m].map_state = before[m];
-  if (grew) {  // the frame completed: make the buffers again for the next one
+  if (remake) {  // for the next frame; the frames still in flight use the old ones
+    vkDeviceWaitIdle(ctx_.device());
     create_list_buffers();
     create_atlas();
   }

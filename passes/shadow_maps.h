@@ -36,6 +36,7 @@
 #include "passes/capture_opaque_pass.h"
 #include "passes/capture_smoke_pass.h"
 #include "passes/capture_sort_pass.h"
+#include "passes/frames_in_flight.h"
 #include "passes/light_view.h"
 #include "passes/shadow_casters.h"
 #include "passes/shadow_clusters.h"
@@ -103,23 +104,37 @@ class ShadowMaps {
   // The same for lights that come without a scene: each light's map is fitted around
   // `casters` (everything that casts or receives: what the map must cover; empty
   // bounds give a unit box at the origin). `objects` are what clustered maps group
-  // (lights with shadow.clusters > 1 need them).
+  // (lights with shadow.clusters > 1 need them). Both wait for the device to idle
+  // (frames in flight use the buffers they replace).
   void set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
                   const ShadowOptions& options = {}, const std::vector<CasterObject>& objects = {});
 
-  // Declares this frame's shadow passes for every light's maps; their persistent resources
-  // (the map atlas, capture counters) are imported with the graph (rg::vulkan::import).
+  // How many frames may be in flight (passes/frames_in_flight.h; 1 by default): the
+  // parameter blocks and capture counters get a copy per frame slot. Waits for the
+  // device to idle.
+  void set_frames_in_flight(uint32_t count);
+  uint32_t frames_in_flight() const { return parameters_.frames(); }
+  // Moves light `light` (its position and direction; the rest of its settings stay) for
+  // the next frame, without waiting for frames in flight: its maps are fitted again.
+  // A clustered light keeps its clusters. Throws std::out_of_range for a light it lacks.
+  void place_light(uint32_t light, const glm::vec3& position, const glm::vec3& direction);
+
+  // Declares this frame's shadow passes for every light's maps into frame slot `slot`,
+  // whose previous frame must have completed; their persistent resources (the map
+  // atlas, capture counters) are imported with the graph (rg::vulkan::import).
   // Maps fitted to the view follow `camera`. `casters` are captured by value: their
   // buffers must stay alive and unchanged until the frame completes. Returns what the
   // camera passes need to read the maps.
-  ShadowInputs add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters);
+  ShadowInputs add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters, uint32_t slot = 0);
 
   // Inputs that leave every light unshadowed (for camera passes used without maps).
   ShadowInputs unshadowed_inputs() const { return unshadowed_.inputs(); }
 
-  // After the frame completed: reads the capture counters, reports overflow,
-  // grows the node buffers for the next frame.
-  void finish_frame();
+  // After the frame recorded into `slot` completed (frames finish in the order they
+  // were declared): reads its capture counters, reports overflow, grows the node
+  // buffers for the next frame declared (waiting for the frames still in flight when
+  // the map atlas or the list buffers must be made again).
+  void finish_frame(uint32_t slot = 0);
   const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
   // Fits the maps that follow the camera (shadow.fit view, cascades) to `camera` now, as
   // add_to_graph() does each frame: for code that needs light_views() before a frame.
@@ -162,6 +177,14 @@ class ShadowMaps {
     uint32_t lowered_from = 0;  // resolution before the budget lowered it; 0: not lowered
     std::vector<float> cascade_ends;  // the last frame's, cascaded lights only
   };
+  // What a frame declared for a map, which its figures are read against when it
+  // completes (later frames may already have grown the capture).
+  struct DeclaredMap {
+    uint64_t capacity = 0;
+    TechniqueMapState map_state;
+    bool captured_lists = false;
+    uint32_t hair_segments = 0;  // sizes the fixed build's bins
+  };
   // One map: a light's only one, a cube face, a cascade or a cluster's.
   struct MapState {
     uint32_t light = 0;
@@ -174,13 +197,12 @@ class ShadowMaps {
     TechniqueMapState map_state;
     uint64_t atlas_offset = 0;
     gpu::Buffer map;            // a region of atlas_
-    gpu::Buffer counter;        // host-readable capture counter
-    gpu::Buffer fixed_counter;  // host-readable, the fixed build's (shared/hair_bins.h)
-    bool captured_lists = false;  // in the last frame declared
+    FrameBuffers counter;        // host-readable capture counter, per frame slot
+    FrameBuffers fixed_counter;  // host-readable, the fixed build's (shared/hair_bins.h), per frame slot
     bool lookups_read_lists = false;
     uint64_t list_heads_offset = 0, list_nodes_offset = 0;  // bytes in list_heads_, list_nodes_
     gpu::Buffer list_heads, list_nodes;                     // regions of them
-    uint32_t hair_segments = 0;   // in the last frame declared (sizes the fixed build's bins)
+    std::vector<DeclaredMap> declared;  // per frame slot: its last frame's
     uint64_t capacity = 0;
     LightShadowStats stats;       // the last frame's
   };
@@ -197,12 +219,14 @@ class ShadowMaps {
   void update_views(const View& camera);
   GpuShadow gpu_shadow(const MapState& map, const View& camera) const;
   std::vector<GpuShadow> frame_records(const View& camera) const;
-  rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera) const;
-  FixedBuildStats fixed_build_stats(const MapState& map) const;
-  CaptureLists add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters) const;
+  rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera, uint32_t slot) const;
+  void create_frame_buffers(MapState& map) const;
+  FixedBuildStats fixed_build_stats(const MapState& map, uint32_t slot) const;
+  CaptureLists add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
+                                 uint32_t slot) const;
   void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
   ShadowCasters casters_of(const MapState& map, const ShadowCasters& all) const;
-  LightShadowStats finish_map(MapState& map);
+  LightShadowStats finish_map(MapState& map, uint32_t slot, bool& remake);
 
   gpu::Context& ctx_;
   CaptureOpaquePass capture_opaque_;
@@ -221,7 +245,7 @@ class ShadowMaps {
   std::vector<LightShadowStats> stats_;
   gpu::Buffer atlas_;              // every map, at MapState::atlas_offset
   gpu::Buffer list_heads_, list_nodes_;  // copies of the lists lookups read
-  gpu::Buffer parameters_;  // GpuShadow per record (and per exact reference), written in the frame
+  FrameBuffers parameters_;  // GpuShadow per record (and per exact reference), written in the frame
   UnshadowedInputs unshadowed_;
 };
 

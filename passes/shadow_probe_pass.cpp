@@ -20,9 +20,8 @@ void ShadowProbePass::upload_points(std::vector<glm::vec4> packed, uint32_t coun
   light_count_ = light_count;
   mode_ = mode;
   points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe points");
-  results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
-                                        "probe results"});
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * light_count_, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "probe results"});
 }
 
 void ShadowProbePass::set_points(const std::vector<glm::vec3>& points, uint32_t light_count) {
@@ -58,9 +57,9 @@ void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples)
   light_count_ = 1;  // results: two values per sample
   mode_ = Mode::texel_curves;
   points_ = gpu::create_buffer_from(ctx_, std::move(packed), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "texel samples");
-  results_ = gpu::Buffer::create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * 2, 1) * sizeof(float),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
-                                        "texel sample results"});
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(point_count_) * 2, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                         "texel sample results"});
 }
 
 void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows) {
@@ -70,7 +69,8 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows
   };
   const bool texels = mode_ == Mode::texel_curves;
   const std::string name = texels ? "shadow texel curves" : "shadow probes";
-  rg::BufferHandle results = rg::vulkan::import(graph, texels ? "texel sample results" : "probe results", results_,
+  rg::BufferHandle results = rg::vulkan::import(graph, texels ? "texel sample results" : "probe results",
+                                                results_[shadows.frame_slot],
                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
   graph.add_pass<Data>(name, rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Data& d) {
@@ -88,17 +88,17 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows
       });
 }
 
-std::vector<TexelSampleResult> ShadowProbePass::texel_results() const {
+std::vector<TexelSampleResult> ShadowProbePass::texel_results(uint32_t slot) const {
   if (mode_ != Mode::texel_curves) return {};
   std::vector<TexelSampleResult> out(point_count_);
-  if (point_count_) std::memcpy(out.data(), results_.mapped(), out.size() * sizeof(TexelSampleResult));
+  if (point_count_) std::memcpy(out.data(), results_[slot].mapped(), out.size() * sizeof(TexelSampleResult));
   return out;
 }
 
-std::vector<std::vector<float>> ShadowProbePass::results() const {
+std::vector<std::vector<float>> ShadowProbePass::results(uint32_t slot) const {
   if (mode_ == Mode::texel_curves) return {};
   std::vector<std::vector<float>> out(light_count_, std::vector<float>(point_count_));
-  const auto* values = static_cast<const float*>(results_.mapped());
+  const auto* values = static_cast<const float*>(results_[slot].mapped());
   for (uint32_t light = 0; light < light_count_; ++light)
     std::memcpy(out[light].data(), values + size_t(light) * point_count_, point_count_ * sizeof(float));
   return out;

@@ -47,13 +47,15 @@ class ShadowProbePass {
   // Switches this pass to texel curves: the samples are uploaded now. Texels must
   // lie inside their light's level-0 map and lights be the scene's (texels of a light's first map).
   void set_texel_samples(const std::vector<TexelSample>& samples);
+  // A results buffer per frame in flight (passes/frames_in_flight.h; 1 by default).
+  void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
   // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
-  // are ready after the frame.
+  // are ready after the frame, in its slot (shadows.frame_slot).
   void add_to_graph(rg::Graph& graph, const ShadowInputs& shadows);
-  // results()[light][point], after the frame completed (points mode).
-  std::vector<std::vector<float>> results() const;
+  // results()[light][point], after the frame recorded into `slot` completed (points mode).
+  std::vector<std::vector<float>> results(uint32_t slot = 0) const;
   // One result per texel sample, in set_texel_samples() order (texel-curve mode).
-  std::vector<TexelSampleResult> texel_results() const;
+  std::vector<TexelSampleResult> texel_results(uint32_t slot = 0) const;
 
  private:
   enum class Mode : uint32_t {
@@ -64,7 +66,8 @@ class ShadowProbePass {
   void upload_points(std::vector<glm::vec4> packed, uint32_t count, uint32_t light_count, Mode mode);
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
-  gpu::Buffer points_, results_;
+  gpu::Buffer points_;
+  FrameBuffers results_;
   uint32_t point_count_ = 0, light_count_ = 0;
   Mode mode_ = Mode::points;
 };

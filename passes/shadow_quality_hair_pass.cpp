@@ -29,16 +29,17 @@ void ShadowQualityHairPass::set_hair(const HairPass& hair, uint32_t light_count)
   stride_ = std::max(1u, (vertices + kMaxReceivers - 1) / kMaxReceivers);
   receiver_count_ = vertices / stride_;
   light_count_ = light_count;
-  results_ = gpu::Buffer::create(
-      ctx_, {std::max<uint64_t>(uint64_t(receiver_count_) * light_count, 1) * sizeof(float),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback, "shadow quality hair errors"});
+  results_.create(ctx_, {std::max<uint64_t>(uint64_t(receiver_count_) * light_count, 1) * sizeof(float),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostReadback,
+                         "shadow quality hair errors"});
 }
 
 void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {
   const View& view = frame.view;
   const ShadowInputs& shadows = frame.shadows;
   if (receiver_count_ == 0 || light_count_ == 0) return;
-  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality hair errors", results_, rg::ImportState::none(),
+  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality hair errors", results_[shadows.frame_slot],
+                                                rg::ImportState::none(),
                                                 rg::ImportState::of(rg::Usage::HostRead));
   struct Data {
     rg::TextureHandle depth;
@@ -64,9 +65,9 @@ void ShadowQualityHairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle dep
       });
 }
 
-std::vector<float> ShadowQualityHairPass::results() const {
+std::vector<float> ShadowQualityHairPass::results(uint32_t slot) const {
   std::vector<float> out(size_t(receiver_count_) * light_count_);
-  if (!out.empty()) std::memcpy(out.data(), results_.mapped(), out.size() * sizeof(float));
+  if (!out.empty()) std::memcpy(out.data(), results_[slot].mapped(), out.size() * sizeof(float));
   return out;
 }
 

@@ -29,17 +29,20 @@ class ShadowQualityHairPass {
 
   // Sizes the results for `hair`'s vertices and `light_count` lights.
   void set_hair(const HairPass& hair, uint32_t light_count);
+  // A result buffer per frame in flight (passes/frames_in_flight.h; 1 by default).
+  void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
   // Adds "shadow quality hair" reading `depth` (the opaque depth buffer) and the shadows.
   void add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame);
-  // After the frame: [light * receiver_count() + receiver], -1 where not a receiver.
-  std::vector<float> results() const;
+  // After the frame recorded into `slot`: [light * receiver_count() + receiver], -1 where
+  // not a receiver.
+  std::vector<float> results(uint32_t slot = 0) const;
   uint32_t receiver_count() const { return receiver_count_; }
 
  private:
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
-  gpu::Buffer results_;
+  FrameBuffers results_;
   const gpu::Buffer* points_ = nullptr;
   uint32_t receiver_count_ = 0, stride_ = 1, light_count_ = 0;
 };

@@ -36,8 +36,8 @@ void ShadowQualityPass::set_size(uint32_t width, uint32_t height, uint32_t light
   height_ = height;
   light_count_ = light_count;
   const uint64_t entries = std::max<uint64_t>(uint64_t(width) * height * light_count, 1);
-  results_ = gpu::Buffer::create(ctx_, {entries * sizeof(PixelShadowError), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                        gpu::MemoryLocation::HostReadback, "shadow quality errors"});
+  results_.create(ctx_, {entries * sizeof(PixelShadowError), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         gpu::MemoryLocation::HostReadback, "shadow quality errors"});
 }
 
 void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame) {
@@ -54,7 +54,8 @@ void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, 
   if (d.width != width_ || d.height != height_ || d.format != VolumePass::kDepthFormat)
     throw std::invalid_argument("ShadowQualityPass: depth must be D32_SFLOAT " + std::to_string(width_) + "x" +
                                 std::to_string(height_));
-  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality errors", results_, rg::ImportState::none(),
+  rg::BufferHandle results = rg::vulkan::import(graph, "shadow quality errors", results_[shadows.frame_slot],
+                                                rg::ImportState::none(),
                                                 rg::ImportState::of(rg::Usage::HostRead));
   struct Data {
     rg::TextureHandle depth;
@@ -83,10 +84,10 @@ void ShadowQualityPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth, 
       });
 }
 
-std::vector<PixelShadowError> ShadowQualityPass::results() const {
+std::vector<PixelShadowError> ShadowQualityPass::results(uint32_t slot) const {
   const size_t count = size_t(width_) * height_ * light_count_;
   std::vector<PixelShadowError> out(count);
-  if (count) std::memcpy(out.data(), results_.mapped(), count * sizeof(PixelShadowError));
+  if (count) std::memcpy(out.data(), results_[slot].mapped(), count * sizeof(PixelShadowError));
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadow_maps.h"
+#include "passes/frames_in_flight.h"
 #include "passes/view.h"
 #include "passes/volume_pass.h"
 #include "shared/passes/shadow_quality.h"
@@ -37,6 +38,8 @@ class ShadowQualityPass {
 
   // Sizes the result buffer for `light_count` lights on a width x height image.
   void set_size(uint32_t width, uint32_t height, uint32_t light_count);
+  // A result buffer per frame in flight (passes/frames_in_flight.h; 1 by default).
+  void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
 
   // Adds "shadow quality" after the camera passes: reads `depth` (the opaque depth
   // buffer, D32_SFLOAT, width x height), the frame's volumes and shadows. The shadows
@@ -44,8 +47,9 @@ class ShadowQualityPass {
   // the technique itself and every error is 0).
   void add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& frame);
 
-  // After the frame completed: [light * width * height + y * width + x], row 0 at the top.
-  std::vector<PixelShadowError> results() const;
+  // After the frame recorded into `slot` completed: [light * width * height + y * width + x],
+  // row 0 at the top.
+  std::vector<PixelShadowError> results(uint32_t slot = 0) const;
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t light_count() const { return light_count_; }
@@ -54,7 +58,7 @@ class ShadowQualityPass {
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
-  gpu::Buffer results_;
+  FrameBuffers results_;
   uint32_t width_ = 0, height_ = 0, light_count_ = 0;
 };
 

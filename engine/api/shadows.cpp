@@ -319,13 +319,16 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
   impl_->objects = objects;
 }
 
-ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters) {
+void Shadows::set_frames_in_flight(uint32_t count) { impl_->maps.set_frames_in_flight(count); }
+
+ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters,
+                                   uint32_t frame_slot) {
   check_frame(camera, casters, impl_->objects);
-  return impl_->maps.add_to_graph(graph, to_view(camera), casters);
+  return impl_->maps.add_to_graph(graph, to_view(camera), casters, frame_slot);
 }
 
-std::vector<LightStats> Shadows::finish_frame() {
-  impl_->maps.finish_frame();
+std::vector<LightStats> Shadows::finish_frame(uint32_t frame_slot) {
+  impl_->maps.finish_frame(frame_slot);
   std::vector<LightStats> result;
   for (const passes::LightShadowStats& s : impl_->maps.frame_stats())
     result.push_back({s.light, s.nodes, s.resolution, s.mip_levels, s.map_bytes, s.capture_bytes, s.capture_requested,

@@ -25,6 +25,7 @@
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
 #include "passes/view.h"
+#include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 
@@ -196,6 +197,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (options.width == 0 || options.height == 0)
     throw std::runtime_error("image size must be at least 1 pixel per side");
   if (options.frames == 0) throw std::runtime_error("--frames must be at least 1");
+  try {
+    passes::check_frames_in_flight(options.frames_in_flight);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (ec) throw std::runtime_error(options.out_dir.string() + ": cannot create output folder: " + ec.message());
@@ -241,6 +247,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     throw std::runtime_error(what.starts_with(prefix) ? what : prefix + what);
   }
   renderer::SceneRenderer& frame = *renderer_storage;
+  frame.set_frames_in_flight(options.frames_in_flight);
   report_lowered_resolutions(frame, scene);
   report_blend_casters_in_fixed_builds(scene);
   if (!probe_points.empty()) frame.set_probes(probe_points);
@@ -249,32 +256,67 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   frame.enable_light_images();
   uint64_t overflowed_frames = 0;
   passes::View view = passes::make_view(camera, options.width, options.height);
-  rg::vulkan::Executor executor(ctx, calibration.mode);
-  VkCommandBuffer cmd = ctx.allocate_command_buffer("frame");
+  renderer::FrameSlots slots(ctx, calibration.mode, options.frames_in_flight);
   FrameTimingLog timing_log;
   constexpr uint32_t kMaxOverflowRetries = 4;
 
-  auto render_frame = [&] { return render_timed_frame(ctx, frame, executor, cmd, view); };
+  // What each slot's frame in flight is: its number and clock.
+  std::vector<uint32_t> slot_frame(slots.count());
+  std::vector<FrameClock> slot_clock(slots.count());
+  std::vector<std::chrono::steady_clock::time_point> completed;  // per frame finished
+  bool last_grew = false;
+  // A frame's figures, when its fence signalled (frames finish in order).
+  auto finished = [&](renderer::FrameSlots::Slot& slot) {
+    FrameClock& clock = slot_clock[slot.index];
+    clock.completed = std::chrono::steady_clock::now();
+    completed.push_back(clock.completed);
+    frame.finish_frame(slot.index);
+    const uint32_t index = slot_frame[slot.index];
+    last_grew = report_overflow(frame, std::min(index, options.frames - 1), overflowed_frames);
+    const bool warm_up = index == 0 && options.frames > 1;
+    const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), /*measured=*/!warm_up);
+    if (options.progress)
+      std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", std::min(index, options.frames - 1) + 1, options.frames, wall,
+                   warm_up ? " (warm-up)" : index >= options.frames ? " (again)" : "");
+  };
+  // Records frame `index` into the next slot (first finishing the frame it held) and submits it.
+  auto submit_frame = [&](uint32_t index) {
+    renderer::FrameSlots::Slot& slot = slots.acquire(finished);
+    slot_frame[slot.index] = index;
+    slot_clock[slot.index] = record_timed_frame(frame, *slot.executor, slot.cmd, view, slot.index);
+    slots.submit(slot);
+  };
   std::optional<VolumeShadingRun> volume_run;
   if (options.compare_volume_shading) volume_run.emplace(ctx, calibration.mode, frame);
+  VkCommandBuffer comparison_cmd = volume_run ? ctx.allocate_command_buffer("volume comparison frame") : VK_NULL_HANDLE;
 
+  const auto loop_start = std::chrono::steady_clock::now();
   for (uint32_t index = 0; index < options.frames; ++index) {
-    // Interleaved with the main frames, so both paths see the same machine load.
-    if (volume_run)
-      volume_run->render_reference(cmd, view, /*measured=*/index > 0 || options.frames == 1,
+    // Interleaved with the main frames, so both paths see the same machine load; it
+    // renders with nothing else in flight.
+    if (volume_run) {
+      slots.finish_all(finished);
+      volume_run->render_reference(comparison_cmd, view, /*measured=*/index > 0 || options.frames == 1,
                                    /*keep=*/index + 1 == options.frames);
-    FrameClock clock = render_frame();
-    // A frame whose capture overflowed lacks segments; when the buffers could grow,
-    // render it again rather than keep it (a few times at most: growth has headroom).
-    for (uint32_t retry = 0; report_overflow(frame, index, overflowed_frames) && retry < kMaxOverflowRetries; ++retry) {
-      if (options.progress) std::fprintf(stderr, "frame %u: capture buffers grown, rendering it again\n", index + 1);
-      clock = render_frame();
     }
-    const bool warm_up = index == 0 && options.frames > 1;
-    const double wall = timing_log.add_frame(clock, executor.read_timings(), /*measured=*/!warm_up);
-    if (options.progress)
-      std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", index + 1, options.frames, wall, warm_up ? " (warm-up)" : "");
+    submit_frame(index);
   }
+  slots.finish_all(finished);
+  const double loop_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loop_start).count();
+  if (options.progress && completed.size() > 1)
+    std::fprintf(stderr, "avsm-capture: %zu frames in %.1f ms (%u in flight): %.2f ms per frame after the first\n",
+                 completed.size(), loop_ms, slots.count(),
+                 std::chrono::duration<double, std::milli>(completed.back() - completed.front()).count() /
+                     double(completed.size() - 1));
+  // A frame whose capture overflowed lacks segments; its buffers grew for the frames
+  // after it. The last one is kept, so it is rendered again while it overflowed and the
+  // buffers could grow (a few times at most: growth has headroom).
+  for (uint32_t retry = 0; last_grew && retry < kMaxOverflowRetries; ++retry) {
+    if (options.progress) std::fprintf(stderr, "frame %u: capture buffers grown, rendering it again\n", options.frames);
+    submit_frame(options.frames + retry);
+    slots.finish_all(finished);
+  }
+  const rg::vulkan::Executor& executor = slots.last_finished_executor();
 
   FrameOutputFiles files = write_frame_outputs(options.out_dir,
                                                {ctx, frame, executor, scene, timing_log, overflowed_frames});
@@ -289,7 +331,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                    {frame.hair_quality_results(), frame.hair_receiver_count()});
     out.quality = options.out_dir / "quality.json";
   }
-  if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, cmd, view, timing_log);
+  if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view, timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   if (options.report) write_report(options.out_dir, report, options.out_dir / "report.html");

@@ -24,6 +24,9 @@ struct CaptureOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
   uint32_t frames = 5;  // timing statistics over frames after the first (warm-up)
+  // Frames the CPU records ahead of the GPU (passes/frames_in_flight.h): 1 submits and
+  // waits for each frame; 2 records frame N+1 while the GPU runs frame N.
+  uint32_t frames_in_flight = 2;
   bool validation = false;
   std::string device;  // see gpu::ContextDesc::device
   bool progress = true;  // progress lines on stderr

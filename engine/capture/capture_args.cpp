@@ -18,6 +18,7 @@ const char* kUsage =
     "  --width N        image width (default 1280)\n"
     "  --height N       image height (default 720)\n"
     "  --frames K       frames to render; timings over all but the first (default 5)\n"
+    "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
@@ -144,6 +145,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.height = parse_count(arg, value());
   } else if (arg == "--frames") {
     options.frames = parse_count(arg, value());
+  } else if (arg == "--frames-in-flight") {
+    options.frames_in_flight = uint32_t(parse_in_range(arg, value(), 1, 3));
   } else if (arg == "--device") {
     options.device = value();
   } else if (arg == "--validation") {
@@ -257,6 +260,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.width != defaults.width, "--width", std::to_string(o.width));
   with_value(o.height != defaults.height, "--height", std::to_string(o.height));
   with_value(o.frames != defaults.frames, "--frames", std::to_string(o.frames));
+  with_value(o.frames_in_flight != defaults.frames_in_flight, "--frames-in-flight", std::to_string(o.frames_in_flight));
   with_value(o.device != defaults.device, "--device", o.device);
   flag(o.validation, "--validation");
   flag(!o.progress, "--quiet");

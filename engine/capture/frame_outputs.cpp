@@ -43,12 +43,12 @@ void write_light_images(const FrameOutputSources& frame, const fs::path& out_dir
 
 }  // namespace
 
-FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
-                              VkCommandBuffer cmd, const passes::View& view,
+FrameClock record_timed_frame(renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor, VkCommandBuffer cmd,
+                              const passes::View& view, uint32_t slot,
                               const std::function<void(VkCommandBuffer)>& also_record) {
   FrameClock clock;
   clock.start = std::chrono::steady_clock::now();
-  rg::Graph graph = renderer.build_frame(view);
+  rg::Graph graph = renderer.build_frame(view, slot);
   clock.built = std::chrono::steady_clock::now();
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -57,6 +57,13 @@ FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& render
   if (also_record) also_record(cmd);
   VK_CHECK(vkEndCommandBuffer(cmd));
   clock.recorded = std::chrono::steady_clock::now();
+  return clock;
+}
+
+FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
+                              VkCommandBuffer cmd, const passes::View& view,
+                              const std::function<void(VkCommandBuffer)>& also_record) {
+  FrameClock clock = record_timed_frame(renderer, executor, cmd, view, 0, also_record);
   ctx.submit_and_wait(cmd);
   clock.completed = std::chrono::steady_clock::now();
   renderer.finish_frame();

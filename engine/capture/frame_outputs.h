@@ -40,9 +40,15 @@ struct FrameClock {
   std::chrono::steady_clock::time_point start, built, recorded, completed;
 };
 
-// Renders one frame of `renderer` into `cmd` (begun here, one-time submit), submits
-// it, waits, and reads the shadow counters (finish_frame). `also_record` adds
-// commands after the frame graph's (the viewer copies its light maps there).
+// Declares one frame of `renderer` into frame slot `slot` and records it into `cmd`
+// (begun and ended here, one-time submit); the clock up to `recorded`. `also_record`
+// adds commands after the frame graph's (the viewer copies its light maps there).
+FrameClock record_timed_frame(renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor, VkCommandBuffer cmd,
+                              const passes::View& view, uint32_t slot,
+                              const std::function<void(VkCommandBuffer)>& also_record = {});
+
+// One frame with nothing else in flight: recorded into slot 0, submitted, waited for,
+// and its shadow counters read (finish_frame).
 FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& renderer, rg::vulkan::Executor& executor,
                               VkCommandBuffer cmd, const passes::View& view,
                               const std::function<void(VkCommandBuffer)>& also_record = {});

@@ -1,5 +1,6 @@
 #include "renderer/scene_renderer.h"
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -42,8 +43,11 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
 void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOptions& shadow_options) {
   // The previous frame's commands may still read the buffers replaced here.
   vkDeviceWaitIdle(ctx_.device());
-  lights_ = passes::upload_lights(ctx_, scene.lights);
+  lights_ = scene.lights;
   light_count_ = uint32_t(scene.lights.size());
+  // At least one entry, which lights nothing, so that a scene without lights binds something.
+  light_buffers_.create(ctx_, {std::max<uint64_t>(light_count_, 1) * sizeof(passes::GpuLight),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "scene lights"});
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
@@ -88,6 +92,37 @@ void SceneRenderer::set_size(uint32_t width, uint32_t height) {
   if (quality_) quality_->set_size(width_, height_, light_count_);
 }
 
+void SceneRenderer::set_frames_in_flight(uint32_t count) {
+  passes::check_frames_in_flight(count);
+  vkDeviceWaitIdle(ctx_.device());
+  shadows_.set_frames_in_flight(count);
+  light_buffers_.set_frames(ctx_, count);
+  for (passes::ShadowProbePass* pass : {probes_.get(), texel_curves_.get()})
+    if (pass) pass->set_frames_in_flight(count);
+  if (quality_) quality_->set_frames_in_flight(count);
+  if (hair_quality_) hair_quality_->set_frames_in_flight(count);
+  finished_slot_ = 0;
+}
+
+void SceneRenderer::place_light(uint32_t light, const glm::vec3& position, const glm::vec3& direction) {
+  scene::Light& moved = lights_.at(light);
+  moved.position = position;
+  moved.direction = direction;
+  shadows_.place_light(light, position, direction);
+}
+
+// The slot's previous frame has completed: nothing reads its copy any more.
+void SceneRenderer::write_lights(uint32_t slot) const {
+  std::vector<passes::GpuLight> data(std::max<size_t>(lights_.size(), 1), passes::GpuLight{});
+  for (size_t i = 0; i < lights_.size(); ++i) data[i] = passes::to_gpu(lights_[i]);
+  std::memcpy(light_buffers_[slot].mapped(), data.data(), data.size() * sizeof(passes::GpuLight));
+}
+
+void SceneRenderer::finish_frame(uint32_t slot) {
+  shadows_.finish_frame(slot);
+  finished_slot_ = slot;
+}
+
 void SceneRenderer::create_outputs() {
   hdr_ = output_image(ctx_, width_, height_, passes::OpaquePass::kColorFormat,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "hdr color");
@@ -95,21 +130,26 @@ void SceneRenderer::create_outputs() {
                       "tonemapped");
 }
 
-rg::Graph SceneRenderer::build_frame(const passes::View& view) {
+rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
+  if (slot >= frames_in_flight())
+    throw std::invalid_argument("SceneRenderer::build_frame: frame slot " + std::to_string(slot) + " of " +
+                                std::to_string(frames_in_flight()) + " frames in flight");
   rg::Graph graph;
-  // Both outputs are read back after the frame, hence TransferSrc as their final state.
+  // Both outputs are read back after the frame, hence TransferSrc as their final state;
+  // the next frame's writes wait for those reads (the frame before may still run).
   const rg::ImportState read_back = rg::ImportState::of(rg::Usage::TransferSrc);
-  rg::TextureHandle hdr = rg::vulkan::import(graph, "hdr color", hdr_, rg::ImportState::none(), read_back);
-  rg::TextureHandle ldr = rg::vulkan::import(graph, "tonemapped", ldr_, rg::ImportState::none(), read_back);
+  rg::TextureHandle hdr = rg::vulkan::import(graph, "hdr color", hdr_, passes::rewritten_after(read_back), read_back);
+  rg::TextureHandle ldr = rg::vulkan::import(graph, "tonemapped", ldr_, passes::rewritten_after(read_back), read_back);
+  write_lights(slot);
 
   // What every camera pass reads this frame, published once.
   passes::FrameInputs frame;
   frame.view = view;
   frame.volumes = &volumes_;
   frame.shading = volume_shading_;
-  frame.lights = &lights_;
+  frame.lights = &light_buffers_[slot];
   frame.light_count = light_count_;
-  frame.shadows = shadows_.add_to_graph(graph, view, {opaque_.casters(), hair_.casters(), volumes_.casters()});
+  frame.shadows = shadows_.add_to_graph(graph, view, {opaque_.casters(), hair_.casters(), volumes_.casters()}, slot);
   frame.light_views = &shadows_.light_views();
   const passes::ShadowInputs& shadows = frame.shadows;
 
@@ -143,14 +183,14 @@ rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle
 }
 
 void SceneRenderer::set_probes(const std::vector<glm::vec3>& points) {
-  if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  if (!probes_) probes_ = new_probe_pass();
   probe_points_ = points;
   probe_normals_.clear();
   probes_->set_points(points, light_count_);
 }
 
 void SceneRenderer::set_surface_probes(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals) {
-  if (!probes_) probes_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  if (!probes_) probes_ = new_probe_pass();
   probes_->set_surface_points(points, normals, light_count_);
   probe_points_ = points;
   probe_normals_ = normals;
@@ -170,13 +210,13 @@ std::string SceneRenderer::texel_sample_problem(const passes::TexelSample& sampl
 void SceneRenderer::set_texel_samples(const std::vector<passes::TexelSample>& samples) {
   for (const passes::TexelSample& sample : samples)
     if (std::string problem = texel_sample_problem(sample); !problem.empty()) throw std::invalid_argument(problem);
-  if (!texel_curves_) texel_curves_ = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  if (!texel_curves_) texel_curves_ = new_probe_pass();
   texel_samples_ = samples;
   texel_curves_->set_texel_samples(samples);
 }
 
 std::vector<passes::TexelSampleResult> SceneRenderer::texel_results() const {
-  return texel_curves_ ? texel_curves_->texel_results() : std::vector<passes::TexelSampleResult>{};
+  return texel_curves_ ? texel_curves_->texel_results(finished_slot_) : std::vector<passes::TexelSampleResult>{};
 }
 
 void SceneRenderer::enable_quality() {
@@ -184,17 +224,19 @@ void SceneRenderer::enable_quality() {
     throw std::logic_error("SceneRenderer::enable_quality: the shadow maps must keep the reference "
                            "(ShadowOptions::keep_reference)");
   if (!quality_) quality_ = std::make_unique<passes::ShadowQualityPass>(ctx_, shaders_);
+  quality_->set_frames_in_flight(frames_in_flight());
   quality_->set_size(width_, height_, light_count_);
   if (!hair_quality_) hair_quality_ = std::make_unique<passes::ShadowQualityHairPass>(ctx_, shaders_);
+  hair_quality_->set_frames_in_flight(frames_in_flight());
   hair_quality_->set_hair(hair_, light_count_);
 }
 
 std::vector<float> SceneRenderer::hair_quality_results() const {
-  return hair_quality_ ? hair_quality_->results() : std::vector<float>{};
+  return hair_quality_ ? hair_quality_->results(finished_slot_) : std::vector<float>{};
 }
 
 std::vector<passes::PixelShadowError> SceneRenderer::quality_results() const {
-  return quality_ ? quality_->results() : std::vector<passes::PixelShadowError>{};
+  return quality_ ? quality_->results(finished_slot_) : std::vector<passes::PixelShadowError>{};
 }
 
 void SceneRenderer::enable_light_images() {
@@ -207,8 +249,14 @@ const std::vector<gpu::Image>& SceneRenderer::light_images() const {
   return light_images_ ? light_images_->images() : none;
 }
 
+std::unique_ptr<passes::ShadowProbePass> SceneRenderer::new_probe_pass() const {
+  auto pass = std::make_unique<passes::ShadowProbePass>(ctx_, shaders_);
+  pass->set_frames_in_flight(frames_in_flight());
+  return pass;
+}
+
 std::vector<std::vector<float>> SceneRenderer::probe_results() const {
-  return probes_ ? probes_->results() : std::vector<std::vector<float>>{};
+  return probes_ ? probes_->results(finished_slot_) : std::vector<std::vector<float>>{};
 }
 
 }  // namespace avsm::renderer

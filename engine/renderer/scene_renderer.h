@@ -6,6 +6,11 @@
 // reference way (full-resolution march with shadow lookups along every ray), as the
 // scene's volume_shading says. Owns the per-scene GPU data and the frame's output
 // images; each frame declares its passes anew (the executor reuses the plan).
+//
+// Frames in flight (set_frames_in_flight; passes/frames_in_flight.h): each frame is
+// declared into a frame slot, whose lights, shadow parameters, counters and readbacks
+// are its own; the caller records slot s again only after the frame it last held
+// completed (renderer/frame_slots.h keeps a command buffer, fence and executor per slot).
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
 
@@ -47,6 +52,14 @@ class SceneRenderer {
   void set_scene(const scene::Scene& scene, const passes::ShadowOptions& shadow_options);
   // New output size (waits for the device to idle).
   void set_size(uint32_t width, uint32_t height);
+  // How many frames may be in flight, 1 to passes::kMaxFramesInFlight (1 until set):
+  // frames are declared into slots 0..count-1. Waits for the device to idle. Throws
+  // std::invalid_argument for another count.
+  void set_frames_in_flight(uint32_t count);
+  uint32_t frames_in_flight() const { return shadows_.frames_in_flight(); }
+  // Moves light `light` for the next frame declared (its position and direction; the
+  // frames in flight keep theirs). Throws std::out_of_range for a light the scene lacks.
+  void place_light(uint32_t light, const glm::vec3& position, const glm::vec3& direction);
   void set_exposure(float exposure) { exposure_ = exposure; }
   // How the camera sees the volumes; set_scene() takes the scene's. Throws
   // std::invalid_argument for a divisor other than 1, 2, 4 or a step outside 0.125..4 voxels.
@@ -63,8 +76,9 @@ class SceneRenderer {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
-  // Declares this frame's passes (the output images come imported with the graph).
-  rg::Graph build_frame(const passes::View& view);
+  // Declares this frame's passes into frame slot `slot`, whose previous frame must have
+  // completed (the output images come imported with the graph).
+  rg::Graph build_frame(const passes::View& view, uint32_t slot = 0);
 
   // Probes every light's transmittance at these points in each frame (after the
   // camera passes); results in probe_results() once the frame completed.
@@ -96,8 +110,10 @@ class SceneRenderer {
   void enable_light_images();
   const std::vector<gpu::Image>& light_images() const;
 
-  // After the frame completed: reads the shadow capture counters (overflow, growth).
-  void finish_frame() { shadows_.finish_frame(); }
+  // After the frame declared into `slot` completed (frames finish in the order they were
+  // declared): reads its shadow capture counters (overflow, growth). The results below
+  // (probes, texel curves, quality) are then that frame's, until the slot is declared again.
+  void finish_frame(uint32_t slot = 0);
   const passes::ShadowMaps& shadows() const { return shadows_; }
   // Fits the maps that follow the camera to `view` before the next frame (ShadowMaps::follow_camera).
   void fit_shadows_to(const passes::View& view) { shadows_.follow_camera(view); }
@@ -122,8 +138,13 @@ class SceneRenderer {
   std::vector<glm::vec3> probe_points_;
   std::vector<glm::vec3> probe_normals_;  // set: the probes are surface points
   std::vector<passes::TexelSample> texel_samples_;
-  gpu::Buffer lights_;
+  void write_lights(uint32_t slot) const;
+  std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
+
+  std::vector<scene::Light> lights_;
+  passes::FrameBuffers light_buffers_;  // the GpuLights, per frame slot, written as a frame is declared
   uint32_t light_count_ = 0;
+  uint32_t finished_slot_ = 0;  // of the last frame finished: where its results are
   passes::OpaquePass opaque_;
   passes::HairPass hair_;
   passes::VolumePass volumes_;

@@ -27,6 +27,7 @@ CaptureOptions every_option_set() {
   o.width = 96;
   o.height = 54;
   o.frames = 2;
+  o.frames_in_flight = 1;
   o.validation = true;
   o.device = "llvmpipe";
   o.progress = false;

@@ -177,11 +177,22 @@ class Shadows {
                   const std::vector<CasterObject>& objects = {});
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
 
+  // Frames the host records ahead of the GPU, 1 to 3 (1 until set): each frame is then
+  // declared into a frame slot 0..count-1 (add_to_graph, finish_frame), which has its
+  // own parameter block and capture counters. The host records into slot s again only
+  // after the frame it last held completed (its fence; one executor per slot, as the
+  // executor's transients belong to the frame it recorded), and finishes frames in the
+  // order it declared them. Waits for the device to idle; std::invalid_argument for
+  // another count.
+  void set_frames_in_flight(uint32_t count);
+
   // Declares this frame's passes for every light in `graph` (capture, sort, resolve,
-  // mips); their persistent maps come imported with the graph, so any executor can run
-  // it. The casters' buffers must stay alive and unchanged until the frame completes.
-  // The result is what the host's shading passes declare as reads and bind.
+  // mips) into frame slot `frame_slot`; their persistent maps come imported with the
+  // graph, so any executor can run it. The casters' buffers must stay alive and
+  // unchanged until the frame completes. The result is what the host's shading passes
+  // declare as reads and bind.
   // Preconditions (check_frame; std::invalid_argument, nothing declared):
+  //   - frame_slot is below the frames in flight;
   //   - camera: as Camera documents;
   //   - every view with something to cast (draws, segment_count, volume_count) has its
   //     buffers (not VK_NULL_HANDLE), each with a size that is a whole, non-zero number
@@ -195,12 +206,13 @@ class Shadows {
   //   - volumes: volume_count GpuVolume in the parameter buffer; grids and majorants
   //     given; the density atlas whole (atlas, atlas_sampler and brick_slots) or absent;
   //   - the CasterObjects given to set_lights lie within these casters.
-  ShadowInputs add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters);
+  ShadowInputs add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters,
+                            uint32_t frame_slot = 0);
 
-  // After the frame's command buffer completed: reads the capture counters and grows
-  // an overflowed capture buffer for the next frame. Precondition (the host's to keep,
-  // it cannot be checked here): the frame's work has finished on the GPU.
-  std::vector<LightStats> finish_frame();
+  // After the frame declared into `frame_slot` completed: reads its capture counters and
+  // grows an overflowed capture buffer for the next frame declared. Precondition (the
+  // host's to keep, it cannot be checked here): that frame's work has finished on the GPU.
+  std::vector<LightStats> finish_frame(uint32_t frame_slot = 0);
 
   // Bindings that leave every light unshadowed (for a pass drawn without maps).
   ShadowInputs unshadowed_inputs() const;
