@@ -150,7 +150,17 @@ Check quality_max_check(const capture::LightQuality& base, const capture::LightQ
 
 // ---- images ----
 
-float clamped(float value) { return std::clamp(value, 0.0f, 1.0f); }
+// frame.exr holds linear HDR (the default scene reaches 4): x / (1 + x) brings it into
+// [0, 1) without a display curve's clamp, so highlights still count but cannot swamp
+// the rest of the image.
+double compressed(float value) { return value > 0 ? double(value) / (1.0 + double(value)) : 0.0; }
+
+// The difference of two channel values; a value that is not finite (NaN, inf) differs
+// by the whole range from anything but itself.
+double channel_difference(float base, float now) {
+  if (std::isfinite(base) && std::isfinite(now)) return compressed(now) - compressed(base);
+  return (base == now || (std::isnan(base) && std::isnan(now))) ? 0.0 : 1.0;
+}
 
 // ---- folders ----
 
@@ -160,7 +170,7 @@ FolderKind folder_kind(const fs::path& dir, const char* side) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     throw std::runtime_error(dir.string() + ": no such folder (" + side + ": a capture folder or a sweep folder)");
-  if (fs::is_regular_file(index_path(dir), ec)) return FolderKind::sweep;
+  if (fs::is_regular_file(index_file(dir), ec)) return FolderKind::sweep;
   if (fs::is_regular_file(dir / "timings.json", ec)) return FolderKind::capture;
   throw std::runtime_error(dir.string() + ": neither a sweep folder (index.json) nor a capture folder (timings.json)");
 }
@@ -274,7 +284,7 @@ ImageDifference image_difference(const gpu::ImageRGBA32F& base, const gpu::Image
   double squared = 0, absolute = 0;
   for (size_t i = 0; i < base.pixels.size(); i += 4)
     for (size_t c = 0; c < 3; ++c) {
-      const double d = double(clamped(now.pixels[i + c])) - double(clamped(base.pixels[i + c]));
+      const double d = channel_difference(base.pixels[i + c], now.pixels[i + c]);
       squared += d * d;
       absolute += std::abs(d);
     }

@@ -54,7 +54,8 @@ std::vector<Check> compare_quality(const std::optional<capture::QualityReport>& 
 std::vector<Check> compare_memory(const capture::MemoryReport& base, const capture::MemoryReport& now,
                                   const MemoryThresholds& limits);
 
-// Of two images of the same size, over RGB clamped to [0, 1] (alpha ignored).
+// Of two images of the same size, over RGB mapped by x / (1 + x) into [0, 1) (HDR
+// highlights count without dominating; alpha ignored; a NaN or inf counts as the whole range).
 struct ImageDifference {
   double psnr_db = 0;  // infinity when equal
   double mean_abs_error = 0;

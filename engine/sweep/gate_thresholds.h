@@ -22,8 +22,9 @@ struct TimingThresholds {
 };
 
 struct ImageThresholds {
-  double min_psnr_db = 40.0;            // frame.exr, values clamped to [0, 1]
-  double max_mean_abs_error = 0.005;    // per channel (RGB), same clamp
+  // frame.exr, RGB mapped by x / (1 + x) into [0, 1) (compare.h, image_difference)
+  double min_psnr_db = 40.0;
+  double max_mean_abs_error = 0.005;
   bool operator==(const ImageThresholds&) const = default;
 };
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -196,19 +197,26 @@ TEST(GateMemory, AGrowthAboveRatioAndFloorFails) {
 
 // ---- images ----
 
-TEST(GateImages, PsnrAndMeanAbsoluteErrorOnClampedRgb) {
+TEST(GateImages, PsnrAndMeanAbsoluteErrorOnCompressedRgb) {
   const ImageDifference equal = image_difference(image(0.5f), image(0.5f));
   EXPECT_TRUE(std::isinf(equal.psnr_db));
   EXPECT_EQ(equal.mean_abs_error, 0.0);
-  // 0.1 everywhere: MSE 0.01, PSNR 20 dB. Alpha is not compared; 7 and 1 both clamp to 1.
-  gpu::ImageRGBA32F brighter = image(0.6f);
-  for (size_t i = 3; i < brighter.pixels.size(); i += 4) brighter.pixels[i] = 0.0f;
-  const ImageDifference d = image_difference(image(0.5f), brighter);
+  // 1/9 maps to 0.1 by x / (1 + x): a difference of 0.1 everywhere, MSE 0.01, PSNR 20 dB.
+  // Alpha is not compared.
+  gpu::ImageRGBA32F brighter = image(1.0f / 9.0f);
+  for (size_t i = 3; i < brighter.pixels.size(); i += 4) brighter.pixels[i] = 1.0f;
+  const ImageDifference d = image_difference(image(0.0f), brighter);
   EXPECT_NEAR(d.psnr_db, 20.0, 1e-4);
   EXPECT_NEAR(d.mean_abs_error, 0.1, 1e-6);
-  EXPECT_TRUE(std::isinf(image_difference(image(1.0f), image(7.0f)).psnr_db));
+  // HDR highlights still count: 3 and 7 map to 0.75 and 0.875.
+  EXPECT_NEAR(image_difference(image(3.0f), image(7.0f)).mean_abs_error, 0.125, 1e-6);
+  // A NaN differs by the whole range.
+  gpu::ImageRGBA32F broken = image(0.0f);
+  broken.pixels[0] = std::nanf("");
+  EXPECT_NEAR(image_difference(image(0.0f), broken).mean_abs_error, 1.0 / double(8 * 4 * 3), 1e-9);
+  EXPECT_TRUE(std::isinf(image_difference(broken, broken).psnr_db));
 
-  const std::vector<Check> checks = compare_images(image(0.5f), brighter, {});
+  const std::vector<Check> checks = compare_images(image(0.0f), brighter, {});
   EXPECT_EQ(find(checks, "image psnr")->verdict, Verdict::fail);
   EXPECT_EQ(find(checks, "image psnr")->message, "frame.exr differs from BASE: PSNR 20.00 dB (limit 40 dB, image.min_psnr_db)");
   EXPECT_EQ(find(checks, "image mean_abs_error")->verdict, Verdict::fail);
