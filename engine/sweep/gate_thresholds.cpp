@@ -16,8 +16,8 @@ using nlohmann::json;
 struct Key {
   const char* section;
   const char* name;
-  std::variant<double*, uint64_t*> value;
-  double lowest;  // the smallest value that makes sense
+  std::variant<double*, uint64_t*, bool*> value;
+  double lowest;  // the smallest value that makes sense (numbers only)
 };
 
 std::vector<Key> keys_of(Thresholds& t) {
@@ -26,6 +26,7 @@ std::vector<Key> keys_of(Thresholds& t) {
       {"timing", "min_pass_ms", &t.timing.min_pass_ms, 0.0},
       {"timing", "min_pass_share", &t.timing.min_pass_share, 0.0},
       {"timing", "max_frame_ratio", &t.timing.max_frame_ratio, 1.0},
+      {"timing", "judge_cpu_devices", &t.timing.judge_cpu_devices, 0.0},
       {"image", "min_psnr_db", &t.image.min_psnr_db, 0.0},
       {"image", "max_mean_abs_error", &t.image.max_mean_abs_error, 0.0},
       {"quality", "max_mean_abs_error_increase", &t.quality.max_mean_abs_error_increase, 0.0},
@@ -52,6 +53,11 @@ const Key* find_key(const std::vector<Key>& keys, const std::string& section, co
 
 void read_key(const Key& key, const json& value) {
   const std::string path = std::string(key.section) + "." + key.name;
+  if (auto* flag = std::get_if<bool*>(&key.value)) {
+    if (!value.is_boolean()) throw std::runtime_error("\"" + path + "\": expected true or false");
+    **flag = value.get<bool>();
+    return;
+  }
   if (!value.is_number()) throw std::runtime_error("\"" + path + "\": expected a number");
   const double number = value.get<double>();
   if (number < key.lowest)

@@ -70,10 +70,11 @@ size_t failures(const std::vector<Check>& checks) { return SuiteResult{"", check
 // ---- thresholds ----
 
 TEST(GateThresholds, AFileOverridesOnlyTheKeysItSets) {
-  const Thresholds t = thresholds_from_json(json::parse(R"({"timing": {"max_pass_ratio": 1.5},
+  const Thresholds t = thresholds_from_json(json::parse(R"({"timing": {"max_pass_ratio": 3, "judge_cpu_devices": true},
                                                             "memory": {"min_increase_bytes": 0}})"));
   Thresholds expected;
-  expected.timing.max_pass_ratio = 1.5;
+  expected.timing.max_pass_ratio = 3.0;
+  expected.timing.judge_cpu_devices = true;
   expected.memory.min_increase_bytes = 0;
   EXPECT_EQ(t, expected);
   EXPECT_EQ(thresholds_from_json(to_json(expected)), expected);  // every key written reads back
@@ -90,7 +91,8 @@ TEST(GateThresholds, UnknownKeysAndBadValuesAreNamed) {
   };
   EXPECT_EQ(error_of(R"({"timing": {"max_pass_rate": 2}})"),
             "unknown key \"timing.max_pass_rate\" (known in \"timing\": max_pass_ratio, min_pass_ms, "
-            "min_pass_share, max_frame_ratio)");
+            "min_pass_share, max_frame_ratio, judge_cpu_devices)");
+  EXPECT_EQ(error_of(R"({"timing": {"judge_cpu_devices": 1}})"), "\"timing.judge_cpu_devices\": expected true or false");
   EXPECT_EQ(error_of(R"({"speed": {}})"), "unknown section \"speed\" (known: timing, image, quality, memory)");
   EXPECT_EQ(error_of(R"({"image": {"min_psnr_db": "40"}})"), "\"image.min_psnr_db\": expected a number");
   EXPECT_EQ(error_of(R"({"memory": {"max_ratio": 0.5}})"), "\"memory.max_ratio\": 0.5 is below 1.0");
@@ -128,10 +130,10 @@ TEST(GateTimings, ABigPassTwiceAsSlowFails) {
   ASSERT_TRUE(big);
   EXPECT_EQ(big->verdict, Verdict::fail);
   EXPECT_EQ(big->change, "x2.25");
-  EXPECT_EQ(big->message, "pass 'big' took x2.25 its BASE time (limit x2.00, timing.max_pass_ratio)");
-  EXPECT_EQ(find(checks, "frame gpu_ms")->verdict, Verdict::pass);  // 150 / 100 ms
-  // 10 ms: under a fifth of the longer frame.
-  EXPECT_EQ(find(checks, "gpu_ms 'medium'")->message, "too short to judge (< 2 ms or < 20% of the frame)");
+  EXPECT_EQ(big->message, "pass 'big' took x2.25 its BASE time (limit x1.50, timing.max_pass_ratio)");
+  EXPECT_EQ(find(checks, "frame gpu_ms")->verdict, Verdict::pass);  // 150 / 100 ms: not above x1.50
+  EXPECT_EQ(find(checks, "gpu_ms 'medium'")->verdict, Verdict::pass);
+  EXPECT_EQ(find(checks, "gpu_ms 'tiny'")->message, "too short to judge (< 0.5 ms or < 5% of the frame)");
 }
 
 TEST(GateTimings, NoiseInSmallPassesIsNotJudged) {
@@ -144,6 +146,20 @@ TEST(GateTimings, NoiseInSmallPassesIsNotJudged) {
   TimingThresholds strict;
   strict.min_pass_share = 0.0;
   EXPECT_EQ(find(compare_timings(timings(40, 0.2), timings(40, 3.0), strict), "gpu_ms 'tiny'")->verdict, Verdict::fail);
+}
+
+TEST(GateTimings, ACpuDevicesTimesAreListedNotJudged) {
+  capture::TimingReport slow = timings(90);
+  slow.device = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  slow.cpu_device = true;
+  const std::vector<Check> checks = compare_timings(timings(40), slow, {});
+  EXPECT_EQ(failures(checks), 0u);
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->change, "x2.25");  // still reported
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->message,
+            "not judged: llvmpipe (LLVM 15.0.6, 256 bits) is a CPU device (timing.judge_cpu_devices)");
+  TimingThresholds judged;
+  judged.judge_cpu_devices = true;
+  EXPECT_EQ(failures(compare_timings(timings(40), slow, judged)), 1u);
 }
 
 TEST(GateTimings, TheFrameRatioAndPassesOnOneSide) {
