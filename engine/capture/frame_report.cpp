@@ -1,12 +1,12 @@
 #include "capture/frame_report.h"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <rendergraph/vk_names.h>
 #include <stdexcept>
 
 #include "capture/frame_outputs.h"
+#include "capture/json_read.h"
 #include "passes/techniques/techniques.h"
 
 namespace avsm::capture {
@@ -14,39 +14,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// ---- reading: every failure names the key ----
-
-const json& member(const json& object, const char* key) {
-  if (!object.is_object()) throw std::runtime_error(std::string("expected an object holding \"") + key + "\"");
-  const auto found = object.find(key);
-  if (found == object.end()) throw std::runtime_error(std::string("no \"") + key + "\"");
-  return *found;
-}
-
-template <class T>
-T value_of(const json& object, const char* key) {
-  try {
-    return member(object, key).get<T>();
-  } catch (const json::exception& e) {
-    throw std::runtime_error(std::string("\"") + key + "\": " + e.what());
-  }
-}
-
-// A number written as null where it had no value (no receivers, an infinite bound).
-template <class T>
-T number_or(const json& value, T fallback) {
-  return value.is_null() ? fallback : value.get<T>();
-}
-
-template <class T, class Read>
-std::vector<T> array_of(const json& object, const char* key, Read read) {
-  const json& items = member(object, key);
-  if (!items.is_array()) throw std::runtime_error(std::string("\"") + key + "\": expected an array");
-  std::vector<T> out;
-  for (const json& item : items) out.push_back(read(item));
-  return out;
-}
 
 rg::QueueType queue_from_string(const std::string& name) {
   for (rg::QueueType queue : {rg::QueueType::Graphics, rg::QueueType::Compute, rg::QueueType::Transfer})
@@ -328,27 +295,6 @@ std::optional<uint32_t> index_or_none(uint32_t index) {
 PlanResourceSummary summarize(const rg::PlannedResource& r) {
   return {r.name,   r.kind,   describe(r),           r.imported,           r.used,
           r.size,   r.offset, index_or_none(r.heap), index_or_none(r.first_pass), index_or_none(r.last_pass)};
-}
-
-// ---- files ----
-
-json read_json_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": missing or unreadable (run the capture first)");
-  json parsed = json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
-  return parsed;
-}
-
-// Reads `path` with `from_json`, its errors prefixed with the path.
-template <class Report>
-Report read_report_file(const fs::path& path, Report (*from_json)(const json&)) {
-  const json parsed = read_json_file(path);
-  try {
-    return from_json(parsed);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path.string() + ": " + e.what());
-  }
 }
 
 }  // namespace

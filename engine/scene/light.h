@@ -77,6 +77,7 @@ struct ShadowOverrides {
   std::optional<int> clusters;
   std::map<std::string, double> parameters;  // set on top of the light's own
 
+  bool operator==(const ShadowOverrides&) const = default;
   void apply(ShadowSettings& settings) const;
   // As apply(light.shadow), but only with the settings the light's type has, so that one
   // set of overrides fits a scene of mixed lights: cascades only onto directional lights,
