@@ -1,4 +1,4 @@
-# cmake --install: what a host renderer needs to embed the engine.
+# cmake --install: what a host renderer needs to embed the engine, and avsm-compare.
 #   <prefix>/lib/                     static libraries (rendergraph, gpu, scene, passes, shadows)
 #   <prefix>/include/avsm/            headers: avsm/shadows.h, and gpu/, io/, scene/, passes/,
 #                                     rendergraph/ as the engine includes them ("gpu/context.h",
@@ -6,6 +6,7 @@
 #   <prefix>/share/avsm/shaders/      GLSL (a host shader includes "common/shadow_lookup.glsl")
 #   <prefix>/share/avsm/spirv/        the SPIR-V compiled at build time
 #   <prefix>/lib/cmake/avsm/          find_package(avsm) -> avsm::avsm
+#   <prefix>/bin/avsm-compare         the regression gate (README.md, "Regression gate")
 # Every path in the package is relative to where it was installed, so the prefix can move.
 include(CMakePackageConfigHelpers)
 
@@ -19,6 +20,9 @@ set_target_properties(avsm_passes PROPERTIES EXPORT_NAME passes)
 install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes avsm_shadows avsm
         EXPORT avsmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+
+# The regression gate, for CI machines that compare captures (it needs no shaders or content).
+install(TARGETS avsm-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Headers, laid out as the engine includes them. The C++ builds of the shader math
 # (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h) include GLSL from the

@@ -150,13 +150,11 @@ TEST(GateTimings, NoiseInSmallPassesIsNotJudged) {
 
 TEST(GateTimings, ACpuDevicesTimesAreListedNotJudged) {
   capture::TimingReport slow = timings(90);
-  slow.device = "llvmpipe (LLVM 15.0.6, 256 bits)";
   slow.cpu_device = true;
   const std::vector<Check> checks = compare_timings(timings(40), slow, {});
   EXPECT_EQ(failures(checks), 0u);
   EXPECT_EQ(find(checks, "gpu_ms 'big'")->change, "x2.25");  // still reported
-  EXPECT_EQ(find(checks, "gpu_ms 'big'")->message,
-            "not judged: llvmpipe (LLVM 15.0.6, 256 bits) is a CPU device (timing.judge_cpu_devices)");
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->message, "not judged on a CPU device (timing.judge_cpu_devices)");
   TimingThresholds judged;
   judged.judge_cpu_devices = true;
   EXPECT_EQ(failures(compare_timings(timings(40), slow, judged)), 1u);
