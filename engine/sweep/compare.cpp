@@ -43,9 +43,8 @@ Check listed(std::string name, std::string base, std::string now, std::string me
 // ---- timings ----
 
 // A pass is timed well enough to judge when, on either side, it took at least
-// min_pass_ms and min_pass_share of the longer frame: lavapipe's timestamps absorb
-// whole scheduler slices (several ms on a busy machine), so a short pass can read many
-// times longer with nothing changed, and a loaded machine stretches every frame.
+// min_pass_ms and min_pass_share of the longer frame: below that a pass's time is
+// mostly the timestamps' own jitter, which can make it read several times longer.
 bool big_enough(double pass_ms, double frame_ms, const TimingThresholds& limits) {
   return pass_ms >= limits.min_pass_ms && pass_ms >= limits.min_pass_share * frame_ms;
 }
@@ -206,14 +205,26 @@ SuiteResult job_not_compared(const JobRecord* base, const JobRecord* now) {
   return {id, {check}};
 }
 
+Check settings_changed(const JobRecord& base, const JobRecord& now) {
+  const auto joined = [](const std::vector<std::string>& args) {
+    std::string text;
+    for (const std::string& arg : args) text += (text.empty() ? "" : " ") + arg;
+    return text;
+  };
+  return listed("capture arguments", joined(base.capture_args), joined(now.capture_args),
+                "differ: the figures compare different settings");
+}
+
 GateResult compare_sweeps(const fs::path& base, const fs::path& now, const Thresholds& limits) {
   const SweepIndex b = read_index(base), n = read_index(now);
   GateResult result{base.string(), now.string(), {}};
   for (const JobRecord& job : b.jobs) {
     const JobRecord* other = n.find(job.id);
-    if (other && job.status == JobStatus::done && other->status == JobStatus::done)
+    if (other && job.status == JobStatus::done && other->status == JobStatus::done) {
       result.suites.push_back(compare_captures(job.id, base / job.output, now / other->output, limits));
-    else
+      if (job.capture_args != other->capture_args)  // the manifest changed the job: say so first
+        result.suites.back().checks.insert(result.suites.back().checks.begin(), settings_changed(job, *other));
+    } else
       result.suites.push_back(job_not_compared(&job, other));
   }
   for (const JobRecord& job : n.jobs)

@@ -274,7 +274,9 @@ std::pair<fs::path, fs::path> sweep_pair() {
   write_capture(now / "a", 40, 0.5f, 0.01);
   write_capture(now / "b", 40, 0.25f, 0.01);
   write_capture(now / "d", 40, 0.5f);
-  write_index(now, {"/m.json", {job("a", JobStatus::done), job("b", JobStatus::done),
+  JobRecord b = job("b", JobStatus::done);
+  b.capture_args = {"--nodes", "4"};
+  write_index(now, {"/m.json", {job("a", JobStatus::done), b,
                                 job("c", JobStatus::failed, "avsm-capture: error: <out of memory> & more"),
                                 job("d", JobStatus::done)}});
   return {base, now};
@@ -288,6 +290,8 @@ TEST(GateFolders, SweepsAreComparedJobByJob) {
   EXPECT_EQ(result.suites[0].failures(), 0u);
   EXPECT_EQ(result.suites[1].name, "b");
   EXPECT_EQ(result.suites[1].failures(), 2u);  // PSNR and mean absolute error
+  EXPECT_EQ(result.suites[1].checks.at(0).message, "differ: the figures compare different settings");
+  EXPECT_EQ(result.suites[1].checks.at(0).now, "--nodes 4");
   EXPECT_EQ(result.suites[2].name, "c");
   EXPECT_EQ(result.suites[2].checks.at(0).message,
             "job 'c' was done in BASE but is failed in NEW: avsm-capture: error: <out of memory> & more");
