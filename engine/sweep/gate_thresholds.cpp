@@ -1,11 +1,12 @@
 #include "sweep/gate_thresholds.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "capture/json_read.h"
 
 namespace avsm::sweep {
 namespace {
@@ -100,15 +101,9 @@ json to_json(const Thresholds& thresholds) {
 }
 
 Thresholds read_thresholds(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": missing or unreadable (--thresholds)");
-  const json parsed = json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
-  try {
-    return thresholds_from_json(parsed);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path.string() + ": " + e.what());
-  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error(path.string() + ": no such file (--thresholds)");
+  return capture::read_report_file(path, thresholds_from_json);
 }
 
 }  // namespace avsm::sweep
