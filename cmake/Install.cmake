@@ -1,4 +1,5 @@
-# cmake --install: what a host renderer needs to embed the engine, and avsm-compare.
+# cmake --install: what a host renderer needs to embed the engine.
+#   <prefix>/bin/                     avsm-capture, avsm-sweep, avsm-compare (the regression gate)
 #   <prefix>/lib/                     static libraries (rendergraph, gpu, scene, passes, shadows)
 #   <prefix>/include/avsm/            headers: avsm/shadows.h, and gpu/, io/, scene/, passes/,
 #                                     rendergraph/ as the engine includes them ("gpu/context.h",
@@ -6,7 +7,6 @@
 #   <prefix>/share/avsm/shaders/      GLSL (a host shader includes "common/shadow_lookup.glsl")
 #   <prefix>/share/avsm/spirv/        the SPIR-V compiled at build time
 #   <prefix>/lib/cmake/avsm/          find_package(avsm) -> avsm::avsm
-#   <prefix>/bin/avsm-compare         the regression gate (README.md, "Regression gate")
 # Every path in the package is relative to where it was installed, so the prefix can move.
 include(CMakePackageConfigHelpers)
 
@@ -21,8 +21,9 @@ install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes a
         EXPORT avsmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# The regression gate, for CI machines that compare captures (it needs no shaders or content).
-install(TARGETS avsm-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The command-line tools: avsm-sweep runs the avsm-capture next to it (one folder);
+# avsm-compare, the regression gate, reads their output folders.
+install(TARGETS avsm-capture avsm-sweep avsm-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Headers, laid out as the engine includes them. The C++ builds of the shader math
 # (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h) include GLSL from the

@@ -53,6 +53,8 @@ struct CaptureOptions {
   // --plot-texel LIGHT:X,Y (parse_texel_plot()): curve_<light index>_<x>_<y>.svg each,
   // the texel's curve for the technique over the exact one. Also keeps the reference.
   std::vector<TexelPlot> plot_texels;
+
+  bool operator==(const CaptureOptions&) const = default;
 };
 
 struct CaptureOutputs {

@@ -84,6 +84,8 @@ struct TexelPlot {
   std::string light;  // light index or name
   uint32_t x = 0, y = 0;
   uint32_t light_index = 0;  // resolved by resolve_texel_plots()
+
+  bool operator==(const TexelPlot&) const = default;
 };
 
 // Parses LIGHT:X,Y (LIGHT: index or name, may itself hold ':'; X, Y whole numbers);

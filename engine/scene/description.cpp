@@ -3,6 +3,7 @@
 #include "scene/description.h"
 
 #include "scene/binary_reader.h"
+#include "scene/json_reader.h"
 #include "scene/load_error.h"
 
 #include <nlohmann/json.hpp>
@@ -12,7 +13,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <set>
 
 namespace avsm::scene {
 namespace {
@@ -21,186 +21,7 @@ using json = nlohmann::json;
 
 constexpr std::uint64_t kMaxSceneFileBytes = 64ull << 20;
 
-std::string child_path(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
-}
-std::string index_path(const std::string& parent, std::size_t index) {
-  return parent + "[" + std::to_string(index) + "]";
-}
-
-std::string describe_type(const json& value) {
-  switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return "true/false";
-    case json::value_t::string: return "a string";
-    case json::value_t::array: return "an array";
-    case json::value_t::object: return "an object";
-    case json::value_t::number_float: return "a number with a fraction";
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned: return "an integer";
-    default: return "something else";
-  }
-}
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// Knows the file; every failure names it and the JSON path.
-class Reader {
- public:
-  explicit Reader(std::filesystem::path file) : file_(std::move(file)) {}
-  const std::filesystem::path& file() const { return file_; }
-
-  [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
-    throw LoadError(file_, (path.empty() ? std::string("top level") : path) + ": " + problem);
-  }
-  void expect(bool condition, const std::string& path, const std::string& problem) const {
-    if (!condition) fail(path, problem);
-  }
-
-  std::string string(const json& value, const std::string& path) const {
-    expect(value.is_string(), path, "expected a string, got " + describe_type(value));
-    return value.get<std::string>();
-  }
-  bool boolean(const json& value, const std::string& path) const {
-    expect(value.is_boolean(), path, "expected true or false, got " + describe_type(value));
-    return value.get<bool>();
-  }
-  double number(const json& value, const std::string& path) const {
-    expect(value.is_number(), path, "expected a number, got " + describe_type(value));
-    const double result = value.get<double>();
-    expect(std::isfinite(result), path, "expected a finite number");
-    return result;
-  }
-  int integer(const json& value, const std::string& path) const {
-    expect(value.is_number_integer(), path, "expected a whole number, got " + describe_type(value));
-    constexpr std::int64_t kLimit = 1 << 30;
-    const bool in_range = value.is_number_unsigned() ? value.get<std::uint64_t>() <= std::uint64_t(kLimit)
-                                                     : std::abs(value.get<std::int64_t>()) <= kLimit;
-    expect(in_range, path, "number is out of range");
-    return static_cast<int>(value.get<std::int64_t>());
-  }
-  glm::vec3 vec3(const json& value, const std::string& path) const {
-    expect(value.is_array() && value.size() == 3, path, "expected an array of 3 numbers, got " + describe_type(value) +
-                                                            (value.is_array() ? " of " + std::to_string(value.size()) : ""));
-    return glm::vec3(float(number(value[0], index_path(path, 0))), float(number(value[1], index_path(path, 1))),
-                     float(number(value[2], index_path(path, 2))));
-  }
-
- private:
-  std::filesystem::path file_;
-};
-
-// One JSON object: hands out its members and, at finish(), rejects any member
-// nobody asked for (with the closest known key as a hint).
-class ObjectReader {
- public:
-  ObjectReader(const Reader& reader, const json& value, std::string path)
-      : reader_(reader), value_(value), path_(std::move(path)) {
-    reader_.expect(value.is_object(), path_, "expected an object, got " + describe_type(value));
-  }
-
-  const std::string& path() const { return path_; }
-  std::string path_of(const std::string& key) const { return child_path(path_, key); }
-  const Reader& reader() const { return reader_; }
-
-  const json* optional(const std::string& key) {
-    known_.push_back(key);
-    const auto found = value_.find(key);
-    return found == value_.end() ? nullptr : &*found;
-  }
-  const json& required(const std::string& key) {
-    const json* value = optional(key);
-    if (value == nullptr) reader_.fail(path_of(key), "required key is missing");
-    return *value;
-  }
-  bool has(const std::string& key) const { return value_.contains(key); }
-
-  void finish() const {
-    for (const auto& [key, unused] : value_.items()) {
-      if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
-      std::string hint;
-      std::size_t best = 3;  // suggest only near misses
-      for (const std::string& candidate : known_)
-        if (const std::size_t d = edit_distance(key, candidate); d < best) best = d, hint = candidate;
-      std::string known_list;
-      for (const std::string& candidate : known_) known_list += (known_list.empty() ? "" : ", ") + candidate;
-      reader_.fail(path_of(key), "unknown key" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
-                                     "; allowed here: " + known_list);
-    }
-  }
-
-  // Typed accessors.
-  std::string string(const std::string& key) { return reader_.string(required(key), path_of(key)); }
-  std::string string_or(const std::string& key, const std::string& fallback) {
-    const json* value = optional(key);
-    return value ? reader_.string(*value, path_of(key)) : fallback;
-  }
-  float number(const std::string& key) { return float(reader_.number(required(key), path_of(key))); }
-  float number_or(const std::string& key, float fallback) {
-    const json* value = optional(key);
-    return value ? float(reader_.number(*value, path_of(key))) : fallback;
-  }
-  std::optional<float> optional_number(const std::string& key) {
-    const json* value = optional(key);
-    return value ? std::optional<float>(float(reader_.number(*value, path_of(key)))) : std::nullopt;
-  }
-  int integer_or(const std::string& key, int fallback) {
-    const json* value = optional(key);
-    return value ? reader_.integer(*value, path_of(key)) : fallback;
-  }
-  bool boolean_or(const std::string& key, bool fallback) {
-    const json* value = optional(key);
-    return value ? reader_.boolean(*value, path_of(key)) : fallback;
-  }
-  glm::vec3 vec3(const std::string& key) { return reader_.vec3(required(key), path_of(key)); }
-  glm::vec3 vec3_or(const std::string& key, const glm::vec3& fallback) {
-    const json* value = optional(key);
-    return value ? reader_.vec3(*value, path_of(key)) : fallback;
-  }
-  std::optional<glm::vec3> optional_vec3(const std::string& key) {
-    const json* value = optional(key);
-    return value ? std::optional<glm::vec3>(reader_.vec3(*value, path_of(key))) : std::nullopt;
-  }
-
-  void check(bool condition, const std::string& key, const std::string& problem) const {
-    reader_.expect(condition, path_of(key), problem);
-  }
-
- private:
-  const Reader& reader_;
-  const json& value_;
-  std::string path_;
-  std::vector<std::string> known_;
-};
-
 // ---- pieces ----
-
-template <class Enum>
-Enum choice(ObjectReader& object, const std::string& key, Enum fallback,
-            const std::vector<std::pair<std::string, Enum>>& options, bool is_required = false) {
-  const json* value = is_required ? &object.required(key) : object.optional(key);
-  if (value == nullptr) return fallback;
-  const std::string text = object.reader().string(*value, object.path_of(key));
-  std::string allowed;
-  for (const auto& [name, option] : options) {
-    if (name == text) return option;
-    allowed += (allowed.empty() ? "" : ", ") + name;
-  }
-  object.reader().fail(object.path_of(key), "'" + text + "' is not one of " + allowed);
-}
 
 glm::mat4 rotation_from_degrees(const glm::vec3& degrees) {
   const glm::vec3 r = glm::radians(degrees);
@@ -333,46 +154,12 @@ HairEntry read_hair(ObjectReader& object, const std::filesystem::path& scene_dir
 ShadowSettings read_shadow(const Reader& reader, const json& value, const std::string& path) {
   ObjectReader object(reader, value, path);
   ShadowSettings shadow;
-  // A name; which names exist is the renderer's registry's to say (passes/techniques/).
-  shadow.technique = object.string_or("technique", shadow.technique);
-  object.check(!shadow.technique.empty(), "technique", "must name a shadow technique");
-  shadow.nodes = object.integer_or("nodes", shadow.nodes);
-  object.check(shadow.nodes == 4 || shadow.nodes == 8 || shadow.nodes == 12 || shadow.nodes == 16, "nodes",
-               "must be 4, 8, 12 or 16, got " + std::to_string(shadow.nodes));
-  shadow.resolution = object.integer_or("resolution", shadow.resolution);
-  object.check(shadow.resolution >= 16 && shadow.resolution <= 16384, "resolution",
-               "must be 16 to 16384 texels, got " + std::to_string(shadow.resolution));
-  shadow.filter = choice<ShadowFilter>(object, "filter", shadow.filter,
-                                       {{"point", ShadowFilter::point},
-                                        {"bilinear", ShadowFilter::bilinear},
-                                        {"trilinear", ShadowFilter::trilinear}});
-  shadow.kernel = choice<ShadowKernel>(object, "kernel", shadow.kernel,
-                                       {{"none", ShadowKernel::none},
-                                        {"box", ShadowKernel::box},
-                                        {"gaussian", ShadowKernel::gaussian}});
-  shadow.kernel_radius = object.integer_or("kernel_radius", shadow.kernel_radius);
-  object.check(shadow.kernel_radius >= 1 && shadow.kernel_radius <= 4, "kernel_radius",
-               "must be 1 to 4 texels, got " + std::to_string(shadow.kernel_radius));
-  shadow.sort = object.boolean_or("sort", shadow.sort);
-  shadow.build = choice<ShadowBuild>(object, "build", shadow.build,
-                                     {{"lists", ShadowBuild::lists}, {"fixed", ShadowBuild::fixed}});
-  shadow.fit = choice<ShadowFit>(object, "fit", shadow.fit, {{"view", ShadowFit::view}, {"scene", ShadowFit::scene}});
+  read_shadow_overrides(object).apply(shadow);
+  // The keys a sweep cannot override: how far the map reaches and the cascades' blend.
   shadow.distance = object.number_or("distance", shadow.distance);
   object.check(shadow.distance >= 0.0f, "distance", "must be >= 0 (0: the camera's far plane)");
-  shadow.cascades = object.integer_or("cascades", shadow.cascades);
-  object.check(shadow.cascades >= 1 && shadow.cascades <= 4, "cascades",
-               "must be 1 to 4, got " + std::to_string(shadow.cascades));
   shadow.cascade_blend = object.number_or("cascade_blend", shadow.cascade_blend);
   object.check(shadow.cascade_blend >= 0.0f && shadow.cascade_blend <= 0.5f, "cascade_blend", "must be 0 to 0.5");
-  shadow.clusters = object.integer_or("clusters", shadow.clusters);
-  object.check(shadow.clusters >= 0 && shadow.clusters <= 8, "clusters",
-               "must be 0 (off) to 8 maps, got " + std::to_string(shadow.clusters));
-  if (const json* parameters = object.optional("parameters")) {
-    const std::string parameters_path = object.path_of("parameters");
-    reader.expect(parameters->is_object(), parameters_path, "expected an object of numbers, got " + describe_type(*parameters));
-    for (const auto& [key, number] : parameters->items())
-      shadow.parameters[key] = reader.number(number, child_path(parameters_path, key));
-  }
   object.finish();
   return shadow;
 }
@@ -490,65 +277,39 @@ std::vector<Entry> read_list(ObjectReader& top, const std::string& key, ReadEntr
   return entries;
 }
 
-// nlohmann::json keeps the last of repeated keys; a scene file with two
-// "nodes" is a mistake, so the parse callback tracks the JSON path and refuses them.
-class DuplicateKeyCheck {
- public:
-  explicit DuplicateKeyCheck(const Reader& reader) : reader_(reader) {}
-
-  bool operator()(int, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: frames_.push_back({}); break;
-      case json::parse_event_t::array_start: frames_.push_back({true}); break;
-      case json::parse_event_t::key: {
-        Frame& frame = frames_.back();
-        frame.key = parsed.get<std::string>();
-        if (!frame.keys.insert(frame.key).second) reader_.fail(path(), "duplicate key");
-        break;
-      }
-      case json::parse_event_t::value: element_done(); break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        frames_.pop_back();
-        element_done();
-        break;
-    }
-    return true;
-  }
-
- private:
-  struct Frame {
-    bool is_array = false;
-    std::size_t index = 0;
-    std::string key;
-    std::set<std::string> keys;
-  };
-  void element_done() {
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
-  }
-  std::string path() const {
-    std::string result;
-    for (const Frame& frame : frames_) result = frame.is_array ? index_path(result, frame.index) : child_path(result, frame.key);
-    return result;
-  }
-
-  const Reader& reader_;
-  std::vector<Frame> frames_;
-};
-
-json parse_json(const Reader& reader, std::string_view text) {
-  try {
-    DuplicateKeyCheck check(reader);
-    return json::parse(text.begin(), text.end(), std::ref(check));
-  } catch (const json::exception& error) {  // parse_error, and out_of_range for numbers like 1e999
-    std::string message = error.what();
-    if (const auto bracket = message.find("] "); message.rfind("[json.exception", 0) == 0 && bracket != std::string::npos)
-      message.erase(0, bracket + 2);
-    throw LoadError(reader.file(), "invalid JSON: " + message);
-  }
-}
-
 }  // namespace
+
+ShadowOverrides read_shadow_overrides(ObjectReader& object) {
+  ShadowOverrides shadow;
+  // A name; which names exist is the renderer's registry's to say (passes/techniques/).
+  shadow.technique = object.optional("technique") ? std::optional(object.string("technique")) : std::nullopt;
+  object.check(!shadow.technique || !shadow.technique->empty(), "technique", "must name a shadow technique");
+  auto whole_number = [&](const char* key, bool (*allowed)(int), const std::string& range) {
+    const std::optional<int> value = object.optional_integer(key);
+    object.check(!value || allowed(*value), key, "must be " + range + ", got " + std::to_string(value.value_or(0)));
+    return value;
+  };
+  shadow.nodes = whole_number("nodes", [](int n) { return n == 4 || n == 8 || n == 12 || n == 16; }, "4, 8, 12 or 16");
+  shadow.resolution = whole_number("resolution", [](int r) { return r >= 16 && r <= 16384; }, "16 to 16384 texels");
+  shadow.filter = optional_choice<ShadowFilter>(
+      object, "filter", {{"point", ShadowFilter::point}, {"bilinear", ShadowFilter::bilinear}, {"trilinear", ShadowFilter::trilinear}});
+  shadow.kernel = optional_choice<ShadowKernel>(
+      object, "kernel", {{"none", ShadowKernel::none}, {"box", ShadowKernel::box}, {"gaussian", ShadowKernel::gaussian}});
+  shadow.kernel_radius = whole_number("kernel_radius", [](int r) { return r >= 1 && r <= 4; }, "1 to 4 texels");
+  shadow.sort = object.optional_boolean("sort");
+  shadow.build = optional_choice<ShadowBuild>(object, "build", {{"lists", ShadowBuild::lists}, {"fixed", ShadowBuild::fixed}});
+  shadow.fit = optional_choice<ShadowFit>(object, "fit", {{"view", ShadowFit::view}, {"scene", ShadowFit::scene}});
+  shadow.cascades = whole_number("cascades", [](int n) { return n >= 1 && n <= 4; }, "1 to 4");
+  shadow.clusters = whole_number("clusters", [](int n) { return n >= 0 && n <= 8; }, "0 (off) to 8 maps");
+  if (const json* parameters = object.optional("parameters")) {
+    const std::string parameters_path = object.path_of("parameters");
+    object.reader().expect(parameters->is_object(), parameters_path,
+                           "expected an object of numbers, got " + describe_type(*parameters));
+    for (const auto& [key, number] : parameters->items())
+      shadow.parameters[key] = object.reader().number(number, child_path(parameters_path, key));
+  }
+  return shadow;
+}
 
 SceneDescription parse_scene_description(std::string_view json_text, const std::filesystem::path& file) {
   const Reader reader(file);

@@ -61,6 +61,12 @@ struct SceneDescription {
   SceneShadows shadows;          // "shadows"
 };
 
+class ObjectReader;  // scene/json_reader.h
+// The shadow keys a light's "shadow" block shares with a sweep manifest's shadow
+// overrides (technique, nodes, resolution, filter, kernel, kernel_radius, sort, build,
+// fit, cascades, clusters, parameters), each checked; only those present are set.
+ShadowOverrides read_shadow_overrides(ObjectReader& object);
+
 // Reads and checks a scene file; asset paths come back resolved against its folder.
 SceneDescription read_scene_description(const std::filesystem::path& file);
 // The same from text; `file` names the scene in messages and anchors relative paths.

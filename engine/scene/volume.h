@@ -79,6 +79,8 @@ struct VolumeShadingOverrides {
   std::optional<VolumeShading::Mode> mode;
   std::optional<int> resolution_divisor;
   std::optional<float> step_voxels;
+
+  bool operator==(const VolumeShadingOverrides&) const = default;
   void apply(VolumeShading& shading) const {
     if (mode) shading.mode = *mode;
     if (resolution_divisor) shading.resolution_divisor = *resolution_divisor;

@@ -19,6 +19,9 @@ using nlohmann::json;
 
 namespace {
 
+// What the sweep folder holds besides the job folders.
+constexpr std::string_view kReservedNames[] = {"slurm", "manifest.json", "index.json", "report.html"};
+
 constexpr std::string_view kStatusNames[] = {"pending", "running", "done", "failed"};
 
 template <class Enum>
@@ -56,6 +59,8 @@ const JobRecord* SweepIndex::find(std::string_view id) const {
 
 bool is_valid_job_id(std::string_view id) {
   if (id.empty() || id == "." || id == "..") return false;
+  for (std::string_view reserved : kReservedNames)
+    if (id == reserved) return false;
   for (char c : id)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') return false;
   return true;

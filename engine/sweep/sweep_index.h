@@ -57,7 +57,8 @@ struct SweepIndex {
   const JobRecord* find(std::string_view id) const;
 };
 
-// True for a usable job id: [A-Za-z0-9._-]+, and not "." or "..".
+// True for a usable job id: [A-Za-z0-9._-]+, and not ".", "..", or a name the sweep
+// folder uses itself (slurm, manifest.json, index.json, report.html).
 bool is_valid_job_id(std::string_view id);
 
 nlohmann::json to_json(const scene::ShadowOverrides& shadow);

@@ -126,7 +126,7 @@ TEST(SweepIndex, JobFileOfAnotherJobIsAnError) {
 
 TEST(SweepIndex, JobIds) {
   EXPECT_TRUE(is_valid_job_id("default-avsm8_1.5"));
-  for (const char* bad : {"", ".", "..", "a/b", "a b", "é"}) EXPECT_FALSE(is_valid_job_id(bad)) << bad;
+  for (const char* bad : {"", ".", "..", "a/b", "a b", "é", "slurm", "index.json"}) EXPECT_FALSE(is_valid_job_id(bad)) << bad;
 }
 
 }  // namespace
