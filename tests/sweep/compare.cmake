@@ -45,6 +45,24 @@ add_compare_test(PlantedRegressionsFail Planted 1
   "FAIL: 4 checks crossed;pass 'shadow quality' took x[0-9.]+ its BASE time;the frame took x[0-9.]+ its BASE GPU time;light 'sun': the mean shadow error against the exact reference rose;memory 'sun' map_bytes grew x4.00"
   --thresholds ${CMAKE_SOURCE_DIR}/tests/data/judge_cpu_timings.json)
 
+# Two sweep folders: the local run's (sweep.LocalRun: 3 jobs done, 1 failed) against
+# itself passes; against a copy in which a done job failed, that job fails.
+set_tests_properties(sweep.LocalRun PROPERTIES FIXTURES_SETUP local_sweep)
+set(LOCAL_SWEEP ${CMAKE_CURRENT_BINARY_DIR}/local_sweep)
+add_test(NAME compare.PlantLostJob
+  COMMAND ${CMAKE_COMMAND} -DSWEEP=${LOCAL_SWEEP} -DOUT=${COMPARE_OUT}/lost_job_sweep
+          -P ${CMAKE_SOURCE_DIR}/tests/cmake/plant_lost_job.cmake)
+set_tests_properties(compare.PlantLostJob PROPERTIES FIXTURES_REQUIRED local_sweep FIXTURES_SETUP lost_job_sweep)
+foreach(case "SweepAgainstItselfPasses;${LOCAL_SWEEP};0;PASS: no threshold crossed"
+             "SweepWithALostJobFails;${COMPARE_OUT}/lost_job_sweep;1;FAIL: 1 check crossed;job '[^']+' was done in BASE but is failed in NEW: planted: the capture crashed")
+  list(POP_FRONT case name new expect_exit)
+  add_test(NAME compare.${name}
+    COMMAND ${CMAKE_COMMAND} "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${LOCAL_SWEEP};${new};--junit;${COMPARE_OUT}/${name}.xml"
+            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${case}" -DJUNIT=${COMPARE_OUT}/${name}.xml -DSUITES=4
+            -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
+  set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED "local_sweep;lost_job_sweep")
+endforeach()
+
 # Bad input: exit status 2 and a message naming the folder, or the file and its key.
 function(add_compare_error_test name expect)
   add_test(NAME compare.${name}
