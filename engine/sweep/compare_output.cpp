@@ -61,7 +61,8 @@ std::string summary_text(const GateResult& result) {
   std::ostringstream out;
   out << "avsm-compare: BASE " << result.base << "\n              NEW  " << result.now << "\n";
   for (const SuiteResult& suite : result.suites) {
-    out << "\n" << suite.name << ": " << suite.checks.size() << " checks, " << suite.failures() << " failed\n";
+    out << "\n" << suite.name << ": " << suite.checks.size() << (suite.checks.size() == 1 ? " check, " : " checks, ")
+        << suite.failures() << " failed\n";
     write_table(out, suite);
   }
   const size_t failures = result.failures();
