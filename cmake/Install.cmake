@@ -1,5 +1,5 @@
 # cmake --install: what a host renderer needs to embed the engine.
-#   <prefix>/bin/                     avsm-capture, avsm-sweep
+#   <prefix>/bin/                     avsm-capture, avsm-sweep, avsm-compare (the regression gate)
 #   <prefix>/lib/                     static libraries (rendergraph, gpu, scene, passes, shadows)
 #   <prefix>/include/avsm/            headers: avsm/shadows.h, and gpu/, io/, scene/, passes/,
 #                                     rendergraph/ as the engine includes them ("gpu/context.h",
@@ -21,8 +21,9 @@ install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes a
         EXPORT avsmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# The command-line tools: avsm-sweep runs the avsm-capture next to it (one folder).
-install(TARGETS avsm-capture avsm-sweep RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The command-line tools: avsm-sweep runs the avsm-capture next to it (one folder);
+# avsm-compare, the regression gate, reads their output folders.
+install(TARGETS avsm-capture avsm-sweep avsm-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Headers, laid out as the engine includes them. The C++ builds of the shader math
 # (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h) include GLSL from the

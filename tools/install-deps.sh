@@ -8,7 +8,7 @@ PACKAGES=(
   glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
   libopenvdb-dev libnanovdb-dev libopenvdb-tools libboost-iostreams-dev
-  libgtest-dev assimp-testmodels
+  libgtest-dev assimp-testmodels libxml2-utils
   clang libclang-rt-14-dev
   chromium
   libimgui-dev xvfb xauth

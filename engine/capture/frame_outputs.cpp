@@ -28,6 +28,7 @@ TimingReport timing_report(const FrameOutputSources& frame) {
   report.device = frame.ctx.info().name;
   report.driver = frame.ctx.info().driver_name + " " + frame.ctx.info().driver_info;
   report.timestamp_mode = gpu::to_string(frame.executor.timestamp_mode());
+  report.cpu_device = frame.ctx.info().is_cpu();
   report.width = frame.renderer.width();
   report.height = frame.renderer.height();
   return report;

@@ -347,6 +347,7 @@ json to_json(const TimingReport& t) {
   return {{"device", t.device},
           {"driver", t.driver},
           {"timestamp_mode", t.timestamp_mode},
+          {"cpu_device", t.cpu_device},
           {"width", t.width},
           {"height", t.height},
           {"frames_measured", t.frames.size()},
@@ -362,6 +363,7 @@ TimingReport timing_report_from_json(const json& in) {
   t.device = value_of<std::string>(in, "device");
   t.driver = value_of<std::string>(in, "driver");
   t.timestamp_mode = value_of<std::string>(in, "timestamp_mode");
+  if (in.contains("cpu_device")) t.cpu_device = value_of<bool>(in, "cpu_device");
   t.width = value_of<uint32_t>(in, "width");
   t.height = value_of<uint32_t>(in, "height");
   t.passes = array_of<PassTiming>(in, "passes", pass_timing_from_json);

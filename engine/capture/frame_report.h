@@ -49,6 +49,10 @@ struct FrameSample {
 
 struct TimingReport {
   std::string device, driver, timestamp_mode;
+  // A CPU implementation (lavapipe): its "GPU" times are CPU time on cores the rest of
+  // the machine shares, so they measure the machine's load as much as the frame.
+  // False in reports written before it was recorded.
+  bool cpu_device = false;
   uint32_t width = 0, height = 0;
   std::vector<PassTiming> passes;  // in the order first recorded
   Spread frame_gpu_ms, frame_wall_ms, frame_submit_wall_ms;

@@ -10,6 +10,14 @@
 namespace avsm::capture {
 
 namespace {
+
+double compressed(float value) { return value > 0 ? double(value) / (1.0 + double(value)) : 0.0; }
+
+double channel_difference(float image, float reference) {
+  if (std::isfinite(image) && std::isfinite(reference)) return compressed(image) - compressed(reference);
+  return (image == reference || (std::isnan(image) && std::isnan(reference))) ? 0.0 : 1.0;
+}
+
 std::string size_text(const gpu::ImageRGBA32F& image) {
   return std::to_string(image.width) + "x" + std::to_string(image.height);
 }
@@ -23,7 +31,7 @@ ImageDifference image_difference(const gpu::ImageRGBA32F& image, const gpu::Imag
   double abs_sum = 0, squared_sum = 0;
   for (size_t p = 0; p < pixels; ++p)
     for (size_t c = 0; c < 3; ++c) {
-      const double d = double(image.pixels[p * 4 + c]) - double(reference.pixels[p * 4 + c]);
+      const double d = channel_difference(image.pixels[p * 4 + c], reference.pixels[p * 4 + c]);
       abs_sum += std::abs(d);
       squared_sum += d * d;
     }

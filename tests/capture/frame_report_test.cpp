@@ -23,6 +23,7 @@ TimingReport sample_timings() {
   t.device = "Test GPU 9000";
   t.driver = "testdriver 1.2";
   t.timestamp_mode = "exact";
+  t.cpu_device = true;
   t.width = 320;
   t.height = 180;
   t.passes = {{"light 0 capture opaque", rg::QueueType::Compute, {1.25, 1.5, 2.0}, {0.01, 0.02, 0.03}},
@@ -169,6 +170,14 @@ TEST(FrameReport, ReadsACaptureFolderBack) {
   EXPECT_FALSE(back.quality);  // no quality.json in the folder
   ASSERT_TRUE(back.probes);
   EXPECT_EQ(back.probes->lights.at(0).transmittance, report.probes->lights.at(0).transmittance);
+}
+
+// Timings written before the device kind was recorded read as a GPU's.
+TEST(FrameReport, OlderTimingsHaveNoCpuDevice) {
+  nlohmann::json timings = to_json(sample_timings());
+  EXPECT_TRUE(timing_report_from_json(timings).cpu_device);
+  timings.erase("cpu_device");
+  EXPECT_FALSE(timing_report_from_json(timings).cpu_device);
 }
 
 TEST(FrameReport, ABrokenFileIsNamedWithItsKey) {

@@ -1,5 +1,5 @@
 // Frame against frame (capture/image_difference.h): mean absolute error and PSNR of the
-// linear RGB, through frame.exr files as the sweep report reads them.
+// RGB mapped by x / (1 + x), through frame.exr files as the sweep report reads them.
 #include "capture/image_difference.h"
 
 #include <gtest/gtest.h>
@@ -22,11 +22,12 @@ gpu::ImageRGBA32F filled(uint32_t width, uint32_t height, float value) {
 TEST(ImageDifference, KnownErrorsAndPsnr) {
   gpu::ImageRGBA32F reference = filled(4, 2, 0.5f);
   gpu::ImageRGBA32F image = reference;
-  image.at(1, 1)[0] = 0.9f;  // one channel of one pixel off by 0.4 (alpha does not count)
+  image.at(1, 1)[0] = 1.0f;  // one channel of one pixel: 1/3 -> 1/2 mapped (alpha does not count)
   image.at(3, 0)[3] = 0.0f;
   const ImageDifference d = image_difference(image, reference);
-  EXPECT_NEAR(d.mean_abs_error, 0.4 / 24, 1e-7);
-  EXPECT_NEAR(d.psnr_db, -10 * std::log10(0.16 / 24), 1e-5);
+  const double off = 0.5 - 1.0 / 3.0;
+  EXPECT_NEAR(d.mean_abs_error, off / 24, 1e-7);
+  EXPECT_NEAR(d.psnr_db, -10 * std::log10(off * off / 24), 1e-5);
   EXPECT_TRUE(std::isinf(image_difference(reference, reference).psnr_db));
   EXPECT_EQ(image_difference(reference, reference).mean_abs_error, 0.0);
 }
@@ -37,7 +38,7 @@ TEST(ImageDifference, ExrFilesOfDifferentSizesAreRefusedNamingBoth) {
   io::write_exr(dir / "a.exr", filled(4, 2, 0.25f));
   io::write_exr(dir / "b.exr", filled(4, 2, 0.75f));
   io::write_exr(dir / "c.exr", filled(2, 4, 0.25f));
-  EXPECT_NEAR(exr_difference(dir / "a.exr", dir / "b.exr").mean_abs_error, 0.5, 1e-6);
+  EXPECT_NEAR(exr_difference(dir / "a.exr", dir / "b.exr").mean_abs_error, 0.75 / 1.75 - 0.25 / 1.25, 1e-6);
   try {
     exr_difference(dir / "a.exr", dir / "c.exr");
     FAIL() << "sizes 4x2 and 2x4 compared";

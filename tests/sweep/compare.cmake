@@ -1,0 +1,77 @@
+# The regression gate (avsm-compare, engine/sweep/compare.h): its checks on synthetic
+# reports and sweep folders, then on real captures made once (fixture compare_captures;
+# the alpha casters scene needs nothing outside the project, and 96x54 with 2 frames
+# keeps each capture to seconds): an equal pair passes, a pair whose shadow maps have
+# half the resolution is flagged on the image, and a copy with planted regressions is
+# flagged on each. Every comparison writes JUnit, checked with xmllint.
+add_executable(avsm_compare_tests compare_test.cpp)
+target_link_libraries(avsm_compare_tests PRIVATE avsm_sweep nlohmann_json::nlohmann_json GTest::gtest GTest::gtest_main)
+gtest_discover_tests(avsm_compare_tests DISCOVERY_TIMEOUT 60)
+
+set(COMPARE_OUT ${CMAKE_CURRENT_BINARY_DIR}/compare)
+set(COMPARE_CAPTURE_ARGS --scene ${CMAKE_SOURCE_DIR}/content/examples/alpha_casters.scene.json
+    --width 96 --height 54 --frames 2 --quiet --compare-to uncompressed)
+foreach(capture "Base;64" "Same;64" "HalfShadowResolution;32")
+  list(POP_FRONT capture name resolution)
+  add_test(NAME compare.Capture${name}
+    COMMAND ${CMAKE_COMMAND} -E env XDG_RUNTIME_DIR=/tmp
+            $<TARGET_FILE:avsm-capture> ${COMPARE_CAPTURE_ARGS} --shadow-res ${resolution} --out ${COMPARE_OUT}/${name})
+  set_tests_properties(compare.Capture${name} PROPERTIES FIXTURES_SETUP compare_captures)
+endforeach()
+# What a broken commit would do, planted in a copy of the base capture: the biggest pass
+# 4x slower, light 0's map 4x larger, light 0's mean shadow error 0.5.
+add_test(NAME compare.PlantRegressions
+  COMMAND ${CMAKE_COMMAND} -DBASE=${COMPARE_OUT}/Base -DOUT=${COMPARE_OUT}/Planted "-DPASS=shadow quality"
+          -P ${CMAKE_SOURCE_DIR}/tests/cmake/plant_regression.cmake)
+set_tests_properties(compare.PlantRegressions PROPERTIES FIXTURES_REQUIRED compare_captures
+                                                         FIXTURES_SETUP compare_planted)
+
+# avsm-compare Base NEW --junit compare/<name>.xml [ARGN], expecting exit status
+# `expect_exit` and output matching every pattern of `expect`.
+function(add_compare_test name new expect_exit expect)
+  set(junit ${COMPARE_OUT}/${name}.xml)
+  add_test(NAME compare.${name}
+    COMMAND ${CMAKE_COMMAND}
+            "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${COMPARE_OUT}/Base;${COMPARE_OUT}/${new};--junit;${junit};${ARGN}"
+            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${expect}" -DJUNIT=${junit} -DSUITES=1
+            -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
+  set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED "compare_captures;compare_planted")
+endfunction()
+add_compare_test(EqualSettingsPass Same 0 "image psnr +inf \\(equal\\);PASS: no threshold crossed")
+add_compare_test(HalfShadowResolutionFails HalfShadowResolution 1
+  "FAIL: [0-9]+ checks? crossed;capture: frame.exr differs from BASE: PSNR [0-9.]+ dB \\(limit 40 dB, image.min_psnr_db\\)")
+# lavapipe's times are judged here (timing.judge_cpu_devices): the planted copy has no noise.
+add_compare_test(PlantedRegressionsFail Planted 1
+  "FAIL: 4 checks crossed;pass 'shadow quality' took x[0-9.]+ its BASE time;the frame took x[0-9.]+ its BASE GPU time;light 'sun': the mean shadow error against the exact reference rose;memory 'sun' map_bytes grew x4.00"
+  --thresholds ${CMAKE_SOURCE_DIR}/tests/data/judge_cpu_timings.json)
+
+# Two sweep folders: the local run's (sweep.LocalRun: 3 jobs done, 1 failed) against
+# itself passes; against a copy in which a done job failed, that job fails.
+set(LOCAL_SWEEP ${CMAKE_CURRENT_BINARY_DIR}/local_sweep)
+add_test(NAME compare.PlantLostJob
+  COMMAND ${CMAKE_COMMAND} -DSWEEP=${LOCAL_SWEEP} -DOUT=${COMPARE_OUT}/lost_job_sweep
+          -P ${CMAKE_SOURCE_DIR}/tests/cmake/plant_lost_job.cmake)
+set_tests_properties(compare.PlantLostJob PROPERTIES FIXTURES_REQUIRED sweep_local_run FIXTURES_SETUP lost_job_sweep)
+foreach(case "SweepAgainstItselfPasses;${LOCAL_SWEEP};0;PASS: no threshold crossed"
+             "SweepWithALostJobFails;${COMPARE_OUT}/lost_job_sweep;1;FAIL: 1 check crossed;job '[^']+' was done in BASE but is failed in NEW: planted: the capture crashed")
+  list(POP_FRONT case name new expect_exit)
+  add_test(NAME compare.${name}
+    COMMAND ${CMAKE_COMMAND} "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${LOCAL_SWEEP};${new};--junit;${COMPARE_OUT}/${name}.xml"
+            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${case}" -DJUNIT=${COMPARE_OUT}/${name}.xml -DSUITES=4
+            -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
+  set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED "sweep_local_run;lost_job_sweep")
+endforeach()
+
+# Bad input: exit status 2 and a message naming the folder, or the file and its key.
+function(add_compare_error_test name expect)
+  add_test(NAME compare.${name}
+    COMMAND ${CMAKE_COMMAND} "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${ARGN}" -DEXPECT_EXIT=2 "-DEXPECT=${expect}"
+            -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
+endfunction()
+add_compare_error_test(MissingFolderIsAClearError
+  "avsm-compare: error: [^\n]*no_such_base: no such folder \\(BASE: a capture folder or a sweep folder\\)"
+  ${COMPARE_OUT}/no_such_base ${COMPARE_OUT}/no_such_new)
+add_compare_error_test(UnknownThresholdIsAClearError
+  "bad_thresholds.json: unknown key \"image.min_psnr\" \\(known in \"image\": min_psnr_db, max_mean_abs_error\\)"
+  --thresholds ${CMAKE_SOURCE_DIR}/tests/data/bad_thresholds.json ${COMPARE_OUT}/Base ${COMPARE_OUT}/Same)
+add_compare_error_test(OneFolderIsAClearError "expects two folders, BASE and NEW; got 1" ${COMPARE_OUT}/Base)

@@ -1,0 +1,383 @@
+// The regression gate (engine/sweep/compare.h) on synthetic reports: each check's
+// threshold logic, the thresholds file, sweep folders matched by id, and the outputs.
+// CPU only; the real captures are compared in tests/sweep/CMakeLists.txt.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "capture/files.h"
+#include "io/image_io.h"
+#include "sweep/compare.h"
+#include "sweep/sweep_index.h"
+
+namespace avsm::sweep {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("avsm_compare_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A frame of 60 ms + the big pass: a big pass (40 ms), a 10 ms pass and a tiny one.
+capture::TimingReport timings(double big_ms = 40.0, double small_ms = 0.2) {
+  capture::TimingReport t;
+  t.passes = {{"big", rg::QueueType::Graphics, {big_ms, big_ms, big_ms}, {}},
+              {"medium", rg::QueueType::Compute, {10, 10, 10}, {}},
+              {"tiny", rg::QueueType::Compute, {small_ms, small_ms, small_ms}, {}}};
+  const double frame = 60.0 + big_ms;
+  t.frame_gpu_ms = {frame, frame, frame};
+  t.frames = {{frame, frame, frame}};
+  return t;
+}
+
+capture::MemoryReport memory(uint64_t map_bytes = 1 << 20) {
+  capture::MemoryReport m;
+  m.transient_bytes_aliased = 4 << 20;
+  passes::LightShadowStats sun;
+  sun.light = "sun";
+  sun.map_bytes = map_bytes;
+  sun.capture_bytes = 2 << 20;
+  m.lights = {sun};
+  return m;
+}
+
+capture::QualityReport quality(double mean) {
+  capture::LightQuality sun;
+  sun.light = "sun";
+  sun.surface = {1000, mean * 1000, 0.25};
+  return {96, 54, {sun}};
+}
+
+gpu::ImageRGBA32F image(float value, uint32_t width = 8, uint32_t height = 4) {
+  return {width, height, std::vector<float>(size_t(width) * height * 4, value)};
+}
+
+const Check* find(const std::vector<Check>& checks, const std::string& name) {
+  const auto found = std::find_if(checks.begin(), checks.end(), [&](const Check& c) { return c.name == name; });
+  return found == checks.end() ? nullptr : &*found;
+}
+
+size_t failures(const std::vector<Check>& checks) { return SuiteResult{"", checks}.failures(); }
+
+// ---- thresholds ----
+
+TEST(GateThresholds, AFileOverridesOnlyTheKeysItSets) {
+  const Thresholds t = thresholds_from_json(json::parse(R"({"timing": {"max_pass_ratio": 3, "judge_cpu_devices": true},
+                                                            "memory": {"min_increase_bytes": 0}})"));
+  Thresholds expected;
+  expected.timing.max_pass_ratio = 3.0;
+  expected.timing.judge_cpu_devices = true;
+  expected.memory.min_increase_bytes = 0;
+  EXPECT_EQ(t, expected);
+  EXPECT_EQ(thresholds_from_json(to_json(expected)), expected);  // every key written reads back
+}
+
+TEST(GateThresholds, UnknownKeysAndBadValuesAreNamed) {
+  const auto error_of = [](const char* text) {
+    try {
+      thresholds_from_json(json::parse(text));
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(R"({"timing": {"max_pass_rate": 2}})"),
+            "unknown key \"timing.max_pass_rate\" (known in \"timing\": max_pass_ratio, min_pass_ms, "
+            "min_pass_share, max_frame_ratio, judge_cpu_devices)");
+  EXPECT_EQ(error_of(R"({"timing": {"judge_cpu_devices": 1}})"), "\"timing.judge_cpu_devices\": expected true or false");
+  EXPECT_EQ(error_of(R"({"speed": {}})"), "unknown section \"speed\" (known: timing, image, quality, memory)");
+  EXPECT_EQ(error_of(R"({"image": {"min_psnr_db": "40"}})"), "\"image.min_psnr_db\": expected a number");
+  EXPECT_EQ(error_of(R"({"memory": {"max_ratio": 0.5}})"), "\"memory.max_ratio\": 0.5 is below 1.0");
+  EXPECT_EQ(error_of(R"({"memory": {"min_increase_bytes": 1.5}})"),
+            "\"memory.min_increase_bytes\": expected a whole number of bytes");
+  EXPECT_EQ(error_of("[]"), "expected an object of sections (timing, image, quality, memory)");
+}
+
+TEST(GateThresholds, FileErrorsNameTheFile) {
+  const fs::path dir = fresh_folder("thresholds");
+  capture::write_text(dir / "bad.json", R"({"quality": {"max_increase": 0.1}})");
+  try {
+    read_thresholds(dir / "bad.json");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "bad.json").string() + ": unknown key \"quality.max_increase\" (known in "
+                                                                   "\"quality\": max_mean_abs_error_increase)");
+  }
+  try {
+    read_thresholds(dir / "missing.json");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "missing.json").string() + ": no such file (--thresholds)");
+  }
+}
+
+// ---- timings ----
+
+TEST(GateTimings, EqualReportsPass) {
+  const std::vector<Check> checks = compare_timings(timings(), timings(), {});
+  EXPECT_EQ(failures(checks), 0u);
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->verdict, Verdict::pass);
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->change, "x1.00");
+  EXPECT_EQ(find(checks, "gpu_ms 'tiny'")->verdict, Verdict::listed);  // 0.2 ms: too short to judge
+}
+
+TEST(GateTimings, ABigPassTwiceAsSlowFails) {
+  const std::vector<Check> checks = compare_timings(timings(40), timings(90), {});
+  const Check* big = find(checks, "gpu_ms 'big'");
+  ASSERT_TRUE(big);
+  EXPECT_EQ(big->verdict, Verdict::fail);
+  EXPECT_EQ(big->change, "x2.25");
+  EXPECT_EQ(big->message, "pass 'big' took x2.25 its BASE time (limit x1.50, timing.max_pass_ratio)");
+  EXPECT_EQ(find(checks, "frame gpu_ms")->verdict, Verdict::pass);  // 150 / 100 ms: not above x1.50
+  EXPECT_EQ(find(checks, "gpu_ms 'medium'")->verdict, Verdict::pass);
+  EXPECT_EQ(find(checks, "gpu_ms 'tiny'")->message, "too short to judge (< 0.5 ms or < 5% of the frame)");
+}
+
+TEST(GateTimings, NoiseInSmallPassesIsNotJudged) {
+  // 0.2 -> 3 ms: 15 times longer, as a scheduler slice makes it on a busy machine, but
+  // 3% of the frame.
+  const std::vector<Check> checks = compare_timings(timings(40, 0.2), timings(40, 3.0), {});
+  EXPECT_EQ(find(checks, "gpu_ms 'tiny'")->verdict, Verdict::listed);
+  EXPECT_EQ(failures(checks), 0u);
+  // With a floor low enough, the same pass is judged.
+  TimingThresholds strict;
+  strict.min_pass_share = 0.0;
+  EXPECT_EQ(find(compare_timings(timings(40, 0.2), timings(40, 3.0), strict), "gpu_ms 'tiny'")->verdict, Verdict::fail);
+}
+
+TEST(GateTimings, ACpuDevicesTimesAreListedNotJudged) {
+  capture::TimingReport slow = timings(90);
+  slow.cpu_device = true;
+  const std::vector<Check> checks = compare_timings(timings(40), slow, {});
+  EXPECT_EQ(failures(checks), 0u);
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->change, "x2.25");  // still reported
+  EXPECT_EQ(find(checks, "gpu_ms 'big'")->message, "not judged on a CPU device (timing.judge_cpu_devices)");
+  TimingThresholds judged;
+  judged.judge_cpu_devices = true;
+  EXPECT_EQ(failures(compare_timings(timings(40), slow, judged)), 1u);
+}
+
+TEST(GateTimings, TheFrameRatioAndPassesOnOneSide) {
+  capture::TimingReport slow = timings(40);
+  slow.frame_gpu_ms = {250, 250, 250};
+  slow.passes.push_back({"new pass", rg::QueueType::Graphics, {150, 150, 150}, {}});
+  slow.passes.erase(slow.passes.begin() + 1);  // "medium" gone
+  const std::vector<Check> checks = compare_timings(timings(40), slow, {});
+  EXPECT_EQ(find(checks, "frame gpu_ms")->verdict, Verdict::fail);
+  EXPECT_EQ(find(checks, "frame gpu_ms")->change, "x2.50");
+  EXPECT_EQ(find(checks, "gpu_ms 'medium'")->message, "only in BASE");
+  EXPECT_EQ(find(checks, "gpu_ms 'new pass'")->message, "only in NEW");
+  EXPECT_EQ(failures(checks), 1u);
+}
+
+// ---- quality ----
+
+TEST(GateQuality, AMeanErrorRiseAboveTheLimitFails) {
+  EXPECT_EQ(failures(compare_quality(quality(0.010), quality(0.0115), {})), 0u);  // +0.0015 <= 0.002
+  const std::vector<Check> checks = compare_quality(quality(0.010), quality(0.013), {});
+  const Check* mean = find(checks, "quality 'sun' mean_abs_error");
+  ASSERT_TRUE(mean);
+  EXPECT_EQ(mean->verdict, Verdict::fail);
+  EXPECT_EQ(mean->change, "+0.00300");
+  EXPECT_EQ(find(checks, "quality 'sun' max_abs_error")->verdict, Verdict::listed);
+  EXPECT_EQ(failures(compare_quality(quality(0.013), quality(0.010), {})), 0u);  // better is fine
+}
+
+TEST(GateQuality, OneSideWithoutQualityIsListed) {
+  EXPECT_TRUE(compare_quality(std::nullopt, std::nullopt, {}).empty());
+  const std::vector<Check> checks = compare_quality(quality(0.01), std::nullopt, {});
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_EQ(checks[0].verdict, Verdict::listed);
+  EXPECT_EQ(checks[0].message, "only in BASE (capture both with --compare-to uncompressed)");
+}
+
+// ---- memory ----
+
+TEST(GateMemory, AGrowthAboveRatioAndFloorFails) {
+  const std::vector<Check> checks = compare_memory(memory(1 << 20), memory(4 << 20), {});
+  const Check* map = find(checks, "memory 'sun' map_bytes");
+  ASSERT_TRUE(map);
+  EXPECT_EQ(map->verdict, Verdict::fail);
+  EXPECT_EQ(map->base, "1.00 MiB");
+  EXPECT_EQ(map->change, "x4.00");
+  EXPECT_EQ(failures(checks), 1u);
+  // x2, but by 4 KiB only: under memory.min_increase_bytes.
+  EXPECT_EQ(failures(compare_memory(memory(4096), memory(8192), {})), 0u);
+  EXPECT_EQ(failures(compare_memory(memory(4 << 20), memory(1 << 20), {})), 0u);  // smaller is fine
+}
+
+// ---- images ----
+
+TEST(GateImages, PsnrAndMeanAbsoluteErrorOnCompressedRgb) {
+  using capture::image_difference, capture::ImageDifference;
+  const ImageDifference equal = image_difference(image(0.5f), image(0.5f));
+  EXPECT_TRUE(std::isinf(equal.psnr_db));
+  EXPECT_EQ(equal.mean_abs_error, 0.0);
+  // 1/9 maps to 0.1 by x / (1 + x): a difference of 0.1 everywhere, MSE 0.01, PSNR 20 dB.
+  // Alpha is not compared.
+  gpu::ImageRGBA32F brighter = image(1.0f / 9.0f);
+  for (size_t i = 3; i < brighter.pixels.size(); i += 4) brighter.pixels[i] = 1.0f;
+  const ImageDifference d = image_difference(image(0.0f), brighter);
+  EXPECT_NEAR(d.psnr_db, 20.0, 1e-4);
+  EXPECT_NEAR(d.mean_abs_error, 0.1, 1e-6);
+  // HDR highlights still count: 3 and 7 map to 0.75 and 0.875.
+  EXPECT_NEAR(image_difference(image(3.0f), image(7.0f)).mean_abs_error, 0.125, 1e-6);
+  // A NaN differs by the whole range.
+  gpu::ImageRGBA32F broken = image(0.0f);
+  broken.pixels[0] = std::nanf("");
+  EXPECT_NEAR(image_difference(image(0.0f), broken).mean_abs_error, 1.0 / double(8 * 4 * 3), 1e-9);
+  EXPECT_TRUE(std::isinf(image_difference(broken, broken).psnr_db));
+
+  const std::vector<Check> checks = compare_images(image(0.0f), brighter, {});
+  EXPECT_EQ(find(checks, "image psnr")->verdict, Verdict::fail);
+  EXPECT_EQ(find(checks, "image psnr")->message, "frame.exr differs from BASE: PSNR 20.00 dB (limit 40 dB, image.min_psnr_db)");
+  EXPECT_EQ(find(checks, "image mean_abs_error")->verdict, Verdict::fail);
+  EXPECT_EQ(failures(compare_images(image(0.5f), image(0.5f), {})), 0u);
+}
+
+TEST(GateImages, DifferentSizesAreAClearFailure) {
+  const std::vector<Check> checks = compare_images(image(0.5f, 8, 4), image(0.5f, 4, 4), {});
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_EQ(checks[0].verdict, Verdict::fail);
+  EXPECT_EQ(checks[0].message,
+            "frame.exr is 8x4 in BASE but 4x4 in NEW: compare captures made with the same --width and --height");
+}
+
+// ---- folders ----
+
+void write_capture(const fs::path& dir, double big_ms, float pixel, std::optional<double> mean_error = {}) {
+  fs::create_directories(dir);
+  capture::write_json(dir / "timings.json", capture::to_json(timings(big_ms)));
+  capture::write_json(dir / "memory.json", capture::to_json(memory()));
+  if (mean_error) capture::write_json(dir / "quality.json", capture::to_json(quality(*mean_error)));
+  io::write_exr(dir / "frame.exr", image(pixel));
+}
+
+JobRecord job(const std::string& id, JobStatus status, const std::string& error = "") {
+  JobRecord record;
+  record.id = id;
+  record.output = id;
+  record.status = status;
+  record.exit_code = status == JobStatus::done ? 0 : 1;
+  record.error = error;
+  return record;
+}
+
+// BASE: a, b, c, gone done. NEW: a equal, b darker, c failed, d only in NEW.
+std::pair<fs::path, fs::path> sweep_pair() {
+  const fs::path base = fresh_folder("sweep_base"), now = fresh_folder("sweep_new");
+  for (const char* id : {"a", "b", "c", "gone"}) write_capture(base / id, 40, 0.5f, 0.01);
+  write_index(base, {"/m.json", {job("a", JobStatus::done), job("b", JobStatus::done), job("c", JobStatus::done),
+                                 job("gone", JobStatus::done)}});
+  write_capture(now / "a", 40, 0.5f, 0.01);
+  write_capture(now / "b", 40, 0.25f, 0.01);
+  write_capture(now / "d", 40, 0.5f);
+  JobRecord b = job("b", JobStatus::done);
+  b.capture_args = {"--nodes", "4"};
+  write_index(now, {"/m.json", {job("a", JobStatus::done), b,
+                                job("c", JobStatus::failed, "avsm-capture: error: <out of memory> & more"),
+                                job("d", JobStatus::done)}});
+  return {base, now};
+}
+
+TEST(GateFolders, SweepsAreComparedJobByJob) {
+  const auto [base, now] = sweep_pair();
+  const GateResult result = compare_folders(base, now, {});
+  ASSERT_EQ(result.suites.size(), 5u);
+  EXPECT_EQ(result.suites[0].name, "a");
+  EXPECT_EQ(result.suites[0].failures(), 0u);
+  EXPECT_EQ(result.suites[1].name, "b");
+  EXPECT_EQ(result.suites[1].failures(), 2u);  // PSNR and mean absolute error
+  EXPECT_EQ(result.suites[1].checks.at(0).message, "differ: the figures compare different settings");
+  EXPECT_EQ(result.suites[1].checks.at(0).now, "--nodes 4");
+  EXPECT_EQ(result.suites[2].name, "c");
+  EXPECT_EQ(result.suites[2].checks.at(0).message,
+            "job 'c' was done in BASE but is failed in NEW: avsm-capture: error: <out of memory> & more");
+  EXPECT_EQ(result.suites[3].checks.at(0).message, "only in BASE");
+  EXPECT_EQ(result.suites[4].name, "d");
+  EXPECT_EQ(result.suites[4].checks.at(0).message, "only in NEW");
+  EXPECT_EQ(result.failures(), 3u);
+}
+
+TEST(GateFolders, CapturePairsAndBadInputs) {
+  const fs::path base = fresh_folder("capture_base"), now = fresh_folder("capture_new");
+  write_capture(base, 40, 0.5f, 0.01);
+  write_capture(now, 40, 0.5f, 0.01);
+  const GateResult equal = compare_folders(base, now, {});
+  ASSERT_EQ(equal.suites.size(), 1u);
+  EXPECT_EQ(equal.suites[0].name, "capture");
+  EXPECT_EQ(equal.failures(), 0u);
+  EXPECT_TRUE(find(equal.suites[0].checks, "quality 'sun' mean_abs_error"));
+  EXPECT_TRUE(find(equal.suites[0].checks, "memory 'sun' capture_bytes"));
+
+  const auto error_of = [](const fs::path& b, const fs::path& n) {
+    try {
+      compare_folders(b, n, {});
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(base, base / "nothing"),
+            (base / "nothing").string() + ": no such folder (NEW: a capture folder or a sweep folder)");
+  const auto [sweep, unused] = sweep_pair();
+  EXPECT_NE(error_of(base, sweep).find("compare captures with captures, sweeps with sweeps"), std::string::npos);
+  capture::write_text(now / "memory.json", "{");
+  EXPECT_EQ(error_of(base, now), (now / "memory.json").string() + ": not valid JSON");
+  fs::remove(now / "memory.json");
+  EXPECT_EQ(error_of(base, now), (now / "memory.json").string() + ": missing or unreadable (run the capture first)");
+}
+
+// ---- outputs ----
+
+size_t occurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(GateOutput, JunitHasASuitePerJobACasePerCheckAndEscapes) {
+  const auto [base, now] = sweep_pair();
+  const GateResult result = compare_folders(base, now, {});
+  const std::string xml = junit_xml(result);
+  size_t checks = 0;
+  for (const SuiteResult& suite : result.suites) checks += suite.checks.size();
+  EXPECT_EQ(occurrences(xml, "<testsuite "), 5u);
+  EXPECT_EQ(occurrences(xml, "<testcase "), checks);
+  EXPECT_EQ(occurrences(xml, "<failure "), 3u);
+  EXPECT_NE(xml.find("<testsuites name=\"avsm-compare\" tests=\"" + std::to_string(checks) + "\" failures=\"3\""),
+            std::string::npos);
+  EXPECT_NE(xml.find("message=\"job &#39;c&#39; was done in BASE but is failed in NEW: avsm-capture: error: "
+                     "&lt;out of memory&gt; &amp; more\""),
+            std::string::npos);
+  EXPECT_EQ(xml.find("<out of"), std::string::npos);
+}
+
+// Controls XML 1.0 cannot hold (a light named by a broken scene file) become '?'.
+TEST(GateOutput, JunitReplacesControlCharacters) {
+  const Check check{"memory 'a\x01" "b' map_bytes", "1", "2", "x2.00", "<= x1.10", Verdict::fail, "grew\x1b[0m"};
+  const std::string xml = junit_xml({"base", "new", {{"job\x02", {check}}}});
+  EXPECT_NE(xml.find("<testsuite name=\"job?\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("name=\"memory &#39;a?b&#39; map_bytes\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("message=\"grew?[0m\""), std::string::npos) << xml;
+}
+
+TEST(GateOutput, SummaryTableAndVerdict) {
+  const auto [base, now] = sweep_pair();
+  const std::string text = summary_text(compare_folders(base, now, {}));
+  EXPECT_NE(text.find("b: "), std::string::npos);
+  EXPECT_NE(text.find("FAIL: 3 checks crossed a threshold"), std::string::npos);
+  EXPECT_NE(text.find("  b: frame.exr differs from BASE: PSNR "), std::string::npos);
+  EXPECT_NE(summary_text({"x", "y", {}}).find("PASS: no threshold crossed"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace avsm::sweep
