@@ -210,7 +210,7 @@ void write_jobs_table(std::ostringstream& html, const std::vector<JobResult>& re
           "persistent maps; build: the capture lists (or the fixed build's depth image and hair bins); transients: "
           "the frame graph's aliased memory. |\u0394T|: transmittance error against uncompressed at the receivers "
           "the camera sees, all lights together (jobs with compare_to uncompressed). PSNR and MAE: frame.exr "
-          "(linear RGB) against the reference job's.</p>\n"
+          "(RGB mapped by x / (1 + x)) against the reference job's.</p>\n"
        << "<div class=\"wide\"><table id=\"jobs-table\">\n<thead>\n<tr class=\"group\"><th colspan=\"4\">job</th>"
        << "<th colspan=\"" << capture::kPassStageCount + 2
        << "\">GPU ms</th><th colspan=\"3\">memory</th><th colspan=\"4\">error</th></tr>\n"
