@@ -10,6 +10,7 @@
 #include <string>
 
 #include "capture/files.h"
+#include "capture/image_difference.h"
 #include "io/image_io.h"
 #include "sweep/compare.h"
 #include "sweep/sweep_index.h"
