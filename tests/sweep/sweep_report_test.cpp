@@ -114,7 +114,7 @@ TEST_F(SweepReport, JobsReadWithTheirFiguresAndReasons) {
   EXPECT_DOUBLE_EQ(avsm4.shadow_error->mean(), 3.0 / 150);
   EXPECT_DOUBLE_EQ(avsm4.shadow_error->max, 0.3);
   ASSERT_TRUE(avsm4.image_error) << avsm4.image_error_problem;
-  EXPECT_NEAR(avsm4.image_error->mean_abs_error, 0.25, 1e-6);
+  EXPECT_NEAR(avsm4.image_error->mean_abs_error, 0.75 / 1.75 - 0.5 / 1.5, 1e-6);  // x / (1 + x) of 0.75 against 0.5
 
   EXPECT_EQ(results[0].technique, "uncompressed");
   EXPECT_FALSE(results[0].image_error);  // no reference job
