@@ -118,6 +118,7 @@ void LiveRenderer::set_shadow_options(const passes::ShadowOptions& options) {
 void LiveRenderer::set_size(uint32_t width, uint32_t height) {
   options_.width = width;
   options_.height = height;
+  if (before_change_) before_change_();
   renderer_->set_size(width, height);
 }
 
@@ -174,6 +175,7 @@ void LiveRenderer::reload_shaders(Clock::time_point now, PollResult& result) {
     return;
   }
   shader_error_.reset();
+  if (before_change_) before_change_();
   vkDeviceWaitIdle(ctx_.device());  // the old pipelines may still be in flight
   renderer_ = std::move(fresh);
   // A new include may have appeared; watch what the good shaders are made of now.
@@ -220,6 +222,7 @@ void LiveRenderer::reload_scene(bool read_files, Clock::time_point now, PollResu
   scene::Scene fresh_edited = fresh_loaded;
   try {
     if (edit_) edit_(fresh_edited);
+    if (before_change_) before_change_();
     renderer_->set_scene(fresh_edited, next_shadow_options_);
   } catch (const std::exception& e) {
     // The renderer may be half-updated: give it the last good scene back.

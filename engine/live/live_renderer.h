@@ -83,6 +83,10 @@ class LiveRenderer {
   // Called on the renderer now and on every new one (a shader reload builds a new
   // SceneRenderer): enable probes, light images, texel samples, exposure here.
   void set_renderer_setup(std::function<void(renderer::SceneRenderer&)> setup);
+  // Called just before the renderer is changed or replaced (a reload that succeeded, a
+  // new size): a host with frames in flight finishes them there, as their results
+  // belong to the renderer as it was.
+  void set_before_change(std::function<void()> before_change) { before_change_ = std::move(before_change); }
 
   // Checks the watched files' sizes and time stamps and reloads what changed (once
   // settled) or was asked for. Cheap when nothing changed. Waits for the device to
@@ -115,6 +119,7 @@ class LiveRenderer {
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
   std::function<void(renderer::SceneRenderer&)> setup_;
+  std::function<void()> before_change_;
   FileWatcher scene_files_, shader_files_;
   std::optional<ReloadError> shader_error_, scene_error_;
   std::optional<ReloadError> error_;  // the shader error if any, else the scene error

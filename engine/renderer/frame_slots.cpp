@@ -44,14 +44,33 @@ FrameSlots::Slot& FrameSlots::acquire(const Finished& finished) {
   return slot;
 }
 
-void FrameSlots::submit(Slot& slot) {
+void FrameSlots::submit(Slot& slot, VkSemaphore wait, VkPipelineStageFlags2 wait_stages, VkSemaphore signal) {
   VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cmd_info.commandBuffer = slot.cmd;
+  VkSemaphoreSubmitInfo wait_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait_info.semaphore = wait;
+  wait_info.stageMask = wait_stages;
+  VkSemaphoreSubmitInfo signal_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal_info.semaphore = signal;
+  signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmd_info;
+  submit.waitSemaphoreInfoCount = wait ? 1 : 0;
+  submit.pWaitSemaphoreInfos = &wait_info;
+  submit.signalSemaphoreInfoCount = signal ? 1 : 0;
+  submit.pSignalSemaphoreInfos = &signal_info;
   VK_CHECK(vkQueueSubmit2(ctx_.graphics_queue().handle, 1, &submit, slot.fence));
   slot.in_flight = true;
+}
+
+void FrameSlots::finish_completed(const Finished& finished) {
+  for (uint32_t i = 0; i < count(); ++i) {
+    Slot& slot = slots_[(next_ + i) % count()];
+    if (!slot.in_flight) continue;
+    if (vkGetFenceStatus(ctx_.device(), slot.fence) != VK_SUCCESS) return;  // later frames finish after it
+    finish(slot, finished);
+  }
 }
 
 void FrameSlots::finish_all(const Finished& finished) {

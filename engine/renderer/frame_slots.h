@@ -43,7 +43,12 @@ class FrameSlots {
   // slot to `finished` first.
   Slot& acquire(const Finished& finished);
   // Submits the slot's recorded command buffer; its fence signals when it completes.
-  void submit(Slot& slot);
+  // A window frame waits for its acquired image (`wait` at `wait_stages`) and signals
+  // `signal` for the present.
+  void submit(Slot& slot, VkSemaphore wait = VK_NULL_HANDLE, VkPipelineStageFlags2 wait_stages = 0,
+              VkSemaphore signal = VK_NULL_HANDLE);
+  // Hands the frames in flight that have completed to `finished`, oldest first, without waiting.
+  void finish_completed(const Finished& finished);
   // Waits for every frame in flight, oldest first, handing each to `finished`.
   void finish_all(const Finished& finished);
   // The executor of the last frame finished (its plan and timestamp mode).

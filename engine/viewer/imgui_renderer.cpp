@@ -68,13 +68,13 @@ ImTextureID ImGuiRenderer::add_texture(VkImageView view) {
 
 void ImGuiRenderer::replace_texture(ImTextureID id, VkImageView view) { textures_.at(index_of(id)) = view; }
 
-void ImGuiRenderer::upload_geometry(const ImDrawData& data) {
-  ensure_size(ctx_, vertices_, VkDeviceSize(data.TotalVtxCount) * sizeof(ImDrawVert),
+void ImGuiRenderer::upload_geometry(const ImDrawData& data, Geometry& geometry) {
+  ensure_size(ctx_, geometry.vertices, VkDeviceSize(data.TotalVtxCount) * sizeof(ImDrawVert),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "imgui vertices");
-  ensure_size(ctx_, indices_, VkDeviceSize(data.TotalIdxCount) * sizeof(ImDrawIdx), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+  ensure_size(ctx_, geometry.indices, VkDeviceSize(data.TotalIdxCount) * sizeof(ImDrawIdx), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
               "imgui indices");
-  auto* vertex_out = static_cast<ImDrawVert*>(vertices_.mapped());
-  auto* index_out = static_cast<ImDrawIdx*>(indices_.mapped());
+  auto* vertex_out = static_cast<ImDrawVert*>(geometry.vertices.mapped());
+  auto* index_out = static_cast<ImDrawIdx*>(geometry.indices.mapped());
   for (int n = 0; n < data.CmdListsCount; ++n) {
     const ImDrawList& list = *data.CmdLists[n];
     std::memcpy(vertex_out, list.VtxBuffer.Data, list.VtxBuffer.Size * sizeof(ImDrawVert));
@@ -84,15 +84,17 @@ void ImGuiRenderer::upload_geometry(const ImDrawData& data) {
   }
 }
 
-void ImGuiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data, VkImageView target, VkExtent2D extent) {
+void ImGuiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data, VkImageView target, VkExtent2D extent,
+                           uint32_t slot) {
   if (data.TotalVtxCount == 0 || extent.width == 0 || extent.height == 0) return;
-  upload_geometry(data);
+  Geometry& geometry = geometry_.at(slot);
+  upload_geometry(data, geometry);
 
   gpu::ColorTarget color{target};
   color.load = true;
   gpu::begin_rendering(cmd, extent, {&color, 1});
   pipeline_.bind(cmd);
-  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT16);
+  vkCmdBindIndexBuffer(cmd, geometry.indices.handle(), 0, VK_INDEX_TYPE_UINT16);
   shared::ImguiPush push{};
   push.scale = {2.0f / data.DisplaySize.x, 2.0f / data.DisplaySize.y};
   push.translate = {-1.0f - data.DisplayPos.x * push.scale.x, -1.0f - data.DisplayPos.y * push.scale.y};
@@ -120,7 +122,7 @@ void ImGuiRenderer::record(VkCommandBuffer cmd, const ImDrawData& data, VkImageV
       vkCmdSetScissor(cmd, 0, 1, &scissor);
       if (draw.TextureId != bound) {
         gpu::Bindings(ctx_, pipeline_)
-            .buffer("Vertices", vertices_)
+            .buffer("Vertices", geometry.vertices)
             .image("panel_texture", textures_.at(index_of(draw.TextureId)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                    sampler_.handle())
             .push(cmd);

@@ -9,10 +9,12 @@
 #include <imgui.h>
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <vector>
 
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
+#include "passes/frames_in_flight.h"
 
 namespace avsm::gpu {
 class Context;
@@ -30,19 +32,23 @@ class ImGuiRenderer {
   ImTextureID add_texture(VkImageView view);
   void replace_texture(ImTextureID id, VkImageView view);
 
-  // Records the draw lists into `target` (COLOR_ATTACHMENT_OPTIMAL, contents kept).
-  void record(VkCommandBuffer cmd, const ImDrawData& data, VkImageView target, VkExtent2D extent);
+  // Records the draw lists into `target` (COLOR_ATTACHMENT_OPTIMAL, contents kept), with
+  // the vertex and index buffers of frame slot `slot`, whose previous frame completed.
+  void record(VkCommandBuffer cmd, const ImDrawData& data, VkImageView target, VkExtent2D extent, uint32_t slot);
 
  private:
   void upload_fonts();
-  void upload_geometry(const ImDrawData& data);
+  struct Geometry {
+    gpu::Buffer vertices, indices;  // host-visible, filled as the frame is recorded
+  };
+  void upload_geometry(const ImDrawData& data, Geometry& geometry);
 
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler sampler_;
   gpu::Image font_atlas_;
   std::vector<VkImageView> textures_;  // ImTextureID n is textures_[n - 1]
-  gpu::Buffer vertices_, indices_;     // host-visible; the previous frame has completed when refilled
+  std::array<Geometry, passes::kMaxFramesInFlight> geometry_;  // per frame slot
 };
 
 }  // namespace avsm::viewer

@@ -26,10 +26,14 @@ constexpr rg::ImportState kPanelReadDiscarded{kPanelRead.stages, kPanelRead.acce
 LightMapTextures::LightMapTextures(gpu::Context& ctx, gpu::TimestampMode timestamps)
     : ctx_(ctx), executor_(ctx, timestamps) {}
 
+bool LightMapTextures::would_recreate(const std::vector<gpu::Image>& sources) const {
+  bool recreate = textures_.size() != sources.size();
+  for (size_t i = 0; !recreate && i < sources.size(); ++i) recreate = !same_size(textures_[i], sources[i]);
+  return recreate;
+}
+
 bool LightMapTextures::match_sources(const std::vector<gpu::Image>& sources) {
-  bool recreated = textures_.size() != sources.size();
-  for (size_t i = 0; !recreated && i < sources.size(); ++i) recreated = !same_size(textures_[i], sources[i]);
-  if (!recreated) return false;
+  if (!would_recreate(sources)) return false;
   textures_.clear();
   for (size_t i = 0; i < sources.size(); ++i) {
     gpu::ImageDesc desc = sources[i].desc();

@@ -27,6 +27,9 @@ class LightMapTextures {
   bool record_copies(VkCommandBuffer cmd, const std::vector<gpu::Image>& sources);
 
   const std::vector<gpu::Image>& textures() const { return textures_; }
+  // Whether record_copies(sources) would (re)create the textures, destroying the ones
+  // frames in flight may still sample.
+  bool would_recreate(const std::vector<gpu::Image>& sources) const;
 
  private:
   // (Re)creates the textures when the sources' count or sizes changed; true if it did.

@@ -5,6 +5,7 @@
 
 #include "gpu/context.h"
 #include "gpu/vk_check.h"
+#include "passes/frames_in_flight.h"
 #include "viewer/window.h"
 
 namespace avsm::viewer {
@@ -41,16 +42,16 @@ VkSemaphore create_semaphore(VkDevice device) {
 
 }  // namespace
 
-Swapchain::Swapchain(gpu::Context& ctx, VkSurfaceKHR surface, VkExtent2D wanted) : ctx_(ctx), surface_(surface) {
+Swapchain::Swapchain(gpu::Context& ctx, VkSurfaceKHR surface, VkExtent2D wanted, uint32_t frames_in_flight)
+    : ctx_(ctx), surface_(surface) {
   VkBool32 can_present = VK_FALSE;
   VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.graphics_queue().family, surface,
                                                 &can_present));
   if (!can_present)
     throw WindowError("device '" + ctx.info().name + "' cannot present to the window from its graphics queue family " +
                       std::to_string(ctx.graphics_queue().family));
-  acquired_ = create_semaphore(ctx.device());
-  VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_CHECK(vkCreateFence(ctx.device(), &fence, nullptr, &frame_done_));
+  passes::check_frames_in_flight(frames_in_flight);
+  for (uint32_t i = 0; i < frames_in_flight; ++i) acquired_.push_back(create_semaphore(ctx.device()));
   create(wanted);
 }
 
@@ -58,8 +59,7 @@ Swapchain::~Swapchain() {
   vkDeviceWaitIdle(ctx_.device());
   destroy_chain();
   vkDestroySwapchainKHR(ctx_.device(), swapchain_, nullptr);
-  vkDestroySemaphore(ctx_.device(), acquired_, nullptr);
-  vkDestroyFence(ctx_.device(), frame_done_, nullptr);
+  for (VkSemaphore semaphore : acquired_) vkDestroySemaphore(ctx_.device(), semaphore, nullptr);
 }
 
 void Swapchain::recreate(VkExtent2D wanted) {
@@ -137,38 +137,25 @@ void Swapchain::create(VkExtent2D wanted) {
   }
 }
 
-std::optional<uint32_t> Swapchain::acquire() {
+std::optional<uint32_t> Swapchain::acquire(uint32_t slot) {
   if (images_.empty()) return std::nullopt;
   uint32_t index = 0;
   const VkResult result =
-      vkAcquireNextImageKHR(ctx_.device(), swapchain_, UINT64_MAX, acquired_, VK_NULL_HANDLE, &index);
+      vkAcquireNextImageKHR(ctx_.device(), swapchain_, UINT64_MAX, acquired_.at(slot), VK_NULL_HANDLE, &index);
   if (result == VK_ERROR_OUT_OF_DATE_KHR) return std::nullopt;
   // SUBOPTIMAL still signals the semaphore: draw this frame, recreate after presenting.
   if (result != VK_SUBOPTIMAL_KHR) VK_CHECK(result);
   return index;
 }
 
-bool Swapchain::submit_and_present(VkCommandBuffer cmd, uint32_t image) {
-  const VkPipelineStageFlags wait_stage = VkPipelineStageFlags(kAcquireWaitStages);
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.waitSemaphoreCount = 1;
-  submit.pWaitSemaphores = &acquired_;
-  submit.pWaitDstStageMask = &wait_stage;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  submit.signalSemaphoreCount = 1;
-  submit.pSignalSemaphores = &rendered_[image];
-  VK_CHECK(vkResetFences(ctx_.device(), 1, &frame_done_));
-  VK_CHECK(vkQueueSubmit(ctx_.graphics_queue().handle, 1, &submit, frame_done_));
-
-  VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
-  present.waitSemaphoreCount = 1;
-  present.pWaitSemaphores = &rendered_[image];
-  present.swapchainCount = 1;
-  present.pSwapchains = &swapchain_;
-  present.pImageIndices = &image;
-  const VkResult result = vkQueuePresentKHR(ctx_.graphics_queue().handle, &present);
-  VK_CHECK(vkWaitForFences(ctx_.device(), 1, &frame_done_, VK_TRUE, UINT64_MAX));
+bool Swapchain::present(uint32_t image) {
+  VkPresentInfoKHR info{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  info.waitSemaphoreCount = 1;
+  info.pWaitSemaphores = &rendered_[image];
+  info.swapchainCount = 1;
+  info.pSwapchains = &swapchain_;
+  info.pImageIndices = &image;
+  const VkResult result = vkQueuePresentKHR(ctx_.graphics_queue().handle, &info);
   if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR) return false;
   VK_CHECK(result);
   return true;

@@ -20,6 +20,7 @@
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
 #include "live/live_renderer.h"
+#include "renderer/frame_slots.h"
 #include "viewer/camera_controller.h"
 #include "viewer/control_commands.h"
 #include "viewer/imgui_renderer.h"
@@ -91,13 +92,18 @@ class ViewerApp {
   void wait_for_settled_files();
   void handle_input();
   void apply(const PanelRequests& requests);
+  // Records and submits a scene frame; its results are read when it completes.
   void render_scene_frame();
+  void scene_frame_finished(renderer::FrameSlots::Slot& slot);
+  // Waits for the scene frames in flight and reads their results (before the renderer
+  // changes, and before anything reads the last frame's outputs).
+  void finish_scene_frames();
   void present(const ImDrawData& draw_data);
-  void record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back);
+  void record_window(renderer::FrameSlots::Slot& slot, uint32_t image, const ImDrawData& draw_data, bool read_back);
   // The window graph's passes; each returns the swapchain image's new version.
   rg::TextureHandle add_scene_blit(rg::Graph& graph, rg::TextureHandle target);
   rg::TextureHandle add_grey_clear(rg::Graph& graph, rg::TextureHandle target);
-  rg::TextureHandle add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data);
+  rg::TextureHandle add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data, uint32_t slot);
   void add_window_readback(rg::Graph& graph, rg::TextureHandle target, uint32_t image);
   void write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba);
 
@@ -119,8 +125,12 @@ class ViewerApp {
   ImGuiRenderer imgui_renderer_;
   ViewerSettings settings_;
   std::unique_ptr<live::LiveRenderer> live_;
-  rg::vulkan::Executor executor_;         // the scene frame
-  rg::vulkan::Executor window_executor_;  // the window composite (record_window)
+  // Frames in flight: scene frames (when something changed) and window frames (every
+  // iteration) each go round their own slots; a slot is reused once its frame completed.
+  renderer::FrameSlots scene_slots_;
+  renderer::FrameSlots window_slots_;  // the window composite (record_window)
+  std::vector<capture::FrameClock> scene_clocks_;  // per scene slot: its frame's clock
+  uint64_t frames_submitted_ = 0;                  // scene frames; frame_stats_.number counts the finished
   CameraController camera_;
   Panel panel_;
   TexelInspector inspector_;
@@ -129,7 +139,6 @@ class ViewerApp {
   FrameStats frame_stats_;
   capture::FrameTimingLog timing_log_;
   uint64_t overflowed_frames_ = 0;
-  VkCommandBuffer scene_cmd_ = VK_NULL_HANDLE, window_cmd_ = VK_NULL_HANDLE;
   gpu::Buffer window_readback_;
 
   bool scene_dirty_ = true;     // the next iteration renders a scene frame
@@ -160,7 +169,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
       window_("avsm-viewer", options.width, options.height),
       ctx_(context_desc(options, window_)),
       surface_(ctx_.instance(), window_),
-      swapchain_(ctx_, surface_.handle(), window_.framebuffer_size()),
+      swapchain_(ctx_, surface_.handle(), window_.framebuffer_size(), options.frames_in_flight),
       calibration_(gpu::calibrate_timestamps(ctx_, builtin_shaders_)),
       imgui_input_(window_),
       imgui_renderer_(ctx_, builtin_shaders_, swapchain_.format()),
@@ -168,33 +177,35 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
                 .shadow_options = {.keep_reference = options.inspect_pixel.has_value()}},
       live_(std::make_unique<live::LiveRenderer>(
           ctx_, live_options(options, swapchain_.extent(), settings_.shadow_options))),
-      executor_(ctx_, calibration_.mode),
-      window_executor_(ctx_, calibration_.mode),
+      scene_slots_(ctx_, calibration_.mode, options.frames_in_flight),
+      window_slots_(ctx_, calibration_.mode, options.frames_in_flight),
+      scene_clocks_(options.frames_in_flight),
       camera_(live_->scene().cameras.front()),
       panel_(options.scene.string()),
       light_maps_(ctx_, calibration_.mode),
       scene_file_(options.scene) {
-  scene_cmd_ = ctx_.allocate_command_buffer("scene frame");
-  window_cmd_ = ctx_.allocate_command_buffer("window frame");
   // Every renderer the live renderer builds (a shader reload builds a new one) gets
   // the viewer's exposure and light pictures.
   // The volume-shading flags reach the renderer as a scene edit, like the panel's.
   live_->set_scene_edit([overrides = settings_.overrides](scene::Scene& scene) { overrides.apply(scene); });
   live_->set_renderer_setup([this](renderer::SceneRenderer& renderer) {
+    renderer.set_frames_in_flight(options_.frames_in_flight);
     renderer.set_exposure(settings_.exposure);
     renderer.enable_light_images();
   });
-  std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, scene %s\n", ctx_.info().name.c_str(),
+  live_->set_before_change([this] { finish_scene_frames(); });
+  std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, scene %s, %u frames in flight\n", ctx_.info().name.c_str(),
                ctx_.info().driver_info.c_str(), swapchain_.extent().width, swapchain_.extent().height,
-               options.scene.c_str());
+               options.scene.c_str(), options.frames_in_flight);
   if (options.inspect_pixel) inspect_pixel(*options.inspect_pixel);
 }
 
 int ViewerApp::run() {
   if (options_.control) return run_controlled();
   const bool scripted = options_.frames > 0;
-  while (!window_.should_close() && !failed_ && !(scripted && frame_stats_.number >= options_.frames))
+  while (!window_.should_close() && !failed_ && !(scripted && frames_submitted_ >= options_.frames))
     iterate(/*render=*/scripted);
+  finish_scene_frames();
   if (scripted && !options_.screenshot_dir.empty() && !failed_) {
     // One more present, of the last frame with the panel showing its timings.
     screenshot_dir_ = options_.screenshot_dir;
@@ -207,10 +218,11 @@ void ViewerApp::iterate(bool render) {
   window_.poll_events(render || scene_dirty_ || edits_pending_ ? 0.0 : kIdleWaitSeconds);
   follow_window_size();
   poll_live();
+  scene_slots_.finish_completed([this](renderer::FrameSlots::Slot& slot) { scene_frame_finished(slot); });
 
   imgui_input_.new_frame();
   handle_input();
-  apply(panel_.draw({*live_, executor_.plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_},
+  apply(panel_.draw({*live_, scene_slots_.last_finished_executor().plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_},
                     settings_));
   ImGui::Render();
   // Edits waiting for the next poll would make this frame stale: render after it.
@@ -242,11 +254,12 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
   nlohmann::json reply = nlohmann::json::object();
   switch (command.kind) {
     case ControlCommand::Kind::frame: {
-      const uint64_t before = frame_stats_.number;
+      // The frame is submitted, not waited for: "ms" is the last finished frame's.
+      const uint64_t before = frames_submitted_;
       wait_for_settled_files();
       iterate(/*render=*/true);
-      reply["frame"] = frame_stats_.number;
-      reply["rendered"] = frame_stats_.number > before;
+      reply["frame"] = frames_submitted_;
+      reply["rendered"] = frames_submitted_ > before;
       reply["ms"] = frame_stats_.wall_ms;
       reply["changed"] = reloaded_files_;
       reply["shaders_reloaded"] = shaders_reloaded_;
@@ -261,7 +274,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       reply["inspect"] = inspector_.active() ? nlohmann::json(inspector_.description()) : nlohmann::json(nullptr);
       break;
     case ControlCommand::Kind::screenshot:
-      if (frame_stats_.number == 0) throw std::invalid_argument("screenshot: no frame rendered yet");
+      if (frames_submitted_ == 0) throw std::invalid_argument("screenshot: no frame rendered yet");
       screenshot_dir_ = command.directory;
       iterate(/*render=*/false);
       reply["screenshot"] = command.directory.string();
@@ -284,6 +297,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
 }
 
 int ViewerApp::finish() {
+  finish_scene_frames();
   vkDeviceWaitIdle(ctx_.device());
   if (options_.inspect_pixel) {
     const fs::path dir = options_.screenshot_dir.empty() ? options_.out_dir : options_.screenshot_dir;
@@ -411,7 +425,7 @@ void ViewerApp::apply(const PanelRequests& requests) {
   }
   if (requests.clear_inspection) inspector_.clear();
   if (requests.screenshot) {
-    if (frame_stats_.number == 0)
+    if (frames_submitted_ == 0)
       set_status("no frame to save yet");
     else
       screenshot_dir_ = next_shot_dir(options_.out_dir);
@@ -440,6 +454,7 @@ void ViewerApp::ensure_reference() {
 
 void ViewerApp::refresh_inspection() {
   if (!inspector_.active()) return;
+  finish_scene_frames();  // their curves are of the samples set so far
   renderer::SceneRenderer& renderer = live_->renderer();
   // The texels of the maps the next frame builds, which follow the camera.
   renderer.fit_shadows_to(current_view());
@@ -467,13 +482,22 @@ void ViewerApp::set_status(const std::string& text) {
 
 void ViewerApp::render_scene_frame() {
   renderer::SceneRenderer& renderer = live_->renderer();
+  // Cleared first: a frame that finishes as its slot is taken may ask for another.
+  scene_dirty_ = false;
+  renderer::FrameSlots::Slot& slot =
+      scene_slots_.acquire([this](renderer::FrameSlots::Slot& done) { scene_frame_finished(done); });
   bool new_textures = false;
-  const capture::FrameClock clock =
-      capture::render_timed_frame(ctx_, renderer, executor_, scene_cmd_, current_view(), [&](VkCommandBuffer cmd) {
+  scene_clocks_[slot.index] = capture::record_timed_frame(
+      renderer, *slot.executor, slot.cmd, current_view(), slot.index, [&](VkCommandBuffer cmd) {
+        // New textures replace those the window frames in flight sample: let them finish.
+        if (light_maps_.would_recreate(renderer.light_images())) window_slots_.finish_all({});
         new_textures = light_maps_.record_copies(cmd, renderer.light_images());
       });
+  scene_slots_.submit(slot);
+  ++frames_submitted_;
   ldr_valid_ = true;
 
+  // The window frames after this one sample the textures, which this frame writes first.
   if (new_textures) {
     const std::vector<gpu::Image>& textures = light_maps_.textures();
     light_map_ids_.resize(std::min(light_map_ids_.size(), textures.size()));
@@ -484,14 +508,20 @@ void ViewerApp::render_scene_frame() {
         light_map_ids_.push_back(imgui_renderer_.add_texture(textures[i].view()));
     }
   }
+}
+
+void ViewerApp::scene_frame_finished(renderer::FrameSlots::Slot& slot) {
+  renderer::SceneRenderer& renderer = live_->renderer();
+  capture::FrameClock& clock = scene_clocks_[slot.index];
+  clock.completed = Clock::now();
+  renderer.finish_frame(slot.index);
   // The screenshot's timings.json describes this frame alone.
   timing_log_.clear();
-  const std::vector<rg::vulkan::PassTiming> timings = executor_.read_timings();
+  const std::vector<rg::vulkan::PassTiming> timings = slot.executor->read_timings();
   const double wall = timing_log_.add_frame(clock, timings, /*measured=*/true);
   frame_stats_ = {frame_stats_.number + 1, wall, timings};
 
   // A capture that overflowed dropped segments; its buffers grew, so render again.
-  scene_dirty_ = false;
   bool overflowed = false;
   for (const passes::LightShadowStats& light : renderer.shadows().frame_stats()) {
     overflowed = overflowed || light.lost_shadowing();
@@ -504,8 +534,15 @@ void ViewerApp::render_scene_frame() {
                     std::to_string(int(wall)) + " ms per frame");
 }
 
+void ViewerApp::finish_scene_frames() {
+  scene_slots_.finish_all([this](renderer::FrameSlots::Slot& slot) { scene_frame_finished(slot); });
+}
+
 void ViewerApp::present(const ImDrawData& draw_data) {
-  const std::optional<uint32_t> image = swapchain_.acquire();
+  // Waits for the slot's previous window frame: its acquire semaphore, panel buffers and
+  // executor are free again.
+  renderer::FrameSlots::Slot& slot = window_slots_.acquire({});
+  const std::optional<uint32_t> image = swapchain_.acquire(slot.index);
   if (!image) {
     swapchain_.recreate(window_.framebuffer_size());
     return;
@@ -520,18 +557,24 @@ void ViewerApp::present(const ImDrawData& draw_data) {
   }
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(window_cmd_, &begin));
-  record_window(window_cmd_, *image, draw_data, read_back);
-  VK_CHECK(vkEndCommandBuffer(window_cmd_));
-  if (!swapchain_.submit_and_present(window_cmd_, *image)) swapchain_.recreate(window_.framebuffer_size());
+  VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
+  record_window(slot, *image, draw_data, read_back);
+  VK_CHECK(vkEndCommandBuffer(slot.cmd));
+  window_slots_.submit(slot, swapchain_.acquired(slot.index), Swapchain::kAcquireWaitStages,
+                       swapchain_.rendered(*image));
+  const bool presented = swapchain_.present(*image);
 
   if (screenshot_dir_) {
+    // The files describe completed frames: the scene's and this window frame.
+    finish_scene_frames();
+    window_slots_.finish_all({});
     const fs::path dir = *screenshot_dir_;
     screenshot_dir_.reset();
     std::vector<uint8_t> window_rgba;
     if (read_back) window_rgba = swapchain_.to_rgba(static_cast<const uint8_t*>(window_readback_.mapped()));
     write_screenshot(dir, window_rgba);
   }
+  if (!presented) swapchain_.recreate(window_.framebuffer_size());
 }
 
 // The frame into the swapchain image, as a small frame graph of its own: the scene
@@ -539,16 +582,17 @@ void ViewerApp::present(const ImDrawData& draw_data) {
 // readback buffer. The graph plans every layout transition, from the acquired image
 // (contents undefined; the submit waits for it at Swapchain::kAcquireWaitStages) to
 // PRESENT_SRC_KHR, and the readback buffer's host-read state.
-void ViewerApp::record_window(VkCommandBuffer cmd, uint32_t image, const ImDrawData& draw_data, bool read_back) {
+void ViewerApp::record_window(renderer::FrameSlots::Slot& slot, uint32_t image, const ImDrawData& draw_data,
+                              bool read_back) {
   rg::Graph graph;
   const gpu::Image& swapchain_image = swapchain_.target(image);
   const rg::ImportState acquired{Swapchain::kAcquireWaitStages, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
   rg::TextureHandle target =
       rg::vulkan::import(graph, "swapchain image", swapchain_image, acquired, rg::ImportState::of(rg::Usage::Present));
   target = ldr_valid_ ? add_scene_blit(graph, target) : add_grey_clear(graph, target);
-  target = add_panel(graph, target, draw_data);
+  target = add_panel(graph, target, draw_data, slot.index);
   if (read_back) add_window_readback(graph, target, image);
-  window_executor_.record(graph, cmd);
+  slot.executor->record(graph, slot.cmd);
 }
 
 // The tonemapped image holds display values: copied, not converted. Same size except
@@ -591,12 +635,13 @@ rg::TextureHandle ViewerApp::add_grey_clear(rg::Graph& graph, rg::TextureHandle 
 // The panel draws over the scene (load op LOAD). The textures it samples (font, light
 // maps) are not graph resources: they stay in SHADER_READ_ONLY_OPTIMAL, and whoever
 // last wrote them left them visible to fragment shaders.
-rg::TextureHandle ViewerApp::add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data) {
+rg::TextureHandle ViewerApp::add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data,
+                                       uint32_t slot) {
   graph.add_pass("panel", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b) { target = b.read_write(target, rg::Usage::ColorAttachment); },
-      [this, target, &draw_data](rg::PassContext& c) {
+      [this, target, &draw_data, slot](rg::PassContext& c) {
         const rg::TextureDesc& size = c.desc(target);
-        imgui_renderer_.record(c.cmd(), draw_data, c.view(target), {size.width, size.height});
+        imgui_renderer_.record(c.cmd(), draw_data, c.view(target), {size.width, size.height}, slot);
       });
   return target;
 }
@@ -615,7 +660,7 @@ void ViewerApp::add_window_readback(rg::Graph& graph, rg::TextureHandle target, 
 void ViewerApp::write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba) {
   try {
     const renderer::SceneRenderer& renderer = live_->renderer();
-    capture::write_frame_outputs(dir, {ctx_, renderer, executor_, live_->scene(), timing_log_, overflowed_frames_});
+    capture::write_frame_outputs(dir, {ctx_, renderer, scene_slots_.last_finished_executor(), live_->scene(), timing_log_, overflowed_frames_});
     if (!window_rgba.empty()) write_rgba_png(dir / "window.png", window_rgba, swapchain_.extent());
     if (inspector_.has_values()) inspector_.write_json(dir / "inspect.json");
     set_status("saved " + dir.string());

@@ -3,6 +3,10 @@
 // files (hot reload), takes input (camera, clicks, keys) and the panel's edits,
 // renders a scene frame only when something changed (lavapipe frames are slow),
 // blits the tonemapped image into the swapchain, draws the panel on top and presents.
+// Frames in flight (`frames_in_flight`, renderer/frame_slots.h): scene frames and window
+// frames each take turns in their own slots (command buffer, fence, executor; the window's
+// also its acquire semaphore and panel buffers); a scene frame's results (timings,
+// overflow, texel curves) are read when its fence signals, not after its submit.
 //
 // Scripted runs (tests and CI, where no one clicks): `frames` renders that many
 // scene frames and exits; `screenshot_dir` then receives what avsm-capture writes
@@ -37,6 +41,8 @@ struct ViewerOptions {
   std::optional<glm::vec2> inspect_pixel;  // clicked before the first frame
   // Driven by commands on stdin instead (control_commands.h); replies on stdout.
   bool control = false;
+  // Scene and window frames the CPU may record ahead of the GPU (1..passes::kMaxFramesInFlight).
+  uint32_t frames_in_flight = 2;
 };
 
 // Runs until the window closes (or the scripted frames are done). Returns the exit

@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 
+#include "passes/frames_in_flight.h"
 #include "viewer/viewer_app.h"
 #include "viewer/window.h"
 
@@ -17,6 +18,7 @@ const char* kUsage =
     "  --device NAME      Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation       Vulkan validation + synchronization validation; any message\n"
     "                     makes the exit status 1\n"
+    "  --frames-in-flight N   frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
     "  --out DIR          where the screenshot key (F12 or P) writes shot-NNN/ (default out/viewer)\n"
     "  --volume-shading fast|reference|hidden   as in avsm-capture (default: the scene's)\n"
     "  --volume-resolution-divisor 1|2|4   fast march resolution: 1/N per axis\n"
@@ -83,6 +85,11 @@ int main(int argc, char** argv) {
       options.height = h;
     } else if (arg == "--device") {
       options.device = value();
+    } else if (arg == "--frames-in-flight") {
+      const std::string text = value();
+      options.frames_in_flight = parse_positive(arg, text);
+      if (options.frames_in_flight > avsm::passes::kMaxFramesInFlight)
+        usage_error("--frames-in-flight expects 1 to " + std::to_string(avsm::passes::kMaxFramesInFlight) + ", got '" + text + "'");
     } else if (arg == "--validation") {
       options.validation = true;
     } else if (arg == "--out") {
