@@ -20,8 +20,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Of the running test: CTest runs the tests of this file as parallel processes.
 fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("avsm_compare_" + name);
+  const fs::path dir = fs::path(testing::TempDir()) /
+                       ("avsm_compare_" + name + "_" + testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

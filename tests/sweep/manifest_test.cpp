@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 class ManifestTest : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(testing::TempDir()) / "sweep_manifest";
+    // A folder per test: CTest runs this file's tests as parallel processes.
+    dir_ = fs::path(testing::TempDir()) / (std::string("sweep_manifest_") + testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_ / "scenes");
     std::ofstream(dir_ / "scenes" / "a.scene.json") << "{}";
     std::ofstream(dir_ / "scenes" / "b.scene.json") << "{}";

@@ -80,7 +80,8 @@ JobRecord job(const std::string& id, const std::string& technique, JobStatus sta
 class SweepReport : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(testing::TempDir()) / "sweep_report";
+    // A folder per test: CTest runs this file's tests as parallel processes.
+    dir_ = fs::path(testing::TempDir()) / (std::string("sweep_report_") + testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     write_capture(dir_ / "exact", 0.5f, quality("uncompressed", 8, {10, 0.0, 0.0}, {}));
     write_capture(dir_ / "avsm4", 0.75f, quality("avsm", 4, {100, 2.0, 0.1}, {50, 1.0, 0.3}));
