@@ -83,6 +83,12 @@ Pipeline Pipeline::shared(const Context& ctx, const std::string& key, const std:
 }
 
 // ---------------------------------------------------------------- PipelineCache
+//
+// No VkPipelineCache: lavapipe (Mesa 22.3) keeps nothing in one (vkGetPipelineCacheData
+// returns its 32-byte header alone after pipelines were created with it). Across
+// processes Mesa's own shader disk cache (~/.cache/mesa_shader_cache, on by default)
+// already keeps llvmpipe's compiled code: a small capture of the default scene took
+// 19.9 CPU seconds with an empty MESA_SHADER_CACHE_DIR, 8.7 with it filled.
 
 Pipeline PipelineCache::find_or_create(const std::string& key, const std::function<Pipeline()>& create) {
   std::unique_lock lock(mutex_);
