@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gpu/pipeline.h"
 #include "gpu/vk_check.h"
 
 namespace avsm::gpu {
@@ -90,6 +91,7 @@ Context::~Context() {
     // only for the queue the engine submits to.
     if (owns_device_) vkDeviceWaitIdle(device_);
     else vkQueueWaitIdle(graphics_queue_.handle);
+    pipelines_.reset();
     vkDestroyCommandPool(device_, command_pool_, nullptr);
     if (owns_device_) vkDestroyDevice(device_, nullptr);
   }
@@ -348,6 +350,7 @@ void Context::create_device(const ContextDesc& desc) {
 // What both an owned and an adopted device need: the queue family's timestamp
 // bits, the push-descriptor entry point and the context's own command pool.
 void Context::finish_device_setup() {
+  pipelines_ = std::make_unique<PipelineCache>();
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);

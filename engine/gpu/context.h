@@ -13,6 +13,8 @@
 
 namespace avsm::gpu {
 
+class PipelineCache;  // gpu/pipeline.h
+
 struct ContextDesc {
   std::string app_name = "avsm";
   // VK_LAYER_KHRONOS_validation with synchronization validation.
@@ -158,6 +160,10 @@ class Context {
   VkCommandPool command_pool() const { return command_pool_; }
   VkCommandBuffer allocate_command_buffer(const std::string& name) const;
 
+  // The pipelines compiled on this device, kept for later requests (gpu/pipeline.h);
+  // destroyed with the context.
+  PipelineCache& pipelines() const { return *pipelines_; }
+
   // Device extension function, loaded at creation.
   PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
 
@@ -183,6 +189,7 @@ class Context {
   bool debug_utils_ = false;
   bool owns_device_ = true;
   ValidationLog validation_log_;
+  std::unique_ptr<PipelineCache> pipelines_;
 
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label_ = nullptr;

@@ -44,21 +44,6 @@ namespace {
 
 std::atomic<uint64_t> pipelines_created{0};
 
-// Pipelines alive, by device and by everything that went into them (kind, name,
-// SPIR-V, fixed-function state). Weak: the cache never keeps a pipeline alive.
-struct PipelineRegistry {
-  struct Entry {
-    std::weak_ptr<Pipeline::Objects> objects;
-    std::shared_ptr<const Pipeline> prototype;  // reflection and handles, no ownership
-  };
-  std::mutex mutex;
-  std::map<std::pair<VkDevice, std::string>, Entry> entries;
-};
-PipelineRegistry& registry() {
-  static PipelineRegistry instance;
-  return instance;
-}
-
 void append_bytes(std::string& key, const void* data, size_t bytes) {
   key.append(reinterpret_cast<const char*>(&bytes), sizeof(bytes));
   key.append(static_cast<const char*>(data), bytes);
@@ -91,28 +76,67 @@ Pipeline Pipeline::copy_sharing() const {
 }
 
 Pipeline Pipeline::shared(const Context& ctx, const std::string& key, const std::function<Pipeline()>& create) {
-  PipelineRegistry& cache = registry();
-  std::unique_lock lock(cache.mutex);
-  const auto id = std::make_pair(ctx.device(), key);
-  auto found = cache.entries.find(id);
-  if (found != cache.entries.end()) {
-    if (std::shared_ptr<Objects> alive = found->second.objects.lock()) {
-      Pipeline p = found->second.prototype->copy_sharing();
-      p.objects_ = std::move(alive);
-      return p;
-    }
+  return ctx.pipelines().find_or_create(key, [&] {
+    ++pipelines_created;
+    return create();
+  });
+}
+
+// ---------------------------------------------------------------- PipelineCache
+//
+// No VkPipelineCache: lavapipe (Mesa 22.3) keeps nothing in one (vkGetPipelineCacheData
+// returns its 32-byte header alone after pipelines were created with it). Across
+// processes Mesa's own shader disk cache (~/.cache/mesa_shader_cache, on by default)
+// already keeps llvmpipe's compiled code: a small capture of the default scene took
+// 19.9 CPU seconds with an empty MESA_SHADER_CACHE_DIR, 8.7 with it filled.
+
+Pipeline PipelineCache::find_or_create(const std::string& key, const std::function<Pipeline()>& create) {
+  std::unique_lock lock(mutex_);
+  auto found = entries_.find(key);
+  if (found != entries_.end()) {
+    found->second.last_asked = ++clock_;
+    return found->second.pipeline.copy_sharing();
   }
-  // Compiling takes long on a CPU device; other threads may use the cache meanwhile.
   lock.unlock();
   Pipeline created = create();
-  ++pipelines_created;
-  auto prototype = std::make_shared<Pipeline>(created.copy_sharing());
-  prototype->objects_.reset();
   lock.lock();
-  for (auto it = cache.entries.begin(); it != cache.entries.end();)
-    it = it->second.objects.expired() ? cache.entries.erase(it) : std::next(it);
-  cache.entries[id] = {created.objects_, std::move(prototype)};
-  return created;
+  // Another thread may have compiled the same meanwhile: the first one cached wins.
+  auto [entry, inserted] = entries_.try_emplace(key);
+  if (inserted) entry->second.pipeline = created.copy_sharing();
+  entry->second.last_asked = ++clock_;
+  trim_unused();
+  return entry->second.pipeline.copy_sharing();
+}
+
+void PipelineCache::set_unused_limit(size_t limit) {
+  std::lock_guard lock(mutex_);
+  unused_limit_ = limit;
+  trim_unused();
+}
+
+size_t PipelineCache::size() const {
+  std::lock_guard lock(mutex_);
+  return entries_.size();
+}
+
+// Only the cache holds an unused pipeline's objects. Nobody can take a new reference
+// without the lock, so one counted unused here stays so until it is destroyed.
+size_t PipelineCache::unused_count() const {
+  std::lock_guard lock(mutex_);
+  return size_t(std::count_if(entries_.begin(), entries_.end(),
+                              [](const auto& e) { return e.second.pipeline.objects_.use_count() == 1; }));
+}
+
+void PipelineCache::trim_unused() {
+  std::vector<std::map<std::string, Entry>::iterator> unused;
+  for (auto it = entries_.begin(); it != entries_.end(); ++it)
+    if (it->second.pipeline.objects_.use_count() == 1) unused.push_back(it);
+  if (unused.size() <= unused_limit_) return;
+  // Oldest first. Without the cache a pipeline went with its last Pipeline; the cache
+  // only defers that, so no command buffer in flight can still use an unused one.
+  std::sort(unused.begin(), unused.end(),
+            [](const auto& a, const auto& b) { return a->second.last_asked < b->second.last_asked; });
+  for (size_t i = 0; i < unused.size() - unused_limit_; ++i) entries_.erase(unused[i]);
 }
 
 Pipeline Pipeline::compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name) {

@@ -15,6 +15,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -54,15 +55,16 @@ struct GraphicsPipelineDesc {
 };
 
 // Pipelines built from the same SPIR-V and state share their Vulkan objects: a
-// second request for one that is alive returns it without compiling again. Hot
-// reload relies on this, rebuilding every pass while only the edited shaders'
-// pipelines are created anew. The objects go when the last Pipeline using them does.
+// request for one the context's PipelineCache holds returns it without compiling
+// again. Every renderer on a context therefore compiles only what no earlier one did
+// (on lavapipe compiling is most of a small frame's time), and hot reload, rebuilding
+// every pass, creates only the edited shaders' pipelines anew.
 class Pipeline {
  public:
   Pipeline() = default;
   static Pipeline compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
   static Pipeline graphics(const Context& ctx, const GraphicsPipelineDesc& desc);
-  // How many pipelines the process created (not counting shared ones), for tests.
+  // How many pipelines the process compiled (not counting those from a cache), for tests.
   static uint64_t created_count();
   ~Pipeline();
   Pipeline(Pipeline&& other) noexcept;
@@ -94,11 +96,12 @@ class Pipeline {
  private:
   static Pipeline create_compute(const Context& ctx, std::span<const uint32_t> spirv, const std::string& name);
   static Pipeline create_graphics(const Context& ctx, const GraphicsPipelineDesc& desc);
-  // The live pipeline made from `key`, else create()'s, remembered under `key`.
+  // The cached pipeline made from `key`, else create()'s, cached under `key`.
   static Pipeline shared(const Context& ctx, const std::string& key, const std::function<Pipeline()>& create);
   void create_layout(const Context& ctx, const std::vector<ShaderReflection>& stages);
   void push_constants(VkCommandBuffer cmd, const StructLayout& layout, const void* data) const;
   void release();
+  friend class PipelineCache;
   Pipeline copy_sharing() const;
   std::shared_ptr<Objects> objects_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
@@ -110,6 +113,40 @@ class Pipeline {
   std::vector<DescriptorBinding> bindings_;
   std::array<uint32_t, 3> local_size_ = {1, 1, 1};
   std::string name_;
+};
+
+// The compiled pipelines of one Context (Context::pipelines()), by everything that went
+// into them (kind, name, SPIR-V, fixed-function state). It keeps every pipeline in use
+// and, of those no Pipeline uses any more, the `unused_limit` most recently asked for:
+// a later renderer finds them compiled, while the pipelines of shaders that hot reload
+// replaced, or of settings no longer rendered, are destroyed as newer ones are compiled
+// (the limit is applied at each compile), so memory stays bounded however long a
+// process reloads: at most the limit plus the pipelines in use at the last compile.
+class PipelineCache {
+ public:
+  static constexpr size_t kDefaultUnusedLimit = 128;
+  explicit PipelineCache(size_t unused_limit = kDefaultUnusedLimit) : unused_limit_(unused_limit) {}
+  PipelineCache(const PipelineCache&) = delete;
+  PipelineCache& operator=(const PipelineCache&) = delete;
+
+  // The pipeline cached under `key`, else `create`'s, which is then cached. Compiling
+  // runs outside the lock: other threads may use the cache meanwhile.
+  Pipeline find_or_create(const std::string& key, const std::function<Pipeline()>& create);
+  // Lowers (or raises) how many unused pipelines are kept, destroying the oldest beyond it.
+  void set_unused_limit(size_t limit);
+  size_t size() const;         // pipelines held, in use or not
+  size_t unused_count() const;  // of those, the ones no Pipeline uses
+
+ private:
+  struct Entry {
+    Pipeline pipeline;   // owns a reference to the shared objects
+    uint64_t last_asked = 0;
+  };
+  void trim_unused();  // with mutex_ held
+  mutable std::mutex mutex_;
+  std::map<std::string, Entry> entries_;
+  size_t unused_limit_;
+  uint64_t clock_ = 0;
 };
 
 // Checks the shared structs of a pipeline's shaders against C++ (see above).
