@@ -28,4 +28,23 @@ void FrameBuffers::set_frames(const gpu::Context& ctx, uint32_t frames) {
   if (!buffers_.empty()) create(ctx, desc_);
 }
 
+void RetiredBuffers::declared(uint32_t slot) {
+  release(slot);
+  in_flight_ |= 1u << slot;
+}
+
+void RetiredBuffers::finished(uint32_t slot) {
+  release(slot);
+  in_flight_ &= ~(1u << slot);
+}
+
+void RetiredBuffers::retire(gpu::Buffer buffer) {
+  if (buffer && in_flight_ != 0) kept_.push_back({in_flight_, std::move(buffer)});
+}
+
+void RetiredBuffers::release(uint32_t slot) {
+  for (Kept& kept : kept_) kept.waiting_slots &= ~(1u << slot);
+  std::erase_if(kept_, [](const Kept& kept) { return kept.waiting_slots == 0; });
+}
+
 }  // namespace avsm::passes

@@ -53,4 +53,27 @@ class FrameBuffers {
   std::vector<gpu::Buffer> buffers_;
 };
 
+// Buffers replaced while frames in flight may still use them (a capture that grew):
+// each is kept until every frame that was in flight when it was replaced has finished,
+// instead of waiting for the device to idle. A frame is in flight from its declaration
+// into a slot to its finish; declaring into the slot again also means it finished.
+class RetiredBuffers {
+ public:
+  // A frame is declared into `slot` (the frame it held before has completed).
+  void declared(uint32_t slot);
+  // The frame in `slot` has completed.
+  void finished(uint32_t slot);
+  // Keeps `buffer` (if any) until the frames in flight now have finished.
+  void retire(gpu::Buffer buffer);
+
+ private:
+  void release(uint32_t slot);
+  struct Kept {
+    uint32_t waiting_slots;  // bit s: the frame in slot s still uses it
+    gpu::Buffer buffer;
+  };
+  uint32_t in_flight_ = 0;  // bit s: slot s holds a frame in flight
+  std::vector<Kept> kept_;
+};
+
 }  // namespace avsm::passes

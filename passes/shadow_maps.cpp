@@ -138,7 +138,12 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
                                 " samples per segment; use 1 to 255");
-  vkDeviceWaitIdle(ctx_.device());  // frames in flight may use the buffers replaced here
+  // Frames in flight may use the buffers replaced here, and what finish_frame() reads of
+  // them is per map as they declared it: the host finishes them first (the viewer's
+  // LiveRenderer does), and then this wait costs nothing. Lights that only move do not
+  // come here (place_light).
+  vkDeviceWaitIdle(ctx_.device());
+  retired_ = {};
   options_ = options;
   casters_ = casters;
   objects_ = objects;
@@ -178,7 +183,8 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
 void ShadowMaps::set_frames_in_flight(uint32_t count) {
   check_frames_in_flight(count);
   if (count == frames_in_flight()) return;
-  vkDeviceWaitIdle(ctx_.device());  // frames in flight use the buffers replaced here
+  vkDeviceWaitIdle(ctx_.device());  // frames in flight use the per-slot buffers replaced here
+  retired_ = {};
   parameters_.set_frames(ctx_, count);
   for (MapState& map : maps_) create_frame_buffers(map);
 }
@@ -538,6 +544,7 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
   if (slot >= frames_in_flight())
     throw std::invalid_argument("ShadowMaps: frame slot " + std::to_string(slot) + " of " +
                                 std::to_string(frames_in_flight()) + " frames in flight");
+  retired_.declared(slot);
   ShadowInputs inputs = unshadowed_inputs();
   inputs.frame_slot = slot;
   if (lights_.empty()) return inputs;
@@ -701,7 +708,9 @@ LightShadowStats ShadowMaps::finish_map(MapState& map, uint32_t slot, bool& rema
   if (requested > map.capacity) {
     const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
     const uint64_t grown = std::min(limit, round_up(requested + requested / 4, 1024));
-    remake = remake || grown > map.capacity;
+    // The capture lists are transient, sized by each frame's graph; only the copies
+    // that lookups read are buffers of this size.
+    remake = remake || (grown > map.capacity && map.lookups_read_lists);
     map.capacity = std::max(map.capacity, grown);
   }
   stats.next_capture_capacity = map.capacity;
@@ -756,6 +765,7 @@ void ShadowMaps::finish_frame(uint32_t slot) {
   if (slot >= frames_in_flight())
     throw std::invalid_argument("ShadowMaps::finish_frame: frame slot " + std::to_string(slot) + " of " +
                                 std::to_string(frames_in_flight()) + " frames in flight");
+  retired_.finished(slot);
   bool remake = false;
   std::vector<LightShadowStats> per_light(lights_.size());
   std::vector<TechniqueMapState> before;
@@ -768,8 +778,11 @@ void ShadowMaps::finish_frame(uint32_t slot) {
   // their size, and the frames go on reporting what did not fit.
   if (atlas_bytes_needed() > map_budget())
     for (size_t m = 0; m < maps_.size(); ++m) maps_[m].map_state = before[m];
-  if (remake) {  // for the next frame; the frames still in flight use the old ones
-    vkDeviceWaitIdle(ctx_.device());
+  if (remake) {
+    // For the next frame. The frames still in flight bind the buffers replaced here (a
+    // grown technique map, the looked-up lists: the uncompressed technique and the exact
+    // reference): they keep them until they finish.
+    for (gpu::Buffer* replaced : {&atlas_, &list_heads_, &list_nodes_}) retired_.retire(std::move(*replaced));
     create_list_buffers();
     create_atlas();
   }

@@ -132,8 +132,8 @@ class ShadowMaps {
 
   // After the frame recorded into `slot` completed (frames finish in the order they
   // were declared): reads its capture counters, reports overflow, grows the node
-  // buffers for the next frame declared (waiting for the frames still in flight when
-  // the map atlas or the list buffers must be made again).
+  // buffers for the next frame declared. When the map atlas or the list buffers must be
+  // made again, the frames still in flight keep the old ones until they finish (no wait).
   void finish_frame(uint32_t slot = 0);
   const std::vector<LightShadowStats>& frame_stats() const { return stats_; }
   // Fits the maps that follow the camera (shadow.fit view, cascades) to `camera` now, as
@@ -246,6 +246,7 @@ class ShadowMaps {
   gpu::Buffer atlas_;              // every map, at MapState::atlas_offset
   gpu::Buffer list_heads_, list_nodes_;  // copies of the lists lookups read
   FrameBuffers parameters_;  // GpuShadow per record (and per exact reference), written in the frame
+  RetiredBuffers retired_;   // what finish_frame() replaced while frames in flight use it
   UnshadowedInputs unshadowed_;
 };
 

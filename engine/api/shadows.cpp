@@ -277,6 +277,8 @@ struct Shadows::Impl {
   gpu::ShaderLibrary library;
   passes::ShadowMaps maps;
   std::vector<CasterObject> objects;  // set_lights' (add_to_graph checks them against its casters)
+  std::vector<Light> lights;          // set_lights', as given
+  Bounds casters_bounds;
 };
 
 namespace {
@@ -313,10 +315,41 @@ void Shadows::check_frame(const Camera& camera, const ShadowCasters& casters, co
   check_objects(check, objects, casters);
 }
 
+namespace {
+
+bool same_bounds(const Bounds& a, const Bounds& b) { return a.min == b.min && a.max == b.max; }
+
+// `after` differs from `before` in where its lights are and which way they point, at
+// most. Clustered lights are grouped along their direction, so for them a turn is more.
+bool only_placement_changed(const std::vector<Light>& before, const std::vector<Light>& after) {
+  if (before.size() != after.size()) return false;
+  for (size_t i = 0; i < before.size(); ++i) {
+    Light moved = before[i];
+    moved.position = after[i].position;
+    moved.direction = after[i].direction;
+    if (!(moved == after[i]) || after[i].clusters > 1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
                          const std::vector<CasterObject>& objects) {
-  impl_->maps.set_lights(checked_scene_lights(lights, casters_bounds, objects), casters_bounds, {}, objects);
+  std::vector<scene::Light> scene_lights = checked_scene_lights(lights, casters_bounds, objects);
+  if (!impl_->lights.empty() && only_placement_changed(impl_->lights, lights) &&
+      same_bounds(casters_bounds, impl_->casters_bounds)) {
+    // Lights that only moved keep their buffers: the next frame declared fits their maps
+    // again, and frames in flight are not waited for. (No light here is clustered, so
+    // the maps do not use the objects; add_to_graph checks the casters against them.)
+    for (uint32_t i = 0; i < scene_lights.size(); ++i)
+      impl_->maps.place_light(i, scene_lights[i].position, scene_lights[i].direction);
+  } else {
+    impl_->maps.set_lights(scene_lights, casters_bounds, {}, objects);
+  }
   impl_->objects = objects;
+  impl_->lights = lights;
+  impl_->casters_bounds = casters_bounds;
 }
 
 void Shadows::set_frames_in_flight(uint32_t count) { impl_->maps.set_frames_in_flight(count); }

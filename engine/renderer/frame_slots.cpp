@@ -44,12 +44,14 @@ FrameSlots::Slot& FrameSlots::acquire(const Finished& finished) {
   return slot;
 }
 
-void FrameSlots::submit(Slot& slot, VkSemaphore wait, VkPipelineStageFlags2 wait_stages, VkSemaphore signal) {
+void FrameSlots::submit(Slot& slot, VkSemaphore wait, VkPipelineStageFlags2 wait_stages, VkSemaphore signal,
+                        uint64_t wait_value) {
   VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cmd_info.commandBuffer = slot.cmd;
   VkSemaphoreSubmitInfo wait_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   wait_info.semaphore = wait;
   wait_info.stageMask = wait_stages;
+  wait_info.value = wait_value;
   VkSemaphoreSubmitInfo signal_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   signal_info.semaphore = signal;
   signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;

@@ -44,9 +44,9 @@ class FrameSlots {
   Slot& acquire(const Finished& finished);
   // Submits the slot's recorded command buffer; its fence signals when it completes.
   // A window frame waits for its acquired image (`wait` at `wait_stages`) and signals
-  // `signal` for the present.
+  // `signal` for the present. A timeline semaphore `wait` is waited for to `wait_value`.
   void submit(Slot& slot, VkSemaphore wait = VK_NULL_HANDLE, VkPipelineStageFlags2 wait_stages = 0,
-              VkSemaphore signal = VK_NULL_HANDLE);
+              VkSemaphore signal = VK_NULL_HANDLE, uint64_t wait_value = 0);
   // Hands the frames in flight that have completed to `finished`, oldest first, without waiting.
   void finish_completed(const Finished& finished);
   // Waits for every frame in flight, oldest first, handing each to `finished`.

@@ -41,7 +41,10 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
 }
 
 void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOptions& shadow_options) {
-  // The previous frame's commands may still read the buffers replaced here.
+  // Frames in flight read the buffers replaced here, and their results (probes, capture
+  // figures) belong to the scene they were declared with: callers finish them first
+  // (LiveRenderer's before_change), which makes this wait free; it guards those that do not.
+  // Lights that only move need none of it (place_light).
   vkDeviceWaitIdle(ctx_.device());
   lights_ = scene.lights;
   light_count_ = uint32_t(scene.lights.size());
@@ -85,6 +88,8 @@ void SceneRenderer::set_volume_shading(const scene::VolumeShading& shading) {
 
 void SceneRenderer::set_size(uint32_t width, uint32_t height) {
   if (width == width_ && height == height_) return;
+  // Frames in flight write the output images replaced here, and their callers read them
+  // back when the frame finishes: callers finish them first (as for set_scene).
   vkDeviceWaitIdle(ctx_.device());
   width_ = width;
   height_ = height;
@@ -94,7 +99,7 @@ void SceneRenderer::set_size(uint32_t width, uint32_t height) {
 
 void SceneRenderer::set_frames_in_flight(uint32_t count) {
   passes::check_frames_in_flight(count);
-  vkDeviceWaitIdle(ctx_.device());
+  vkDeviceWaitIdle(ctx_.device());  // every per-slot buffer is made again, for another ring of slots
   shadows_.set_frames_in_flight(count);
   light_buffers_.set_frames(ctx_, count);
   for (passes::ShadowProbePass* pass : {probes_.get(), texel_curves_.get()})

@@ -5,7 +5,8 @@
 // (a ground quad, a box hovering over it and two sheets of hair strands) as plain
 // buffers, builds its own frame graph every frame, lets avsm::Shadows add the AVSM
 // passes for its one light, and shades the ground in its own compute pass, whose GLSL
-// includes the engine's "common/shadow_lookup.glsl" from the installed package.
+// includes the engine's "common/shadow_lookup.glsl" from the installed package. It keeps
+// two frames in flight, recording the next frame while the GPU runs the last (HostFrames).
 //
 // Output: ground.png (the ground seen from above) and, per probe point, the light's
 // transmittance there. With --check it compares them with what the geometry predicts
@@ -29,6 +30,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -308,7 +311,11 @@ class GroundShading {
   // frame ready to be copied out.
   void add_to_graph(rg::Graph& graph, const avsm::ShadowInputs& shadows) {
     const uint32_t size = image_.desc().width;
-    rg::TextureHandle image = rg::vulkan::import(graph, "host ground image", image_, rg::ImportState::none(),
+    // Every frame rewrites it whole, after the frame before (perhaps still running) left it
+    // ready to copy: the first write waits for that frame's accesses, the contents discarded.
+    rg::ImportState after_previous_frame = rg::ImportState::of(rg::Usage::TransferSrc);
+    after_previous_frame.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    rg::TextureHandle image = rg::vulkan::import(graph, "host ground image", image_, after_previous_frame,
                                                  rg::ImportState::of(rg::Usage::TransferSrc));
     struct Data {
       rg::TextureHandle image;
@@ -342,24 +349,96 @@ class GroundShading {
   avsm::gpu::Image image_;
 };
 
-// Records the frame into the host's command buffer and submits it on the host's queue.
-void submit_frame(const HostDevice& host, VkCommandBuffer cmd, const rg::Graph& graph, rg::vulkan::Executor& executor) {
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  check_vk(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-  executor.record(graph, cmd);
-  check_vk(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  check_vk(vkCreateFence(host.device(), &fence_info, nullptr, &fence), "vkCreateFence");
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  VkResult result = vkQueueSubmit(host.queue(), 1, &submit, fence);
-  if (result == VK_SUCCESS) result = vkWaitForFences(host.device(), 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(host.device(), fence, nullptr);
-  check_vk(result, "frame submission");
-}
+// ---------------------------------------------------------------------------------------
+// Frames in flight, as a real host keeps them: per frame slot a command buffer, a fence
+// and a frame-graph executor (whose transient memory belongs to the frame it recorded).
+// The host records frame N+1 while the GPU runs frame N; it reuses a slot only after
+// that slot's fence signalled, and then hands the finished frame to Shadows::finish_frame.
+
+constexpr uint32_t kFramesInFlight = 2;
+
+class HostFrames {
+ public:
+  struct Slot {
+    uint32_t index = 0;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    std::unique_ptr<rg::vulkan::Executor> executor;
+    int frame = -1;  // the frame in flight in this slot; -1: none
+  };
+  using Finished = std::function<void(const Slot&)>;
+
+  HostFrames(const HostDevice& host, avsm::gpu::Context& context) : host_(host), slots_(kFramesInFlight) {
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = host.queue_family();
+    check_vk(vkCreateCommandPool(host.device(), &pool_info, nullptr, &pool_), "vkCreateCommandPool");
+    for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+      Slot& slot = slots_[i];
+      slot.index = i;
+      VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+      alloc.commandPool = pool_;
+      alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+      alloc.commandBufferCount = 1;
+      check_vk(vkAllocateCommandBuffers(host.device(), &alloc, &slot.cmd), "vkAllocateCommandBuffers");
+      VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+      check_vk(vkCreateFence(host.device(), &fence_info, nullptr, &slot.fence), "vkCreateFence");
+      slot.executor = std::make_unique<rg::vulkan::Executor>(context, avsm::gpu::TimestampMode::Exact);
+    }
+  }
+  ~HostFrames() {
+    for (Slot& slot : slots_) {
+      if (slot.frame >= 0) vkWaitForFences(host_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX);
+      vkDestroyFence(host_.device(), slot.fence, nullptr);
+    }
+    vkDestroyCommandPool(host_.device(), pool_, nullptr);
+  }
+  HostFrames(const HostFrames&) = delete;
+  HostFrames& operator=(const HostFrames&) = delete;
+
+  // The slot for frame `frame`, in turn: if it still holds an earlier frame, waits for
+  // that frame's fence and hands it to `finished` first.
+  Slot& acquire(int frame, const Finished& finished) {
+    Slot& slot = slots_[uint32_t(frame) % kFramesInFlight];
+    if (slot.frame >= 0) finish(slot, finished);
+    slot.frame = frame;
+    return slot;
+  }
+
+  // Records the frame's graph into the slot's command buffer and submits it on the
+  // host's queue; the slot's fence signals when it completes.
+  void submit(Slot& slot, const rg::Graph& graph) {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check_vk(vkBeginCommandBuffer(slot.cmd, &begin), "vkBeginCommandBuffer");
+    slot.executor->record(graph, slot.cmd);
+    check_vk(vkEndCommandBuffer(slot.cmd), "vkEndCommandBuffer");
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &slot.cmd;
+    check_vk(vkQueueSubmit(host_.queue(), 1, &submit, slot.fence), "frame submission");
+  }
+
+  // Waits for the frames still in flight, oldest first (the queue completes them in order).
+  void finish_all(int next_frame, const Finished& finished) {
+    for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+      Slot& slot = slots_[(uint32_t(next_frame) + i) % kFramesInFlight];
+      if (slot.frame >= 0) finish(slot, finished);
+    }
+  }
+
+ private:
+  void finish(Slot& slot, const Finished& finished) {
+    check_vk(vkWaitForFences(host_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    check_vk(vkResetFences(host_.device(), 1, &slot.fence), "vkResetFences");
+    finished(slot);
+    slot.frame = -1;
+  }
+
+  const HostDevice& host_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  std::vector<Slot> slots_;
+};
 
 // ---------------------------------------------------------------------------------------
 // Reading the result: transmittance at world points, and the shadow's extent along x.
@@ -492,34 +571,30 @@ int run(const Options& options) {
     shadows.set_light(sun, casters.bounds);
     GroundShading ground(context, shadows, options.size);
 
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = host.queue_family();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    check_vk(vkCreateCommandPool(host.device(), &pool_info, nullptr, &pool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    check_vk(vkAllocateCommandBuffers(host.device(), &alloc, &cmd), "vkAllocateCommandBuffers");
-
-    rg::vulkan::Executor executor(context, avsm::gpu::TimestampMode::Exact);
+    // Each frame declares its shadows into its frame slot, which has its own parameter
+    // block and capture counters in the engine.
+    shadows.set_frames_in_flight(kFramesInFlight);
+    HostFrames frames(host, context);
+    const auto finished = [&](const HostFrames::Slot& slot) {
+      for (const avsm::LightStats& s : shadows.finish_frame(slot.index))
+        std::printf("frame %d light '%s': %u map(s) of %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, "
+                    "%llu bytes of fixed build\n", slot.frame, s.name.c_str(), s.maps, s.nodes, s.resolution,
+                    s.resolution, (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
+                    s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
+    };
     const avsm::Camera camera{glm::vec3(0.0f, 10.0f, 0.0f), 0.8f, options.size};
-    // Two frames: the second reuses the compiled plan (and a grown capture buffer, had the first overflowed).
-    for (int frame = 0; frame < 2; ++frame) {
+    // Three frames, two in flight: frame 1 is recorded while frame 0 runs, frame 2 reuses
+    // frame 0's slot once its fence signalled (and a grown capture buffer, had it overflowed).
+    constexpr int kFrames = 3;
+    for (int frame = 0; frame < kFrames; ++frame) {
+      HostFrames::Slot& slot = frames.acquire(frame, finished);
       rg::Graph graph;
-      const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, camera, casters.views)
+      const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, camera, casters.views, slot.index)
                                                       : shadows.unshadowed_inputs();
       ground.add_to_graph(graph, maps);
-      submit_frame(host, cmd, graph, executor);
-      for (const avsm::LightStats& s : shadows.finish_frame())
-        std::printf("frame %d light '%s': %u map(s) of %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, "
-                    "%llu bytes of fixed build\n", frame, s.name.c_str(), s.maps, s.nodes, s.resolution, s.resolution,
-                    (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
-                    s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
+      frames.submit(slot, graph);
     }
-    vkDestroyCommandPool(host.device(), pool, nullptr);
+    frames.finish_all(kFrames, finished);
 
     const avsm::gpu::ImageRGBA32F image = ground.read_back();
     std::filesystem::create_directories(options.out);

@@ -121,6 +121,8 @@ struct Light {
   // Build the map straight from the casters, in fixed memory (no capture lists;
   // volumes need their density atlas): see README "fixed-memory build".
   bool fixed_memory_build = false;
+
+  bool operator==(const Light&) const = default;
 };
 
 // The camera the host shades from; only trilinear filtering uses it (a pixel's
@@ -173,6 +175,11 @@ class Shadows {
   // max; each object's bounds likewise, its count at least 1 and its range within the
   // casters later given to add_to_graph (checked there). Throws std::invalid_argument
   // for a violation and for maps over the budget, naming the lights; nothing changes then.
+  // Lights that only moved (the same lights and casters_bounds as before, only their
+  // position and direction changed; none clustered) are placed for the next frame
+  // declared, without waiting for the frames in flight: call it every frame to move
+  // them. Any other change makes the maps' buffers again: it waits for the device to
+  // idle, and the host finishes its frames in flight (finish_frame) before it.
   void set_lights(const std::vector<Light>& lights, const Bounds& casters_bounds,
                   const std::vector<CasterObject>& objects = {});
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
