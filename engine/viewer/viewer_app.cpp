@@ -265,6 +265,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       reply["shaders_reloaded"] = shaders_reloaded_;
       reply["scene_reloaded"] = scene_reloaded_;
       reply["error"] = live_->error() ? nlohmann::json(live_->error()->summary()) : nlohmann::json(nullptr);
+      reply["validation_messages"] = ctx_.validation_log().count();
       reloaded_files_.clear();
       shaders_reloaded_ = scene_reloaded_ = false;
       break;
