@@ -28,7 +28,9 @@ saying why, when
     than --tolerance percent (growth or a leak; before --flat-from is warm-up);
   - the viewer reported a validation message (it runs with validation and sync validation);
   - a frame does not come back within --watchdog seconds (a hang: the viewer is stopped);
-  - an edit's reply is not what that edit must give.
+  - an edit's reply is not what that edit must give;
+  - the last frame (a screenshot, last_frame/) differs from the frame after the first cycle
+    (first_cycle/): both show the scene as loaded, so edits must leave nothing behind.
 SIGTERM or Ctrl-C ends the soak at the end of the current cycle, with the table of the
 frames that ran (exit status 3).
 """
@@ -43,7 +45,10 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "viewer"))
+REPOSITORY = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPOSITORY / "bench" / "viewer"))
+sys.path.insert(0, str(REPOSITORY / "tests" / "viewer"))
+from check_viewer_outputs import check_against_capture, check_image  # noqa: E402
 from viewer_control import ControlledViewer, ViewerError  # noqa: E402
 
 CYCLE = 50  # frames per cycle of edits; checkpoints must be multiples of it
@@ -226,9 +231,12 @@ def soak(args):
                 raise SoakFailure(f"frame {frame}: {messages} validation message(s) (they are in {args.work / 'viewer.log'})")
             if frame in args.checkpoints or frame == args.frames or (offset == CYCLE - 1 and stop_requested):
                 memory[frame] = viewer.rss_kib()
+            if frame == CYCLE:  # the first cycle's edits undone: what the last frame must show again
+                viewer.send(f"screenshot {args.work / 'first_cycle'}")
             if frame in memory or frame % args.progress == 0:
                 print(f"frame {frame:>6}: {viewer.rss_kib() / 1024:8.1f} MiB resident, {messages} validation messages, "
                       f"{time.monotonic() - started:7.0f} s", flush=True)
+        viewer.send(f"screenshot {args.work / 'last_frame'}")  # after the last memory reading: it allocates
         status = viewer.quit()
         if status != 0:
             raise SoakFailure(f"the viewer exited with status {status} (validation messages at exit? see {args.work / 'viewer.log'})")
@@ -307,6 +315,10 @@ def main():
         print(f"soak: FAIL: {failure}")
         sys.exit(1)
     failures = report(args, *results)
+    # Thousands of edits later, the scene as loaded looks as it did after the first cycle.
+    width, height = (int(n) for n in args.size.split("x"))
+    last = check_image(args.work / "last_frame" / "frame.png", width, height)
+    check_against_capture(last, args.work / "first_cycle" / "frame.png", width, height, name=f"frame {CYCLE}")
     for failure in failures:
         print(f"soak: FAIL: {failure}")
     if failures:
