@@ -124,7 +124,11 @@ class Workspace:
         self.tonemap.write_text("\n".join(lines) + "\n")
 
     def edit_shader(self):
-        self.tonemap.write_text(self.originals[self.tonemap].decode().replace("* pc.exposure;", "* pc.exposure * 0.5;"))
+        """A different good shader: the exposure halved."""
+        source = self.originals[self.tonemap].decode()
+        if "* pc.exposure;" not in source:
+            raise SoakFailure(f"{self.tonemap}: no '* pc.exposure;' to edit (update Workspace.edit_shader)")
+        self.tonemap.write_text(source.replace("* pc.exposure;", "* pc.exposure * 0.5;"))
 
     def edit_asset(self):
         gltf = json.loads(self.originals[self.gltf])
