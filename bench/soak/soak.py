@@ -18,14 +18,18 @@ an asset edited (the stage's glTF) and broken (the hair file cut short) and rest
 Every edit's reply is checked (reloaded, or an error naming the broken file while it is
 broken, and no error otherwise), so a soak whose reloads stopped working fails.
 
-Each cycle's last frames show the scene as loaded, so resident memory (the viewer's VmRSS)
-is read there: at every multiple of CYCLE among the checkpoints (and the last frame).
-Prints that table, the validation message count, and the percentiles of the time a
+Each cycle's last frames show the scene as loaded, so memory is read there: at every
+multiple of CYCLE among the checkpoints (and the last frame), both resident memory (the
+viewer's VmRSS) and the heap in use (glibc's mallinfo2, in the frame reply): freed heap
+pages stay resident, so a leak can hide in them for thousands of frames while VmRSS stays
+flat. frames.csv in the work folder has the heap after every frame and the edit before it,
+to tell which edit keeps memory. Prints that table, the validation message count, and the percentiles of the time a
 'frame' command takes to come back (plain frames, and frames right after an edit, which
 include the reload; the first frame, which compiles every shader, is left out). Fails,
 saying why, when
-  - memory at a checkpoint after --flat-from differs from memory at --flat-from by more
-    than --tolerance percent (growth or a leak; before --flat-from is warm-up);
+  - memory (resident or heap in use) at a checkpoint after --flat-from differs from memory
+    at --flat-from by more than --tolerance (--heap-tolerance) percent: growth or a leak
+    (before --flat-from is warm-up);
   - the viewer reported a validation message (it runs with validation and sync validation);
   - a frame does not come back within --watchdog seconds (a hang: the viewer is stopped);
   - an edit's reply is not what that edit must give;
@@ -35,6 +39,7 @@ SIGTERM or Ctrl-C ends the soak at the end of the current cycle, with the table 
 frames that ran (exit status 3).
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -202,9 +207,13 @@ def soak(args):
     workspace = Workspace(args.work, args.shaders, args.scene_dir, args.shadow_res, args.hair_every)
     env = dict(os.environ, AVSM_SOURCE_DIR=str(workspace.source_root))
     log = open(args.work / "viewer.log", "w")
-    viewer = ControlledViewer(args.viewer, ["--validation", "--size", args.size, "--scene", str(workspace.scene_file)],
+    validation = [] if args.no_validation else ["--validation"]
+    viewer = ControlledViewer(args.viewer, validation + ["--size", args.size, "--scene", str(workspace.scene_file)],
                               env=env, stderr=log, reply_timeout=args.watchdog)
     memory, plain_ms, edited_ms = {}, [], []
+    # Per frame: what came before it and the heap after it, to tell which edit holds on to memory.
+    frames_log = csv.writer(open(args.work / "frames.csv", "w", buffering=1))  # line by line: readable while it runs
+    frames_log.writerow(["frame", "offset", "edit", "heap_in_use_bytes", "resident_kib"])
     expected_error, frame, messages = None, 0, 0
     started = time.monotonic()
     schedule = {}
@@ -213,7 +222,8 @@ def soak(args):
             cycle, offset = divmod(frame - 1, CYCLE)
             if offset == 0 and stop_requested:
                 print(f"soak: stopped after frame {frame - 1} of {args.frames}, as asked (SIGTERM or Ctrl-C)", flush=True)
-                memory.setdefault(frame - 1, viewer.rss_kib())  # still the scene as loaded: no edit came since
+                # Still the scene as loaded: no edit came since the last frame.
+                memory.setdefault(frame - 1, (viewer.rss_kib(), answer["heap_in_use_bytes"] / 1024))
                 break
             if offset == 0:
                 schedule = steps(workspace, cycle)
@@ -230,15 +240,18 @@ def soak(args):
             if frame > 1:
                 (edited_ms if edited else plain_ms).append((time.monotonic() - sent) * 1000.0)
             check_reply(frame, answer, must_be_true, expected_error)
+            edit_name = "; ".join(commands) or (edit_files.__qualname__ if edit_files else "")
+            frames_log.writerow([frame, offset, edit_name, answer["heap_in_use_bytes"], viewer.rss_kib()])
             messages = answer["validation_messages"]
             if messages:
                 raise SoakFailure(f"frame {frame}: {messages} validation message(s) (they are in {args.work / 'viewer.log'})")
             if frame in args.checkpoints or frame == args.frames or (offset == CYCLE - 1 and stop_requested):
-                memory[frame] = viewer.rss_kib()
+                memory[frame] = (viewer.rss_kib(), answer["heap_in_use_bytes"] / 1024)
             if frame == CYCLE:  # the first cycle's edits undone: what the last frame must show again
                 viewer.send(f"screenshot {args.work / 'first_cycle'}")
             if frame in memory or frame % args.progress == 0:
-                print(f"frame {frame:>6}: {viewer.rss_kib() / 1024:8.1f} MiB resident, {messages} validation messages, "
+                print(f"frame {frame:>6}: {viewer.rss_kib() / 1024:8.1f} MiB resident, "
+                      f"{answer['heap_in_use_bytes'] / 2**20:8.1f} MiB heap in use, {messages} validation messages, "
                       f"{time.monotonic() - started:7.0f} s", flush=True)
         viewer.send(f"screenshot {args.work / 'last_frame'}")  # after the last memory reading: it allocates
         status = viewer.quit()
@@ -265,16 +278,21 @@ def check_reply(frame, answer, must_be_true, expected_error):
 def report(args, memory, plain_ms, edited_ms, messages):
     """Prints the tables; returns the reasons the goals were missed."""
     failures = []
+    print(f"\nmemory (flat within {args.tolerance}% of frame {args.flat_from} after it): resident (VmRSS), and the heap in")
+    print("use (glibc mallinfo2), which resident memory hides while freed heap pages take the growth")
+    print(f"{'frame':>8}{'resident MiB':>14}{'vs base':>10}{'heap MiB':>10}{'vs base':>10}")
     baseline = memory.get(args.flat_from)
-    print(f"\nresident memory (flat within {args.tolerance}% of frame {args.flat_from} after it):")
-    print(f"{'frame':>8}{'MiB':>10}{'vs base':>10}")
     for frame, kib in sorted(memory.items()):
-        change = "" if baseline is None or frame < args.flat_from else f"{(kib / baseline - 1.0) * 100.0:+.2f}%"
-        print(f"{frame:>8}{kib / 1024:>10.1f}{change:>10}")
-        if change and abs(kib / baseline - 1.0) * 100.0 > args.tolerance:
-            failures.append(f"memory at frame {frame} is {change} against frame {args.flat_from} "
-                            f"(more than {args.tolerance}%): it grows")
-    print(f"\nvalidation messages: {messages}")
+        row = f"{frame:>8}"
+        for what, value, base, tolerance in (("resident memory", kib[0], baseline and baseline[0], args.tolerance),
+                                             ("heap in use", kib[1], baseline and baseline[1], args.heap_tolerance)):
+            change = None if base is None or frame < args.flat_from else (value / base - 1.0) * 100.0
+            row += f"{value / 1024:>{14 if what == 'resident memory' else 10}.1f}" + (f"{change:>+9.2f}%" if change is not None else f"{'':>10}")
+            if change is not None and tolerance >= 0 and abs(change) > tolerance:
+                failures.append(f"{what} at frame {frame} is {change:+.2f}% against frame {args.flat_from} "
+                                f"(more than {tolerance}%): it grows")
+        print(row)
+    print(f"\nvalidation messages: {'not looked for (--no-validation)' if args.no_validation else messages}")
     print(f"\ntime for a 'frame' command to come back (ms):\n{'':>22}{'frames':>8}{'p50':>8}{'p90':>8}{'p99':>8}{'max':>8}")
     for name, values in (("plain frames", plain_ms), ("after an edit", edited_ms), ("all", plain_ms + edited_ms)):
         if values:
@@ -295,11 +313,17 @@ def main():
                         help=f"frames whose memory is read (multiples of {CYCLE}); the last frame is read too")
     parser.add_argument("--flat-from", type=int, default=100, help="the checkpoint that ends the warm-up")
     parser.add_argument("--tolerance", type=float, default=2.0, help="percent")
+    parser.add_argument("--heap-tolerance", type=float, help="percent for the heap in use (default: --tolerance; "
+                        "negative: printed, not judged)")
+    parser.add_argument("--no-validation", action="store_true",
+                        help="memory of the engine alone: the validation layer (1.3.239) keeps ~45 KiB per scene hand-off")
     parser.add_argument("--watchdog", type=float, default=120.0, help="seconds a frame may take to come back")
     parser.add_argument("--progress", type=int, default=250, help="print memory every this many frames")
     parser.add_argument("--work", type=Path, default=Path("out/soak"))
     args = parser.parse_args()
     args.checkpoints = [int(f) for f in args.checkpoints.split(",")]
+    if args.heap_tolerance is None:
+        args.heap_tolerance = args.tolerance
     for frame in args.checkpoints + [args.frames, args.flat_from]:
         if frame % CYCLE:
             parser.error(f"frame {frame}: checkpoints, --flat-from and --frames must be multiples of {CYCLE} "
@@ -309,7 +333,7 @@ def main():
     if args.flat_from not in args.checkpoints + [args.frames]:
         parser.error(f"--flat-from {args.flat_from} must be one of the checkpoints")
     args.checkpoints = [f for f in args.checkpoints if f <= args.frames]
-    print(f"soak: {args.frames} frames of {args.viewer.name} --control --validation at {args.size}, "
+    print(f"soak: {args.frames} frames of {args.viewer.name} --control{'' if args.no_validation else ' --validation'} at {args.size}, "
           f"shadow maps {args.shadow_res}^2, every {args.hair_every}th hair strand, an edit cycle every {CYCLE} frames; work folder {args.work}", flush=True)
     signal.signal(signal.SIGTERM, request_stop)
     signal.signal(signal.SIGINT, request_stop)
