@@ -10,37 +10,23 @@ steady frame time, for either setting. The settings' runs are interleaved (1, 2,
 so both see the same machine load; prints each run and the median per setting.
 """
 import argparse
-import json
-import os
 import statistics
-import subprocess
 import time
+
+from viewer_control import ControlledViewer
 
 WARM_UP = 3  # frames before the timed ones (pipelines, first uploads)
 
 
 def frame_time_ms(viewer, frames_in_flight, size, frames, scene):
-    command = ["xvfb-run", "-a", viewer, "--control", "--size", size, "--frames-in-flight", str(frames_in_flight)]
-    if scene:
-        command += ["--scene", scene]
-    env = dict(os.environ, XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", "/tmp"))
-    process = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                               text=True, env=env)
+    arguments = ["--size", size, "--frames-in-flight", str(frames_in_flight)] + (["--scene", scene] if scene else [])
+    run = ControlledViewer(viewer, arguments)
     replied = []
     for _ in range(frames):
-        process.stdin.write("frame\n")
-        process.stdin.flush()
-        line = process.stdout.readline()
-        if not line:
-            raise SystemExit(f"the viewer exited (status {process.wait()}): run {' '.join(command)} to see why")
-        if not json.loads(line).get("rendered"):
-            raise SystemExit(f"no frame rendered: {line.strip()}")
+        run.frame()
         replied.append(time.monotonic())
-    process.stdin.write("quit\n")
-    process.stdin.flush()
-    process.stdout.readline()
-    if process.wait() != 0:
-        raise SystemExit(f"the viewer failed (status {process.returncode}): run {' '.join(command)} to see why")
+    if run.quit() != 0:
+        raise SystemExit(f"the viewer failed (status {run.process.returncode}): run {' '.join(run.command)} to see why")
     return (replied[-1] - replied[WARM_UP - 1]) / (frames - WARM_UP) * 1000.0
 
 

@@ -1,6 +1,7 @@
 #include "viewer/control_commands.h"
 #include "passes/techniques/techniques.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,6 +33,17 @@ int parse_whole_in(const std::string& text, const std::string& what, int low, in
     throw std::invalid_argument(what + " expects " + std::to_string(low) + " to " + std::to_string(high) + ", got '" +
                                 text + "'");
   return value;
+}
+
+// "X,Y,Z": three finite numbers.
+glm::vec3 parse_vec3(const std::string& text, const std::string& what) {
+  const size_t first = text.find(','), second = text.find(',', first + 1);
+  if (first == std::string::npos || second == std::string::npos || text.find(',', second + 1) != std::string::npos)
+    throw std::invalid_argument(what + " expects X,Y,Z, got '" + text + "'");
+  const glm::vec3 v{parse_number(text.substr(0, first), what),
+                    parse_number(text.substr(first + 1, second - first - 1), what), parse_number(text.substr(second + 1), what)};
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) throw std::invalid_argument(what + " expects finite numbers, got '" + text + "'");
+  return v;
 }
 
 bool parse_on_off(const std::string& text, const std::string& what) {
@@ -112,8 +124,14 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
     o.clusters = parse_whole_in(value, what, 0, 8);
   } else if (field == "on") {
     o.enabled = parse_on_off(value, what);
+  } else if (field == "position") {
+    o.position = parse_vec3(value, what);
+  } else if (field == "direction") {
+    const glm::vec3 direction = parse_vec3(value, what);
+    if (!(glm::length(direction) > 0.0f)) throw std::invalid_argument(what + ": a direction needs a length, got '" + value + "'");
+    o.direction = direction;
   } else {
-    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, fit, cascades, clusters, on)");
+    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, fit, cascades, clusters, on, position, direction)");
   }
 }
 

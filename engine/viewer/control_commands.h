@@ -2,13 +2,15 @@
 // avsm-viewer --control: the viewer driven by commands on stdin, one per line, for
 // tests and tools that have no input devices (under Xvfb nobody clicks). After each
 // command the viewer prints one JSON line on stdout. Commands:
-//   frame                    poll the watched files, render a scene frame, present
+//   frame                    poll the watched files, render a scene frame, present; the
+//                            reply also counts the validation messages so far
 //   inspect X,Y              click pixel (X, Y) (x right, y down): plot its texel curves
 //   screenshot DIR           write one avsm-capture frame's outputs and window.png
 //   light I FIELD VALUE      set a panel field of light I: technique (avsm, ...), nodes,
 //                            resolution, filter (point, ...), sort (on/off), build (lists,
 //                            fixed), fit (view, scene), cascades (1-4), clusters (0-8, 0 and
-//                            1 off), on (on/off)
+//                            1 off), on (on/off), position X,Y,Z (spot, point), direction
+//                            X,Y,Z (directional, spot; normalised)
 //   exposure V               the tonemapper's exposure
 //   quit                     stop (the exit status still reports validation messages)
 #include <glm/glm.hpp>

@@ -6,6 +6,8 @@
 #include <rendergraph/vulkan/executor.h>
 #include <rendergraph/vulkan/pass_context.h>
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -265,6 +267,12 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       reply["shaders_reloaded"] = shaders_reloaded_;
       reply["scene_reloaded"] = scene_reloaded_;
       reply["error"] = live_->error() ? nlohmann::json(live_->error()->summary()) : nlohmann::json(nullptr);
+      reply["validation_messages"] = ctx_.validation_log().count();
+#ifdef __GLIBC__
+      // What the program holds, unlike resident memory, which freed heap pages still count in.
+      const struct mallinfo2 heap = mallinfo2();
+      reply["heap_in_use_bytes"] = heap.uordblks + heap.hblkhd;
+#endif
       reloaded_files_.clear();
       shaders_reloaded_ = scene_reloaded_ = false;
       break;

@@ -101,7 +101,8 @@ def check_window(frame, window, width):
     print(f"window.png: frame exact right of column {equal_from}, panel over {panel_differs} rows")
 
 
-def check_against_capture(frame, capture_png, width, height):
+def check_against_capture(frame, capture_png, width, height, name="avsm-capture"):
+    """frame.png (rows) against another frame of the same view, `name` (avsm-capture's by default)."""
     reference = check_image(capture_png, width, height)
     off = worst = 0
     for y in range(height):
@@ -110,9 +111,9 @@ def check_against_capture(frame, capture_png, width, height):
             worst = max(worst, d)
             off += d > 2
     channels = width * height * 3
-    print(f"frame.png vs avsm-capture: {off} of {channels} channels differ by more than 2, worst {worst}")
+    print(f"frame.png vs {name}: {off} of {channels} channels differ by more than 2, worst {worst}")
     if off > channels * 0.001:
-        fail(f"frame.png differs from avsm-capture's frame: {off} channels off by more than 2 (worst {worst})")
+        fail(f"frame.png differs from {name}'s frame: {off} channels off by more than 2 (worst {worst})")
 
 
 def check_inspection(path):

@@ -216,6 +216,21 @@ TEST(ControlCommands, CascadesClustersAndFitReachTheLight) {
   EXPECT_EQ(overrides.lights[0].clusters, 0);
 }
 
+TEST(ControlCommands, LightMovesReachTheLight) {
+  SceneOverrides overrides;
+  set_light_field(overrides, 0, "direction", "0,-2,0");
+  set_light_field(overrides, 1, "position", "1.5,2,-3");
+  scene::Scene scene;
+  scene.lights.resize(2);
+  overrides.apply(scene);
+  EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));  // normalised
+  EXPECT_EQ(scene.lights[1].position, glm::vec3(1.5f, 2, -3));
+  for (const char* bad : {"1,2", "1,2,3,4", "1,x,3", "nan,0,0", "0,0,inf", ""})
+    EXPECT_THROW(set_light_field(overrides, 1, "position", bad), std::invalid_argument) << bad;
+  EXPECT_THROW(set_light_field(overrides, 0, "direction", "0,0,0"), std::invalid_argument);
+  EXPECT_EQ(overrides.lights[1].position, glm::vec3(1.5f, 2, -3));  // a refused value changes nothing
+}
+
 TEST(Panel, MapSummaryNamesKindCountAndBudgetLowering) {
   passes::LightShadowStats single;
   single.resolution = 1024;
