@@ -33,18 +33,29 @@ std::string message_of(const std::function<void()>& call) {
   return "(accepted)";
 }
 
+// The box every test's light covers, and its one small directional light.
+Bounds unit_box() {
+  Bounds bounds;
+  bounds.extend(glm::vec3(-1.0f));
+  bounds.extend(glm::vec3(1.0f));
+  return bounds;
+}
+
+Light small_sun() {
+  Light sun;
+  sun.name = "sun";
+  sun.resolution = 16;
+  return sun;
+}
+
 TEST_F(ShadowsApiTest, ChecksRunBeforeAnythingChanges) {
   const std::string missing = message_of([&] { Shadows(ctx(), ShaderLocation{"/no/such/dir", "/no/such/dir"}); });
   EXPECT_NE(missing.find("avsm::Shadows: the shader folder /no/such/dir/shaders does not exist"), std::string::npos)
       << missing;
 
   Shadows shadows(ctx(), ShaderLocation::of_package());
-  Bounds bounds;
-  bounds.extend(glm::vec3(-1.0f));
-  bounds.extend(glm::vec3(1.0f));
-  Light sun;
-  sun.name = "sun";
-  sun.resolution = 16;
+  const Bounds bounds = unit_box();
+  const Light sun = small_sun();
   Light bad = sun;
   bad.direction.y = std::numeric_limits<float>::quiet_NaN();
   EXPECT_NE(message_of([&] { shadows.set_light(bad, bounds); }).find("avsm::Shadows::set_lights: light 0 'sun': direction"),
@@ -66,17 +77,6 @@ TEST_F(ShadowsApiTest, ChecksRunBeforeAnythingChanges) {
   // Nothing to cast, a valid camera: the light's passes are declared.
   EXPECT_NO_THROW(add_to_graph(graph, shadows, Camera(), ShadowCasters()));
   EXPECT_FALSE(graph.passes().empty());
-}
-
-// One small directional light.
-void set_one_light(Shadows& shadows) {
-  Bounds bounds;
-  bounds.extend(glm::vec3(-1.0f));
-  bounds.extend(glm::vec3(1.0f));
-  Light sun;
-  sun.name = "sun";
-  sun.resolution = 16;
-  shadows.set_light(sun, bounds);
 }
 
 // What a host's graph relies on: names that tell passes and resources apart, uses of
@@ -231,7 +231,7 @@ void run_as_foreign_host(const gpu::Context& ctx, const ShadowPassList& list) {
 // not resolve, naming it. (One test: a Shadows costs lavapipe seconds of pipelines.)
 TEST_F(ShadowsApiTest, PassListRunsThroughOurGraphAndAHostsOwn) {
   Shadows shadows(ctx(), ShaderLocation::of_package());
-  set_one_light(shadows);
+  shadows.set_light(small_sun(), unit_box());
   const QuadCaster quad = quad_caster(ctx());
 
   const ShadowPassList first = shadows.pass_list(Camera(), quad.casters);
