@@ -1,7 +1,7 @@
 # cmake --install: what a host renderer needs to embed the engine.
 #   <prefix>/bin/                     avsm-capture, avsm-sweep, avsm-compare (the regression gate)
 #   <prefix>/lib/                     static libraries (rendergraph, gpu, scene, passes, shadows)
-#   <prefix>/include/avsm/            headers: avsm/shadows.h, and gpu/, io/, scene/, passes/,
+#   <prefix>/include/avsm/            headers: avsm/shadows.h, avsm/shadows_rendergraph.h, and gpu/, io/, scene/, passes/,
 #                                     rendergraph/ as the engine includes them ("gpu/context.h",
 #                                     <rendergraph/graph.h>); <avsm/gpu/context.h> works too
 #   <prefix>/share/avsm/shaders/      GLSL (a host shader includes "common/shadow_lookup.glsl")

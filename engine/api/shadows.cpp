@@ -11,6 +11,7 @@
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadow_maps.h"
+#include "passes/shadow_pass_list_builder.h"
 #include "passes/view.h"
 #include "shared/volume.h"
 
@@ -270,13 +271,15 @@ passes::View to_view(const Camera& camera) {
 
 struct Shadows::Impl {
   Impl(gpu::Context& context, const ShaderLocation& location)
-      : location(location),
+      : context(context),
+        location(location),
         library({location.glsl_root, location.spirv_root}, location.compile_from_source),
         maps(context, library) {}
+  gpu::Context& context;
   ShaderLocation location;
   gpu::ShaderLibrary library;
   passes::ShadowMaps maps;
-  std::vector<CasterObject> objects;  // set_lights' (add_to_graph checks them against its casters)
+  std::vector<CasterObject> objects;  // set_lights' (pass_list checks them against its casters)
   std::vector<Light> lights;          // set_lights', as given
   Bounds casters_bounds;
 };
@@ -307,7 +310,7 @@ void Shadows::check_lights(const std::vector<Light>& lights, const Bounds& caste
 }
 
 void Shadows::check_frame(const Camera& camera, const ShadowCasters& casters, const std::vector<CasterObject>& objects) {
-  const Precondition check{"add_to_graph"};
+  const Precondition check{"pass_list"};
   check_camera(check, camera);
   check_meshes(check, casters.meshes);
   check_strands(check, casters.strands);
@@ -341,7 +344,7 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
       same_bounds(casters_bounds, impl_->casters_bounds)) {
     // Lights that only moved keep their buffers: the next frame declared fits their maps
     // again, and frames in flight are not waited for. (No light here is clustered, so
-    // the maps do not use the objects; add_to_graph checks the casters against them.)
+    // the maps do not use the objects; pass_list checks the casters against them.)
     for (uint32_t i = 0; i < scene_lights.size(); ++i)
       impl_->maps.place_light(i, scene_lights[i].position, scene_lights[i].direction);
   } else {
@@ -354,10 +357,9 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
 
 void Shadows::set_frames_in_flight(uint32_t count) { impl_->maps.set_frames_in_flight(count); }
 
-ShadowInputs Shadows::add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters,
-                                   uint32_t frame_slot) {
+ShadowPassList Shadows::pass_list(const Camera& camera, const ShadowCasters& casters, uint32_t frame_slot) {
   check_frame(camera, casters, impl_->objects);
-  return impl_->maps.add_to_graph(graph, to_view(camera), casters, frame_slot);
+  return passes::describe_shadow_frame(impl_->maps, impl_->context, to_view(camera), casters, frame_slot);
 }
 
 std::vector<LightStats> Shadows::finish_frame(uint32_t frame_slot) {
@@ -370,7 +372,7 @@ std::vector<LightStats> Shadows::finish_frame(uint32_t frame_slot) {
   return result;
 }
 
-ShadowInputs Shadows::unshadowed_inputs() const { return impl_->maps.unshadowed_inputs(); }
+ShadowLookupResources Shadows::unshadowed_lookup() const { return passes::lookup_of(impl_->maps.unshadowed_inputs()); }
 
 const ShaderLocation& Shadows::shader_location() const { return impl_->location; }
 

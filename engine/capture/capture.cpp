@@ -15,6 +15,7 @@
 #include "capture/files.h"
 #include "capture/frame_report.h"
 #include "capture/frame_outputs.h"
+#include "capture/pass_list_json.h"
 #include "capture/quality.h"
 #include "capture/report.h"
 #include "capture/volume_comparison.h"
@@ -228,10 +229,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   desc.echo_validation = true;
   gpu::Context ctx(desc);
   gpu::ShaderLibrary shaders;
-  gpu::TimestampCalibration calibration = gpu::calibrate_timestamps(ctx, shaders);
   if (options.progress)
-    std::fprintf(stderr, "avsm-capture: %s (%s), timestamps %s\n", ctx.info().name.c_str(),
-                 ctx.info().driver_info.c_str(), gpu::to_string(calibration.mode));
+    std::fprintf(stderr, "avsm-capture: %s (%s)\n", ctx.info().name.c_str(), ctx.info().driver_info.c_str());
 
   passes::ShadowOptions shadow_options;
   shadow_options.exponential_interpolation = options.exponential_interpolation;
@@ -253,9 +252,19 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (!probe_points.empty()) frame.set_probes(probe_points);
   if (options.compare_to_uncompressed) frame.enable_quality();
   if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));
+  passes::View view = passes::make_view(camera, options.width, options.height);
+  if (!options.dump_passes.empty()) {  // the first frame's shadow work, described only
+    write_pass_list(options.dump_passes, frame.describe_shadows(view));
+    std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
+    if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));
+    CaptureOutputs out;
+    out.pass_list = options.dump_passes;
+    return out;
+  }
+  gpu::TimestampCalibration calibration = gpu::calibrate_timestamps(ctx, shaders);
+  if (options.progress) std::fprintf(stderr, "avsm-capture: timestamps %s\n", gpu::to_string(calibration.mode));
   frame.enable_light_images();
   uint64_t overflowed_frames = 0;
-  passes::View view = passes::make_view(camera, options.width, options.height);
   renderer::FrameSlots slots(ctx, calibration.mode, options.frames_in_flight);
   FrameTimingLog timing_log;
   constexpr uint32_t kMaxOverflowRetries = 4;

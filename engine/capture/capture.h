@@ -56,6 +56,9 @@ struct CaptureOptions {
   // --plot-texel LIGHT:X,Y (parse_texel_plot()): curve_<light index>_<x>_<y>.svg each,
   // the texel's curve for the technique over the exact one. Also keeps the reference.
   std::vector<TexelPlot> plot_texels;
+  // --dump-passes FILE: write the first frame's shadow work as a pass list (JSON,
+  // capture/pass_list_json.h: passes, resources, usages, sizes) and stop, rendering nothing.
+  std::filesystem::path dump_passes;
 
   bool operator==(const CaptureOptions&) const = default;
 };
@@ -67,6 +70,7 @@ struct CaptureOutputs {
   std::filesystem::path quality;               // empty without --compare-to
   std::filesystem::path volume_quality;        // empty without --compare-volume-shading
   std::vector<std::filesystem::path> curves;   // --plot-texel
+  std::filesystem::path pass_list;             // --dump-passes (then nothing else is written)
 };
 
 // Throws std::runtime_error with a message for the user on any failure.

@@ -60,6 +60,9 @@ const char* kUsage =
     "  --plot-texel LIGHT:X,Y      (repeatable) LIGHT: index or name; X,Y: level-0 texel\n"
     "                   (y = 0 at the bottom of light<i>_transmittance.png): writes\n"
     "                   curve_<light index>_<x>_<y>.svg, the technique's curve over the exact one\n"
+    "  --dump-passes FILE  write the first frame's shadow pass list (passes, resources,\n"
+    "                   usages, sizes: what a host's frame graph schedules) as JSON and\n"
+    "                   stop without rendering\n"
     "  --list-techniques   the shadow techniques' names, one per line\n"
     "  --help           this text\n";
 
@@ -204,6 +207,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     if (name != "linear" && name != "exponential")
       usage_error("--interpolation expects linear or exponential, got '" + name + "'");
     options.exponential_interpolation = name == "exponential";
+  } else if (arg == "--dump-passes") {
+    options.dump_passes = value();
   } else if (arg == "--probe") {
     options.probe_file = value();
   } else if (arg == "--shadow-param") {
@@ -289,6 +294,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(!o.probe_file.empty(), "--probe", o.probe_file.string());
   with_value(o.compare_to_uncompressed, "--compare-to", "uncompressed");
   for (const TexelPlot& plot : o.plot_texels) with_value(true, "--plot-texel", plot.spec);
+  with_value(!o.dump_passes.empty(), "--dump-passes", o.dump_passes.string());
   return args;
 }
 

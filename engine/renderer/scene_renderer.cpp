@@ -6,6 +6,7 @@
 
 #include "gpu/context.h"
 #include "passes/lights.h"
+#include "passes/shadow_pass_list_builder.h"
 
 namespace avsm::renderer {
 
@@ -135,6 +136,14 @@ void SceneRenderer::create_outputs() {
                       "tonemapped");
 }
 
+passes::ShadowCasters SceneRenderer::shadow_casters() const {
+  return {opaque_.casters(), hair_.casters(), volumes_.casters()};
+}
+
+passes::ShadowPassList SceneRenderer::describe_shadows(const passes::View& view, uint32_t slot) {
+  return passes::describe_shadow_frame(shadows_, ctx_, view, shadow_casters(), slot);
+}
+
 rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (slot >= frames_in_flight())
     throw std::invalid_argument("SceneRenderer::build_frame: frame slot " + std::to_string(slot) + " of " +
@@ -154,7 +163,7 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   frame.shading = volume_shading_;
   frame.lights = &light_buffers_[slot];
   frame.light_count = light_count_;
-  frame.shadows = shadows_.add_to_graph(graph, view, {opaque_.casters(), hair_.casters(), volumes_.casters()}, slot);
+  frame.shadows = shadows_.add_to_graph(graph, view, shadow_casters(), slot);
   frame.light_views = &shadows_.light_views();
   const passes::ShadowInputs& shadows = frame.shadows;
 

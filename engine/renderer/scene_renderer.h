@@ -23,6 +23,7 @@
 #include "passes/hair_pass.h"
 #include "passes/opaque_pass.h"
 #include "passes/shadow_maps.h"
+#include "passes/shadow_pass_list.h"
 #include "passes/shadow_debug_pass.h"
 #include "passes/shadow_probe_pass.h"
 #include "passes/shadow_quality_hair_pass.h"
@@ -115,6 +116,9 @@ class SceneRenderer {
   // (probes, texel curves, quality) are then that frame's, until the slot is declared again.
   void finish_frame(uint32_t slot = 0);
   const passes::ShadowMaps& shadows() const { return shadows_; }
+  // The shadow work build_frame() would declare for `view` into `slot`, as a pass list
+  // (passes/shadow_pass_list.h): what avsm-capture --dump-passes writes.
+  passes::ShadowPassList describe_shadows(const passes::View& view, uint32_t slot = 0);
   // Fits the maps that follow the camera to `view` before the next frame (ShadowMaps::follow_camera).
   void fit_shadows_to(const passes::View& view) { shadows_.follow_camera(view); }
 
@@ -125,6 +129,8 @@ class SceneRenderer {
 
  private:
   void create_outputs();
+  // What casts: the scene's meshes, hair and volumes as the shadow passes take them.
+  passes::ShadowCasters shadow_casters() const;
   // Adds the volume passes of the fast or the reference path; returns the new colour.
   // The fast path's lighting cache lands in `inputs.cache`.
   rg::TextureHandle add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

@@ -3,10 +3,11 @@
 // The host owns everything but the shadows: it creates the Vulkan instance and device
 // itself (enabling what avsm::gpu::DeviceRequirements lists), uploads its own casters
 // (a ground quad, a box hovering over it and two sheets of hair strands) as plain
-// buffers, builds its own frame graph every frame, lets avsm::Shadows add the AVSM
-// passes for its one light, and shades the ground in its own compute pass, whose GLSL
-// includes the engine's "common/shadow_lookup.glsl" from the installed package. It keeps
-// two frames in flight, recording the next frame while the GPU runs the last (HostFrames).
+// buffers, builds the engine's frame graph every frame, lets avsm::add_to_graph declare
+// the AVSM passes for its one light (avsm::Shadows' pass list), and shades the ground in
+// its own compute pass, whose GLSL includes the engine's "common/shadow_lookup.glsl" from
+// the installed package. It keeps two frames in flight, recording the next frame while
+// the GPU runs the last (HostFrames).
 //
 // Output: ground.png (the ground seen from above) and, per probe point, the light's
 // transmittance there. With --check it compares them with what the geometry predicts
@@ -18,7 +19,7 @@
 // --validation (or AVSM_VALIDATION=1) enables VK_LAYER_KHRONOS_validation with
 // synchronization validation. --no-shadows binds unshadowed inputs instead of the maps:
 // the checks must then fail (the test uses it to show that they can).
-#include <avsm/shadows.h>
+#include <avsm/shadows_rendergraph.h>  // avsm/shadows.h and the engine's own frame graph
 
 #include <rendergraph/vulkan/executor.h>
 #include <rendergraph/vulkan/pass_context.h>
@@ -589,8 +590,8 @@ int run(const Options& options) {
     for (int frame = 0; frame < kFrames; ++frame) {
       HostFrames::Slot& slot = frames.acquire(frame, finished);
       rg::Graph graph;
-      const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, camera, casters.views, slot.index)
-                                                      : shadows.unshadowed_inputs();
+      const avsm::ShadowInputs maps = options.shadows ? avsm::add_to_graph(graph, shadows, camera, casters.views, slot.index)
+                                                      : avsm::unshadowed_inputs(shadows);
       ground.add_to_graph(graph, maps);
       frames.submit(slot, graph);
     }

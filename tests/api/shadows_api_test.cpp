@@ -1,5 +1,6 @@
-// The embedding API on the device: set_lights and add_to_graph run their precondition
-// checks (shadows_preconditions_test.cpp covers each one) before anything changes.
+// The embedding API on the device: set_lights and pass_list run their precondition
+// checks (shadows_preconditions_test.cpp covers each one) before anything changes; the
+// pass list is whole and in the usage table's terms; add_to_graph runs it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +8,15 @@
 #include <limits>
 #include <string>
 
-#include "avsm/shadows.h"
+#include <rendergraph/usage.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <algorithm>
+#include <set>
+
+#include "avsm/shadows_rendergraph.h"
+#include "gpu/barriers.h"
+#include "gpu/transfer.h"
 #include "support/gpu_test.h"
 
 namespace avsm {
@@ -24,18 +33,29 @@ std::string message_of(const std::function<void()>& call) {
   return "(accepted)";
 }
 
+// The box every test's light covers, and its one small directional light.
+Bounds unit_box() {
+  Bounds bounds;
+  bounds.extend(glm::vec3(-1.0f));
+  bounds.extend(glm::vec3(1.0f));
+  return bounds;
+}
+
+Light small_sun() {
+  Light sun;
+  sun.name = "sun";
+  sun.resolution = 16;
+  return sun;
+}
+
 TEST_F(ShadowsApiTest, ChecksRunBeforeAnythingChanges) {
   const std::string missing = message_of([&] { Shadows(ctx(), ShaderLocation{"/no/such/dir", "/no/such/dir"}); });
   EXPECT_NE(missing.find("avsm::Shadows: the shader folder /no/such/dir/shaders does not exist"), std::string::npos)
       << missing;
 
   Shadows shadows(ctx(), ShaderLocation::of_package());
-  Bounds bounds;
-  bounds.extend(glm::vec3(-1.0f));
-  bounds.extend(glm::vec3(1.0f));
-  Light sun;
-  sun.name = "sun";
-  sun.resolution = 16;
+  const Bounds bounds = unit_box();
+  const Light sun = small_sun();
   Light bad = sun;
   bad.direction.y = std::numeric_limits<float>::quiet_NaN();
   EXPECT_NE(message_of([&] { shadows.set_light(bad, bounds); }).find("avsm::Shadows::set_lights: light 0 'sun': direction"),
@@ -49,14 +69,199 @@ TEST_F(ShadowsApiTest, ChecksRunBeforeAnythingChanges) {
   casters.meshes.indices_size = 3 * sizeof(uint32_t);
   casters.meshes.draws = {{0, 6, 0}};
   rg::Graph graph;
-  EXPECT_NE(message_of([&] { shadows.add_to_graph(graph, Camera(), casters); })
-                .find("avsm::Shadows::add_to_graph: casters.meshes.draws[0]: indices 0..6 exceed the index buffer"),
+  EXPECT_NE(message_of([&] { add_to_graph(graph, shadows, Camera(), casters); })
+                .find("avsm::Shadows::pass_list: casters.meshes.draws[0]: indices 0..6 exceed the index buffer"),
             std::string::npos);
   EXPECT_TRUE(graph.passes().empty());
 
   // Nothing to cast, a valid camera: the light's passes are declared.
-  EXPECT_NO_THROW(shadows.add_to_graph(graph, Camera(), ShadowCasters()));
+  EXPECT_NO_THROW(add_to_graph(graph, shadows, Camera(), ShadowCasters()));
   EXPECT_FALSE(graph.passes().empty());
+}
+
+// What a host's graph relies on: names that tell passes and resources apart, uses of
+// listed resources in the usage table's terms, transients written before they are read
+// and created with every usage they see, persistent buffers with their handles, and the
+// lookup's resources written by the frame.
+void expect_whole_and_in_usage_table_terms(const ShadowPassList& list) {
+  ASSERT_FALSE(list.passes.empty());
+  std::set<std::string> pass_names, resource_names;
+  for (const ShadowPass& pass : list.passes) EXPECT_TRUE(pass_names.insert(pass.name).second) << pass.name;
+  for (const PassResource& r : list.resources) EXPECT_TRUE(resource_names.insert(r.name).second) << r.name;
+
+  std::vector<bool> written(list.resources.size(), false);
+  std::vector<VkImageUsageFlags> image_usage(list.resources.size(), 0);
+  std::vector<VkBufferUsageFlags> buffer_usage(list.resources.size(), 0);
+  for (const ShadowPass& pass : list.passes) {
+    EXPECT_TRUE(pass.record) << pass.name;
+    const rg::QueueType queue = pass.queue == PassQueue::graphics  ? rg::QueueType::Graphics
+                                : pass.queue == PassQueue::compute ? rg::QueueType::Compute
+                                                                   : rg::QueueType::Transfer;
+    for (const PassResourceUse& use : pass.uses) {
+      ASSERT_LT(use.resource, list.resources.size()) << pass.name;
+      const PassResource& r = list.resources[use.resource];
+      const std::string who = pass.name + " / " + r.name;
+      if (r.transient) {
+        EXPECT_TRUE(written[use.resource] || (use.writes && !use.reads)) << who << ": read before written";
+      } else {
+        EXPECT_EQ(r.kind, PassResource::Kind::buffer) << who;
+        EXPECT_NE(r.handle, VK_NULL_HANDLE) << who;
+      }
+      written[use.resource] = written[use.resource] || use.writes;
+      rg::UsageInfo expected;
+      ASSERT_FALSE(use.usages.empty()) << who;
+      for (const std::string& name : use.usages) {
+        bool known = false;
+        for (uint32_t u = 0; u < rg::kUsageCount; ++u) {
+          if (name != rg::to_string(rg::Usage(u))) continue;
+          known = true;
+          const rg::UsageInfo info = rg::usage_info(rg::Usage(u), queue);
+          expected.stages |= info.stages;
+          expected.access |= info.access;
+          expected.layout = info.layout;
+          EXPECT_EQ(info.is_write && !use.writes, false) << who << ": writes as " << name;
+          image_usage[use.resource] |= info.image_usage;
+          buffer_usage[use.resource] |= info.buffer_usage;
+        }
+        EXPECT_TRUE(known) << who << ": " << name;
+      }
+      EXPECT_EQ(use.stages, expected.stages) << who;
+      EXPECT_EQ(use.access, expected.access) << who;
+      if (r.kind == PassResource::Kind::image) {
+        EXPECT_EQ(use.layout, expected.layout) << who;
+      }
+    }
+  }
+  for (size_t i = 0; i < list.resources.size(); ++i) {
+    const PassResource& r = list.resources[i];
+    if (!r.transient) continue;
+    if (r.kind == PassResource::Kind::image) {
+      EXPECT_EQ(r.image.usage, image_usage[i]) << r.name;
+    } else {
+      EXPECT_EQ(r.buffer.usage, buffer_usage[i]) << r.name;
+    }
+    EXPECT_GT(r.kind == PassResource::Kind::image ? uint64_t(r.image.width) * r.image.height : r.buffer.size, 0u)
+        << r.name;
+  }
+  ASSERT_NE(list.lookup.records, kNoPassResource);
+  EXPECT_TRUE(written[list.lookup.records]);
+  ASSERT_EQ(list.lookup.maps.size(), 1u);
+  EXPECT_TRUE(written[list.lookup.maps[0]]);
+  EXPECT_FALSE(list.resources[list.lookup.maps[0]].transient);
+  EXPECT_NE(list.lookup.atlas.buffer, VK_NULL_HANDLE);
+}
+
+// A quad across the middle of the light's box: something to capture.
+struct QuadCaster {
+  gpu::Buffer vertices, indices;
+  ShadowCasters casters;
+};
+
+QuadCaster quad_caster(const gpu::Context& ctx) {
+  std::vector<CasterVertex> vertices;
+  for (glm::vec2 c : {glm::vec2(-0.5f, -0.5f), glm::vec2(-0.5f, 0.5f), glm::vec2(0.5f, 0.5f), glm::vec2(0.5f, -0.5f)})
+    vertices.push_back({{c.x, 0.0f, c.y}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f}});
+  QuadCaster quad;
+  quad.vertices = gpu::create_buffer_from(ctx, vertices, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "quad vertices");
+  quad.indices = gpu::create_buffer_from(ctx, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                         "quad indices");
+  quad.casters.meshes.vertices = quad.vertices.handle();
+  quad.casters.meshes.vertices_size = quad.vertices.size();
+  quad.casters.meshes.indices = quad.indices.handle();
+  quad.casters.meshes.indices_size = quad.indices.size();
+  quad.casters.meshes.draws = {{0, 6, 0}};
+  return quad;
+}
+
+// Runs `list` the way a host's graph of its own would, with nothing of the engine's graph:
+// every transient its own allocation, and before each pass a full barrier that also moves
+// each image to the layout its use asks for. Crude, but it is all the list asks of a host.
+void run_as_foreign_host(const gpu::Context& ctx, const ShadowPassList& list) {
+  std::vector<gpu::Buffer> buffers(list.resources.size());
+  std::vector<gpu::Image> images(list.resources.size());
+  std::vector<ResolvedResource> resolved(list.resources.size());
+  std::vector<VkImageLayout> layouts(list.resources.size(), VK_IMAGE_LAYOUT_UNDEFINED);
+  for (size_t i = 0; i < list.resources.size(); ++i) {
+    const PassResource& r = list.resources[i];
+    if (!r.transient) continue;  // the engine's: the pass uses the list's own handle
+    if (r.kind == PassResource::Kind::image) {
+      gpu::ImageDesc desc;
+      desc.width = r.image.width;
+      desc.height = r.image.height;
+      desc.format = r.image.format;
+      desc.usage = r.image.usage;
+      desc.name = r.name;
+      images[i] = gpu::Image::create(ctx, desc);
+      resolved[i].image = images[i].handle();
+      resolved[i].view = images[i].view();
+    } else {
+      buffers[i] = gpu::Buffer::create(ctx, {r.buffer.size, r.buffer.usage, gpu::MemoryLocation::DeviceLocal, r.name});
+      resolved[i].buffer = buffers[i].handle();
+    }
+  }
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    const gpu::Access everything{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                 VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
+    for (const ShadowPass& pass : list.passes) {
+      const VkMemoryBarrier2 memory = gpu::make_memory_barrier(everything, everything);
+      std::vector<VkImageMemoryBarrier2> transitions;
+      for (const PassResourceUse& use : pass.uses) {
+        if (list.resources[use.resource].kind != PassResource::Kind::image) continue;
+        const gpu::Image& image = images[use.resource];
+        transitions.push_back(gpu::make_image_barrier(image.handle(), image.full_range(), layouts[use.resource],
+                                                      use.layout, everything, everything));
+        layouts[use.resource] = use.layout;
+      }
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.memoryBarrierCount = 1;
+      dependency.pMemoryBarriers = &memory;
+      dependency.imageMemoryBarrierCount = uint32_t(transitions.size());
+      dependency.pImageMemoryBarriers = transitions.data();
+      vkCmdPipelineBarrier2(cmd, &dependency);
+      pass.record(cmd, resolved);
+    }
+  });
+}
+
+// One frame's pass list, for one light and a quad: whole and in the usage table's terms;
+// through the engine's graph (add_to_graph), every listed pass in the plan, in list
+// order, none culled; then scheduled by a host without the engine's graph, capturing
+// what the engine's graph captured. All under validation with synchronization validation
+// (TearDown fails on any message). A record function refuses a transient the host did
+// not resolve, naming it. (One test: a Shadows costs lavapipe seconds of pipelines.)
+TEST_F(ShadowsApiTest, PassListRunsThroughOurGraphAndAHostsOwn) {
+  Shadows shadows(ctx(), ShaderLocation::of_package());
+  shadows.set_light(small_sun(), unit_box());
+  const QuadCaster quad = quad_caster(ctx());
+
+  const ShadowPassList first = shadows.pass_list(Camera(), quad.casters);
+  expect_whole_and_in_usage_table_terms(first);
+  rg::Graph graph;
+  const ShadowInputs inputs = add_to_graph(graph, first);
+  EXPECT_TRUE(inputs.records.valid());
+  EXPECT_EQ(inputs.maps.size(), 1u);
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
+  ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+  EXPECT_TRUE(executor.plan().culled_passes.empty());
+  ASSERT_EQ(executor.plan().passes.size(), first.passes.size());
+  for (size_t p = 0; p < first.passes.size(); ++p) EXPECT_EQ(executor.plan().passes[p].name, first.passes[p].name);
+  const uint64_t through_our_graph = shadows.finish_frame().at(0).segments_captured;
+  EXPECT_GT(through_our_graph, 0u);
+
+  const ShadowPassList list = shadows.pass_list(Camera(), quad.casters);
+  run_as_foreign_host(ctx(), list);
+  EXPECT_EQ(shadows.finish_frame().at(0).segments_captured, through_our_graph);
+
+  for (const ShadowPass& pass : list.passes) {
+    const auto transient = std::find_if(pass.uses.begin(), pass.uses.end(), [&](const PassResourceUse& use) {
+      return list.resources[use.resource].transient;
+    });
+    if (transient == pass.uses.end()) continue;
+    const std::string message = message_of([&] { pass.record(VK_NULL_HANDLE, {}); });
+    EXPECT_NE(message.find("pass '" + pass.name + "': transient "), std::string::npos) << message;
+    EXPECT_NE(message.find("'" + list.resources[transient->resource].name + "' has no"), std::string::npos) << message;
+    break;
+  }
 }
 
 }  // namespace

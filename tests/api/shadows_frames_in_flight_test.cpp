@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "avsm/shadows.h"
+#include "avsm/shadows_rendergraph.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
 #include "passes/shadow_maps.h"
@@ -192,7 +193,7 @@ Sequence render(gpu::Context& ctx, Shadows& shadows, passes::ShadowProbePass& pr
     slot_frame[slot.index] = frame;
     shadows.set_light(sun_at(frame), casters.bounds);  // only moves it: no wait for the frames in flight
     rg::Graph graph;
-    probes.add_to_graph(graph, shadows.add_to_graph(graph, camera, casters.views, slot.index));
+    probes.add_to_graph(graph, avsm::add_to_graph(graph, shadows, camera, casters.views, slot.index));
     record(graph, *slot.executor, slot.cmd);
     // With two in flight, frame 0 waits on the queue until frame 1 is submitted.
     if (in_flight > 1 && frame == 0) {

@@ -137,7 +137,7 @@ TEST(ShadowsPreconditions, BoundsMustBeFiniteOrUnset) {
   expect_lights_rejected([](LightsCase& c) { c.objects[0].count = 0; }, {"objects[0] 'box'", "count is 0"});
 }
 
-// ---- add_to_graph ----------------------------------------------------------------------
+// ---- pass_list --------------------------------------------------------------------------
 
 struct FrameCase {
   Camera camera;
@@ -188,7 +188,7 @@ FrameCase valid_frame() {
 void expect_frame_rejected(const std::function<void(FrameCase&)>& change, std::initializer_list<std::string> parts) {
   FrameCase f = valid_frame();
   change(f);
-  expect_rejected([&] { Shadows::check_frame(f.camera, f.casters, f.objects); }, "avsm::Shadows::add_to_graph: ", parts);
+  expect_rejected([&] { Shadows::check_frame(f.camera, f.casters, f.objects); }, "avsm::Shadows::pass_list: ", parts);
 }
 
 TEST(ShadowsPreconditions, ValidFramePasses) {

@@ -52,6 +52,7 @@ CaptureOptions every_option_set() {
   o.probe_file = "/probes.json";
   o.compare_to_uncompressed = true;
   o.plot_texels = {*parse_texel_plot("sun:3,4"), *parse_texel_plot("1:0,0")};
+  o.dump_passes = "/tmp/passes.json";
   return o;
 }
 

@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
   const CaptureOptions& options = command.options;
   try {
     CaptureOutputs out = run_capture(options);
+    if (!out.pass_list.empty()) {  // --dump-passes: nothing was rendered
+      std::printf("passes:  %s\n", out.pass_list.c_str());
+      return 0;
+    }
     std::printf("image:   %s\nhdr:     %s\ntimings: %s\n", out.png.c_str(), out.exr.c_str(), out.timings.c_str());
     if (!out.quality.empty()) std::printf("quality: %s\n", out.quality.c_str());
     if (!out.volume_quality.empty()) std::printf("volume quality: %s\n", out.volume_quality.c_str());

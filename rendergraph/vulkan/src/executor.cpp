@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "gpu/barriers.h"
 #include "gpu/context.h"
@@ -83,6 +84,16 @@ const T* carried(const ResourceDecl& resource) {
   return physical ? *physical : nullptr;
 }
 
+// A buffer import carrying a plain range (its bytes of a VkBuffer the engine does not own).
+std::optional<avsm::gpu::BufferRange> carried_range(const ResourceDecl& resource) {
+  const auto* range = std::any_cast<avsm::gpu::BufferRange>(&resource.physical);
+  if (!range) return std::nullopt;
+  if (range->buffer == VK_NULL_HANDLE || range->size == VK_WHOLE_SIZE)
+    throw GraphError("imported buffer '" + resource.name +
+                     "' carries a range without a VkBuffer or without an explicit size");
+  return *range;
+}
+
 }  // namespace
 
 TextureHandle import(Graph& graph, std::string name, const Image& image, ImportState initial, ImportState final_state) {
@@ -101,13 +112,16 @@ void Executor::resolve_imports(const Graph& graph) {
   const std::vector<ResourceDecl>& resources = graph.resources();
   imported_images_.resize(resources.size(), nullptr);
   imported_buffers_.resize(resources.size(), nullptr);
+  carried_ranges_.assign(resources.size(), {});
   for (uint32_t i = 0; i < resources.size(); ++i) {
     if (!resources[i].imported) continue;
     if (!imported_images_[i]) imported_images_[i] = carried<Image>(resources[i]);
     if (!imported_buffers_[i]) imported_buffers_[i] = carried<Buffer>(resources[i]);
+    if (!imported_buffers_[i]) carried_ranges_[i] = carried_range(resources[i]).value_or(avsm::gpu::BufferRange());
     if (!plan_.resources[i].used) continue;
-    const bool found = resources[i].kind == ResourceKind::Texture ? imported_images_[i] != nullptr
-                                                                  : imported_buffers_[i] != nullptr;
+    const bool found = resources[i].kind == ResourceKind::Texture
+                           ? imported_images_[i] != nullptr
+                           : imported_buffers_[i] != nullptr || carried_ranges_[i].buffer != VK_NULL_HANDLE;
     if (!found)
       throw GraphError("imported " + std::string(to_string(resources[i].kind)) + " '" + resources[i].name +
                        "' has no physical resource: import it with rg::vulkan::import or call Executor::bind");
@@ -172,11 +186,11 @@ void Executor::record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& 
       images.push_back(avsm::gpu::make_image_barrier(images_[b.resource]->handle(), range, b.old_layout,
                                                      b.new_layout, src, dst));
     } else {
-      const avsm::gpu::Buffer& buffer = *buffers_[b.resource];
-      VkBufferMemoryBarrier2 barrier = avsm::gpu::make_buffer_barrier(buffer.handle(), src, dst);
-      barrier.offset = buffer.offset() + b.range.offset;  // a region() starts inside its handle
+      const avsm::gpu::BufferRange& buffer = buffers_[b.resource];
+      VkBufferMemoryBarrier2 barrier = avsm::gpu::make_buffer_barrier(buffer.buffer, src, dst);
+      barrier.offset = buffer.offset + b.range.offset;  // a region() starts inside its handle
       // kWholeSize is VK_WHOLE_SIZE, which would run past a region's end.
-      barrier.size = b.range.size == VK_WHOLE_SIZE && buffer.offset() != 0 ? buffer.size() - b.range.offset : b.range.size;
+      barrier.size = b.range.size == VK_WHOLE_SIZE && buffer.offset != 0 ? buffer.size - b.range.offset : b.range.size;
       buffers.push_back(barrier);
     }
   }
@@ -203,14 +217,15 @@ void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOpti
 
   // Physical resource of every plan resource: placed transient or bound import.
   images_.assign(plan_.resources.size(), nullptr);
-  buffers_.assign(plan_.resources.size(), nullptr);
+  buffers_.assign(plan_.resources.size(), {});
   for (uint32_t i = 0; i < plan_.resources.size(); ++i) {
     if (plan_.resources[i].imported) {
       if (i < imported_images_.size()) images_[i] = imported_images_[i];
-      if (i < imported_buffers_.size()) buffers_[i] = imported_buffers_[i];
+      if (i < imported_buffers_.size() && imported_buffers_[i]) buffers_[i] = *imported_buffers_[i];
+      else if (i < carried_ranges_.size()) buffers_[i] = carried_ranges_[i];
     } else {
       images_[i] = transient_images_[i].get();
-      buffers_[i] = transient_buffers_[i].get();
+      if (transient_buffers_[i]) buffers_[i] = *transient_buffers_[i];
     }
   }
 

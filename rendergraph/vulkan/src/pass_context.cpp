@@ -39,7 +39,7 @@ const TextureDesc& PassContext::desc(TextureHandle texture) const {
 
 avsm::gpu::BufferRange PassContext::buffer(BufferHandle buffer) const {
   access(ResourceKind::Buffer, buffer.index, buffer.graph_id);
-  return *buffers_[buffer.index];
+  return buffers_[buffer.index];
 }
 
 uint64_t PassContext::size(BufferHandle buffer) const {

@@ -1,7 +1,8 @@
 #pragma once
 // The engine inside another renderer: adaptive volumetric shadow maps (Salvi et al.,
-// EGSR 2010) for the host's own lights and casters, added to the host's own frame
-// graph and read by the host's own shading passes.
+// EGSR 2010) for the host's own lights and casters, scheduled by the host's own frame
+// graph and read by the host's own shading passes. This header needs no rendergraph/
+// header; the engine's own graph is avsm/shadows_rendergraph.h.
 //
 //   // Once: create the device with what the engine needs, then adopt it.
 //   avsm::gpu::DeviceRequirements needs(physical_device);    // extensions() + features()
@@ -10,37 +11,35 @@
 //   avsm::Shadows shadows(context, avsm::ShaderLocation::of_package());
 //   shadows.set_light(light, casters_bounds);
 //
-//   // Every frame: the host's graph and executor (rendergraph/).
-//   rg::Graph graph;
-//   avsm::ShadowInputs maps = shadows.add_to_graph(graph, camera, casters);
-//   graph.add_pass<...>("my shading", ...,
-//       [&](rg::PassBuilder& b, ...) { maps.declare_reads(b); ... },
-//       [=](..., rg::PassContext& c) { avsm::gpu::Bindings bindings(context, pipeline);
-//                                      maps.bind(bindings, c); ... });
-//   executor.record(graph, cmd); submit, wait;
+//   // Every frame: the frame's shadow passes as data, for the host's graph to schedule.
+//   avsm::ShadowPassList frame = shadows.pass_list(camera, casters);
+//   for (avsm::ShadowPass& pass : frame.passes) {
+//     // a node of the host's graph: pass.uses say which of frame.resources it reads and
+//     // writes, with Vulkan stages, accesses and layouts; transients are the host's to
+//     // allocate (size, format, usage given), persistent ones the engine's (handle given).
+//     ... in the node's execute: pass.record(cmd, resolved);   // resolved[i]: resource i
+//   }
+//   ... the host's shading reads frame.lookup (declare its resources as storage reads)
+//   submit, wait;
 //   shadows.finish_frame();
 //
 // In the shading pass's GLSL (include directory: ShaderLocation::glsl_include_dir()):
-//   #define AVSM_SHADOW_BINDING 4                  // any 4 free bindings; maps.bind() binds by name
+//   #define AVSM_SHADOW_BINDING 4                  // any 4 free bindings
 //   #include "common/shadow_lookup.glsl"
 //   float t = surface_light_transmittance(light_index, p, normal, to_light);  // surfaces
 //   float t = light_transmittance(light_index, p);                            // volumes, hair
 // The shader is the host's: compile it with compile_glsl() or with glslangValidator and
-// -I <glsl_include_dir>. Bindings go through push descriptors (VK_KHR_push_descriptor,
-// avsm::gpu::Pipeline/Bindings, by the shader's names); its push constants are declared
-// once for GLSL and C++ with GPU_PUSH_CONSTANTS ("shared/gpu_struct.h"). ShadowInputs'
-// fields hold the raw handles for hosts that write their own descriptor sets.
+// -I <glsl_include_dir>. Its four buffers are ShadowLookupResources' parameters, atlas,
+// list_heads and list_nodes (unused_buffer where one is absent).
 //
 // Preconditions: every function below says what must hold of its arguments. set_lights()
-// and add_to_graph() check all of it before they change anything, and a violation throws
+// and pass_list() check all of it before they change anything, and a violation throws
 // std::invalid_argument naming the function, the argument and what is wrong (e.g.
-// "avsm::Shadows::add_to_graph: casters.strands: segments 0..5000 exceed the segment
+// "avsm::Shadows::pass_list: casters.strands: segments 0..5000 exceed the segment
 // buffer (4096 bytes = 512 StrandSegment at stride 8)"). check_lights() and check_frame()
 // run the same checks without a device. What lives only on the GPU (the indices'
 // values, the segments' point and strand indices, the volumes' grids) cannot be checked
 // here: indices must stay within their buffers, or the captures read out of bounds.
-#include <rendergraph/graph.h>
-
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -51,12 +50,9 @@
 
 #include "passes/shadow_casters.h"
 #include "passes/shadow_clusters.h"
-#include "passes/shadow_inputs.h"
+#include "passes/shadow_pass_list.h"
 #include "scene/bounds.h"
 
-namespace rg::vulkan {
-class Executor;
-}
 namespace avsm::gpu {
 class Context;
 }
@@ -67,7 +63,16 @@ using passes::CasterVertex;
 using passes::MeshCasters;
 using passes::MeshDraw;
 using passes::ShadowCasters;
-using passes::ShadowInputs;
+using passes::kNoPassResource;
+using passes::PassBufferRange;
+using passes::PassQueue;
+using passes::PassResource;
+using passes::PassResourceState;
+using passes::PassResourceUse;
+using passes::ResolvedResource;
+using passes::ShadowLookupResources;
+using passes::ShadowPass;
+using passes::ShadowPassList;
 using passes::StrandCasters;
 using passes::StrandParameters;
 using passes::StrandSegment;
@@ -173,7 +178,7 @@ class Shadows {
   // lights with clusters group. Preconditions (check_lights): each light as Light
   // documents; `casters_bounds` empty (a unit box at the origin) or finite with min <=
   // max; each object's bounds likewise, its count at least 1 and its range within the
-  // casters later given to add_to_graph (checked there). Throws std::invalid_argument
+  // casters later given to pass_list (checked there). Throws std::invalid_argument
   // for a violation and for maps over the budget, naming the lights; nothing changes then.
   // Lights that only moved (the same lights and casters_bounds as before, only their
   // position and direction changed; none clustered) are placed for the next frame
@@ -185,7 +190,7 @@ class Shadows {
   void set_light(const Light& light, const Bounds& casters_bounds) { set_lights({light}, casters_bounds); }
 
   // Frames the host records ahead of the GPU, 1 to 3 (1 until set): each frame is then
-  // declared into a frame slot 0..count-1 (add_to_graph, finish_frame), which has its
+  // declared into a frame slot 0..count-1 (pass_list, finish_frame), which has its
   // own parameter block and capture counters. The host records into slot s again only
   // after the frame it last held completed (its fence; one executor per slot, as the
   // executor's transients belong to the frame it recorded), and finishes frames in the
@@ -193,12 +198,14 @@ class Shadows {
   // another count.
   void set_frames_in_flight(uint32_t count);
 
-  // Declares this frame's passes for every light in `graph` (capture, sort, resolve,
-  // mips) into frame slot `frame_slot`; their persistent maps come imported with the
-  // graph, so any executor can run it. The casters' buffers must stay alive and
-  // unchanged until the frame completes. The result is what the host's shading passes
-  // declare as reads and bind.
-  // Preconditions (check_frame; std::invalid_argument, nothing declared):
+  // Describes this frame's passes for every light (capture, sort, resolve, mips) into
+  // frame slot `frame_slot`, without recording anything: the ordered passes, the
+  // resources they use and how, and their record functions (passes/shadow_pass_list.h);
+  // `lookup` is what the host's shading passes read and bind. The list is the frame's
+  // whole description: avsm::add_to_graph (avsm/shadows_rendergraph.h) declares it into
+  // the engine's graph. Record it before this slot's finish_frame(). The casters' buffers
+  // must stay alive and unchanged until the frame completes.
+  // Preconditions (check_frame; std::invalid_argument, nothing described):
   //   - frame_slot is below the frames in flight;
   //   - camera: as Camera documents;
   //   - every view with something to cast (draws, segment_count, volume_count) has its
@@ -213,16 +220,16 @@ class Shadows {
   //   - volumes: volume_count GpuVolume in the parameter buffer; grids and majorants
   //     given; the density atlas whole (atlas, atlas_sampler and brick_slots) or absent;
   //   - the CasterObjects given to set_lights lie within these casters.
-  ShadowInputs add_to_graph(rg::Graph& graph, const Camera& camera, const ShadowCasters& casters,
-                            uint32_t frame_slot = 0);
+  ShadowPassList pass_list(const Camera& camera, const ShadowCasters& casters, uint32_t frame_slot = 0);
 
   // After the frame declared into `frame_slot` completed: reads its capture counters and
   // grows an overflowed capture buffer for the next frame declared. Precondition (the
   // host's to keep, it cannot be checked here): that frame's work has finished on the GPU.
   std::vector<LightStats> finish_frame(uint32_t frame_slot = 0);
 
-  // Bindings that leave every light unshadowed (for a pass drawn without maps).
-  ShadowInputs unshadowed_inputs() const;
+  // Buffers that leave every light unshadowed (for a pass drawn without maps): no
+  // resources to read, only buffers to bind.
+  ShadowLookupResources unshadowed_lookup() const;
 
   const ShaderLocation& shader_location() const;
   // Include directories for a host shader that uses the lookup (the engine's GLSL, NanoVDB).
@@ -231,7 +238,7 @@ class Shadows {
   // throws gpu::ShaderCompileError with the file and line of the first error.
   std::vector<uint32_t> compile_glsl(const std::filesystem::path& file) const;
 
-  // The preconditions of set_lights() and add_to_graph() on their own: no device needed,
+  // The preconditions of set_lights() and pass_list() on their own: no device needed,
   // so a host can validate its data up front (and tests can). Throw std::invalid_argument
   // naming the function they guard ("avsm::Shadows::set_lights: light 1 'key': ...").
   // Settings that depend on the device (the maps' budget) are checked by set_lights only.

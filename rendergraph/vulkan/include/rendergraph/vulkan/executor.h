@@ -54,7 +54,9 @@ class Executor {
   ~Executor();
 
   // Physical resources behind imported handles declared without one (rg::vulkan::import
-  // carries its resource; a bind() here takes precedence).
+  // carries its resource; a bind() here takes precedence). An import may also carry a
+  // plain avsm::gpu::BufferRange with an explicit size (a buffer the engine does not own,
+  // e.g. one named by a shadow pass list).
   void bind(TextureHandle texture, const avsm::gpu::Image& image);
   void bind(BufferHandle buffer, const avsm::gpu::Buffer& buffer_object);
 
@@ -89,11 +91,12 @@ class Executor {
   std::vector<std::unique_ptr<avsm::gpu::Image>> transient_images_;    // by resource index
   std::vector<std::unique_ptr<avsm::gpu::Buffer>> transient_buffers_;  // by resource index
   std::vector<const avsm::gpu::Image*> images_;                        // by resource index
-  std::vector<const avsm::gpu::Buffer*> buffers_;                      // by resource index
+  std::vector<avsm::gpu::BufferRange> buffers_;                        // by resource index
   // Imports bound for the graph with id bound_graph_id_, by resource index.
   uint32_t bound_graph_id_ = 0;
   std::vector<const avsm::gpu::Image*> imported_images_;
   std::vector<const avsm::gpu::Buffer*> imported_buffers_;
+  std::vector<avsm::gpu::BufferRange> carried_ranges_;  // imports carrying a plain range, by resource index
   std::vector<double> cpu_record_ms_;
 };
 

@@ -1,7 +1,9 @@
 #pragma once
 // What a pass's execute callback receives from the Vulkan executor: the command
 // buffer to record into and the physical resources behind the handles it declared.
-// Defines the rg::PassContext that the planning core only forward-declares.
+// Defines the rg::PassContext that the planning core only forward-declares. The
+// executor makes one per pass; so does the shadow pass list's record function
+// (passes/shadow_pass_list.h), which runs a pass on resources a host's graph resolved.
 #include <rendergraph/graph.h>
 #include <vulkan/vulkan.h>
 
@@ -14,10 +16,6 @@ class Context;
 }  // namespace avsm::gpu
 
 namespace rg {
-
-namespace vulkan {
-class Executor;
-}
 
 class PassContext {
  public:
@@ -37,12 +35,16 @@ class PassContext {
   avsm::gpu::BufferRange buffer(BufferHandle buffer) const;
   uint64_t size(BufferHandle buffer) const;
 
- private:
-  friend class vulkan::Executor;
+  // `pass` of `plan` (its accesses give the layouts; `plan.resources` the names and
+  // descriptions), its resources by plan resource index: `images` for textures, `buffers`
+  // (each the bytes it occupies, with an explicit size) for buffers. Everything is
+  // referenced, not copied: it must outlive the context.
   PassContext(const avsm::gpu::Context& gpu, VkCommandBuffer cmd, const PlannedPass& pass,
               const CompiledPlan& plan, const std::vector<const avsm::gpu::Image*>& images,
-              const std::vector<const avsm::gpu::Buffer*>& buffers)
+              const std::vector<avsm::gpu::BufferRange>& buffers)
       : gpu_(gpu), cmd_(cmd), pass_(&pass), plan_(plan), images_(images), buffers_(buffers) {}
+
+ private:
 
   const PlannedAccess& access(ResourceKind kind, uint32_t index, uint32_t graph_id) const;
 
@@ -51,7 +53,7 @@ class PassContext {
   const PlannedPass* pass_;
   const CompiledPlan& plan_;
   const std::vector<const avsm::gpu::Image*>& images_;    // by resource index
-  const std::vector<const avsm::gpu::Buffer*>& buffers_;  // by resource index
+  const std::vector<avsm::gpu::BufferRange>& buffers_;  // by resource index
 };
 
 }  // namespace rg
