@@ -40,169 +40,13 @@
 #include "gpu/transfer.h"
 #include "io/image_io.h"
 
+#include "ground_scene.h"
 #include "ground_shading.h"
+#include "host_device.h"
 
 namespace {
 
-// ---------------------------------------------------------------------------------------
-// The scene, in world units, y up. The light travels along (1, -2, 0): a point at height h
-// casts its shadow h / 2 further along +x.
-
-constexpr float kGroundHalf = 3.0f;                      // ground: x, z in [-3, 3], y = 0
-constexpr glm::vec3 kBoxMin{-0.5f, 1.0f, -0.5f};          // the blocker
-constexpr glm::vec3 kBoxMax{0.5f, 2.0f, 0.5f};
-const glm::vec3 kLightTravel = glm::normalize(glm::vec3(1.0f, -2.0f, 0.0f));
-// Hair: two sheets of strands along z, 0.1 apart in height, over x in [-2.6, -1.4],
-// z in [-2.6, -1.4]; each strand is 40% opaque and a third of its spacing wide.
-constexpr float kHairHeight = 1.5f;
-constexpr float kHairMinX = -2.6f, kHairMaxX = -1.4f, kHairMinZ = -2.6f, kHairMaxZ = -1.4f;
-
-// --point-light: a point light up and to the -x side, whose rays cross the box at about
-// the sun's slant, so the same checks hold with its own projection.
-const glm::vec3 kPointLight{-4.0f, 8.0f, 0.0f};
-bool g_point_light = false;
-
-// Where a point at (x, height) in the plane z = 0 lands on the ground along the light.
-float ground_landing(float x, float height) {
-  if (g_point_light) return kPointLight.x + (x - kPointLight.x) * kPointLight.y / (kPointLight.y - height);
-  return x - kLightTravel.x / kLightTravel.y * height;
-}
-
-VKAPI_ATTR VkBool32 VKAPI_CALL count_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
-                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user_data) {
-  static_cast<std::atomic<int>*>(user_data)->fetch_add(1);
-  std::fprintf(stderr, "[host validation] %s: %s\n", data->pMessageIdName ? data->pMessageIdName : "",
-               data->pMessage ? data->pMessage : "");
-  return VK_FALSE;
-}
-
-void check_vk(VkResult result, const char* what) {
-  if (result != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed: VkResult " + std::to_string(result));
-}
-
-// ---------------------------------------------------------------------------------------
-// The host's own Vulkan objects: created and destroyed here, lent to the engine.
-
-class HostDevice {
- public:
-  explicit HostDevice(bool validation) : validation_(validation) {
-    create_instance();
-    pick_physical_device();
-    create_device();
-  }
-  ~HostDevice() {
-    if (device_) vkDestroyDevice(device_, nullptr);
-    if (messenger_) {
-      auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-      destroy(instance_, messenger_, nullptr);
-    }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
-  }
-  HostDevice(const HostDevice&) = delete;
-  HostDevice& operator=(const HostDevice&) = delete;
-
-  avsm::gpu::AdoptedDevice lend() const {
-    return {instance_, physical_device_, device_, queue_, queue_family_, /*debug_utils=*/validation_,
-            /*validation_layer=*/validation_, /*echo_validation=*/false};
-  }
-  VkDevice device() const { return device_; }
-  VkQueue queue() const { return queue_; }
-  uint32_t queue_family() const { return queue_family_; }
-  int validation_messages() const { return messages_.load(); }
-
- private:
-  void create_instance() {
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.pApplicationName = "avsm host example";
-    app.apiVersion = VK_API_VERSION_1_3;
-    std::vector<const char*> layers, extensions;
-    VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
-    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
-    features.enabledValidationFeatureCount = 1;
-    features.pEnabledValidationFeatures = &sync;
-    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    info.pApplicationInfo = &app;
-    if (validation_) {
-      layers.push_back("VK_LAYER_KHRONOS_validation");
-      extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-      info.pNext = &features;
-    }
-    info.enabledLayerCount = uint32_t(layers.size());
-    info.ppEnabledLayerNames = layers.data();
-    info.enabledExtensionCount = uint32_t(extensions.size());
-    info.ppEnabledExtensionNames = extensions.data();
-    check_vk(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance");
-    if (!validation_) return;
-    VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
-    messenger.pfnUserCallback = count_message;
-    messenger.pUserData = &messages_;
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    check_vk(create(instance_, &messenger, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
-  }
-
-  // The first Vulkan 1.3 device with a graphics + compute queue, discrete GPUs first.
-  void pick_physical_device() {
-    uint32_t count = 0;
-    vkEnumeratePhysicalDevices(instance_, &count, nullptr);
-    std::vector<VkPhysicalDevice> devices(count);
-    vkEnumeratePhysicalDevices(instance_, &count, devices.data());
-    int best_rank = 99;
-    for (VkPhysicalDevice candidate : devices) {
-      VkPhysicalDeviceProperties props;
-      vkGetPhysicalDeviceProperties(candidate, &props);
-      const std::optional<uint32_t> family = universal_family(candidate);
-      const int rank = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ? 0
-                       : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU        ? 2
-                                                                                : 1;
-      if (props.apiVersion < VK_API_VERSION_1_3 || !family || rank >= best_rank) continue;
-      physical_device_ = candidate;
-      queue_family_ = *family;
-      best_rank = rank;
-    }
-    if (!physical_device_) throw std::runtime_error("no Vulkan 1.3 device with a graphics + compute queue");
-  }
-
-  static std::optional<uint32_t> universal_family(VkPhysicalDevice physical) {
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
-    for (uint32_t i = 0; i < count; ++i)
-      if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) return i;
-    return std::nullopt;
-  }
-
-  // The engine says what it needs; the host could chain its own features after it.
-  void create_device() {
-    avsm::gpu::DeviceRequirements needs(physical_device_);
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queue_info.queueFamilyIndex = queue_family_;
-    queue_info.queueCount = 1;
-    queue_info.pQueuePriorities = &priority;
-    VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    info.pNext = needs.features();
-    info.queueCreateInfoCount = 1;
-    info.pQueueCreateInfos = &queue_info;
-    info.enabledExtensionCount = uint32_t(needs.extensions().size());
-    info.ppEnabledExtensionNames = needs.extensions().data();
-    check_vk(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
-    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
-  }
-
-  bool validation_;
-  std::atomic<int> messages_{0};
-  VkInstance instance_ = VK_NULL_HANDLE;
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
-  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
-  uint32_t queue_family_ = 0;
-  VkDevice device_ = VK_NULL_HANDLE;
-  VkQueue queue_ = VK_NULL_HANDLE;
-};
+using namespace host;  // examples/common: the scene, the checks, the host device
 
 // ---------------------------------------------------------------------------------------
 // The host's casters, in the layouts the caster views document.
@@ -214,68 +58,22 @@ struct HostCasters {
   avsm::Bounds bounds;
 };
 
-void add_quad(std::vector<avsm::CasterVertex>& vertices, std::vector<uint32_t>& indices, const glm::vec3 corners[4],
-              const glm::vec3& normal) {
-  const uint32_t base = uint32_t(vertices.size());
-  for (int i = 0; i < 4; ++i)
-    vertices.push_back({{corners[i].x, corners[i].y, corners[i].z}, {normal.x, normal.y, normal.z}, {0.0f, 0.0f}});
-  for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + i);
-}
-
-void add_box(std::vector<avsm::CasterVertex>& vertices, std::vector<uint32_t>& indices, glm::vec3 lo, glm::vec3 hi) {
-  const glm::vec3 faces[6][4] = {
-      {{lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z}},  // -x
-      {{hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z}},  // +x
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z}},  // -y
-      {{lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z}},  // +y
-      {{lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z}},  // -z
-      {{lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},  // +z
-  };
-  const glm::vec3 normals[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-  for (int f = 0; f < 6; ++f) add_quad(vertices, indices, faces[f], normals[f]);
-}
-
 HostCasters upload_casters(const avsm::gpu::Context& ctx) {
+  CasterArrays arrays = make_casters();
   HostCasters casters;
-  std::vector<avsm::CasterVertex> vertices;
-  std::vector<uint32_t> indices;
-  const glm::vec3 ground[4] = {{-kGroundHalf, 0, -kGroundHalf}, {-kGroundHalf, 0, kGroundHalf},
-                               {kGroundHalf, 0, kGroundHalf}, {kGroundHalf, 0, -kGroundHalf}};
-  add_quad(vertices, indices, ground, {0, 1, 0});
-  add_box(vertices, indices, kBoxMin, kBoxMax);
-  for (const avsm::CasterVertex& v : vertices) casters.bounds.extend(glm::vec3(v.position[0], v.position[1], v.position[2]));
-  // One draw for the ground, one for the box: the view takes any number of ranges.
-  casters.views.meshes.draws = {{0, 6, 0}, {6, uint32_t(indices.size()) - 6, 0}};
-  casters.vertices = avsm::gpu::create_buffer_from(ctx, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host vertices");
-  casters.indices = avsm::gpu::create_buffer_from(ctx, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "host indices");
+  casters.bounds = arrays.bounds;
+  casters.views.meshes.draws = arrays.draws;
+  casters.views.strands.segment_count = uint32_t(arrays.strand_segments.size());
+  casters.vertices = avsm::gpu::create_buffer_from(ctx, std::move(arrays.vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host vertices");
+  casters.indices = avsm::gpu::create_buffer_from(ctx, std::move(arrays.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "host indices");
+  casters.strand_points = avsm::gpu::create_buffer_from(ctx, std::move(arrays.strand_points), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strand points");
+  casters.strand_segments = avsm::gpu::create_buffer_from(ctx, std::move(arrays.strand_segments), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strand segments");
+  casters.strands = avsm::gpu::create_buffer_from(ctx, std::move(arrays.strands), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strands");
   // Each view's buffer with its size in bytes: add_to_graph checks the draws against them.
   casters.views.meshes.vertices = casters.vertices.handle();
   casters.views.meshes.vertices_size = casters.vertices.size();
   casters.views.meshes.indices = casters.indices.handle();
   casters.views.meshes.indices_size = casters.indices.size();
-
-  // Hair: straight strands along z, 4 segments each, in two sheets.
-  std::vector<glm::vec4> points;
-  std::vector<avsm::StrandSegment> segments;
-  std::vector<avsm::StrandParameters> strands;
-  constexpr float kSpacing = 0.03f;
-  for (int sheet = 0; sheet < 2; ++sheet) {
-    const float y = kHairHeight + 0.1f * float(sheet);
-    for (float x = kHairMinX + 0.5f * kSpacing; x < kHairMaxX; x += kSpacing) {
-      const uint32_t strand = uint32_t(strands.size());
-      strands.push_back({{0.4f, 0.3f, 0.2f, /*opacity=*/0.4f}, /*width=*/kSpacing / 3.0f, {}});
-      for (int p = 0; p <= 4; ++p) {
-        if (p < 4) segments.push_back({uint32_t(points.size()), strand});
-        const glm::vec3 point(x, y, kHairMinZ + (kHairMaxZ - kHairMinZ) * float(p) / 4.0f);
-        points.emplace_back(point, 1.0f);
-        casters.bounds.extend(point);
-      }
-    }
-  }
-  casters.views.strands.segment_count = uint32_t(segments.size());
-  casters.strand_points = avsm::gpu::create_buffer_from(ctx, std::move(points), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strand points");
-  casters.strand_segments = avsm::gpu::create_buffer_from(ctx, std::move(segments), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strand segments");
-  casters.strands = avsm::gpu::create_buffer_from(ctx, std::move(strands), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "host strands");
   casters.views.strands.points = casters.strand_points.handle();
   casters.views.strands.points_size = casters.strand_points.size();
   casters.views.strands.segments = casters.strand_segments.handle();
@@ -392,79 +190,6 @@ Options parse_options(int argc, char** argv) {
   return options;
 }
 
-// The picture without the transmittance the shading pass kept in alpha.
-avsm::gpu::ImageRGBA32F opaque(avsm::gpu::ImageRGBA32F image) {
-  for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
-  return image;
-}
-
-// The transmittance the shading pass stored (alpha) at the pixel over ground point (x, z).
-float transmittance_at(const avsm::gpu::ImageRGBA32F& image, float x, float z) {
-  const auto pixel = [&](float world, uint32_t size) {
-    const float u = (world + kGroundHalf) / (2 * kGroundHalf);
-    return uint32_t(std::clamp(int(u * float(size)), 0, int(size) - 1));
-  };
-  return image.at(pixel(x, image.width), pixel(z, image.height))[3];
-}
-
-// Along the row z, the first and last ground x whose transmittance is below one half.
-std::optional<std::pair<float, float>> shadow_extent_along_x(const avsm::gpu::ImageRGBA32F& image, float z) {
-  std::optional<std::pair<float, float>> extent;
-  const uint32_t row = uint32_t((z + kGroundHalf) / (2 * kGroundHalf) * float(image.height));
-  for (uint32_t x = 0; x < image.width; ++x) {
-    if (image.at(x, row)[3] >= 0.5f) continue;
-    const float world = -kGroundHalf + (float(x) + 0.5f) / float(image.width) * 2 * kGroundHalf;
-    if (!extent) extent = std::pair{world, world};
-    extent->second = world;
-  }
-  return extent;
-}
-
-struct Checker {
-  int failures = 0;
-  void expect(bool ok, const std::string& what) {
-    std::printf("%s %s\n", ok ? "ok  " : "FAIL", what.c_str());
-    if (!ok) ++failures;
-  }
-};
-
-// What the geometry predicts: under the box's shadow (shifted along x by h / 2 for a
-// point at height h) nothing gets through; beside it, and right under the box where
-// the slanted light passes, everything does; the hair lets part of it through.
-int check_against_geometry(const avsm::gpu::ImageRGBA32F& image) {
-  Checker c;
-  const float shadow_begin = ground_landing(kBoxMin.x, kBoxMin.y);  // the box's lower -x edge
-  const float shadow_end = ground_landing(kBoxMax.x, kBoxMax.y);    // its upper +x edge
-  const float in_shadow = transmittance_at(image, 0.5f * (shadow_begin + shadow_end), 0.0f);
-  const float beside = transmittance_at(image, shadow_end + 0.8f, 0.0f);
-  const float under_box = transmittance_at(image, kBoxMin.x + 0.2f, 0.0f);  // the light passes under the box here
-  const float hair_x = ground_landing(0.5f * (kHairMinX + kHairMaxX), kHairHeight + 0.05f);
-  const float under_hair = transmittance_at(image, hair_x, 0.5f * (kHairMinZ + kHairMaxZ));
-  char line[160];
-  std::snprintf(line, sizeof(line), "box shadow at x=%.2f: T=%.3f (expected < 0.1)", 0.5f * (shadow_begin + shadow_end), in_shadow);
-  c.expect(in_shadow < 0.1f, line);
-  std::snprintf(line, sizeof(line), "beside the shadow at x=%.2f: T=%.3f (expected > 0.9)", shadow_end + 0.8f, beside);
-  c.expect(beside > 0.9f, line);
-  std::snprintf(line, sizeof(line), "right under the box at x=%.2f: T=%.3f (expected > 0.9: the light is slanted)",
-                kBoxMin.x + 0.2f, under_box);
-  c.expect(under_box > 0.9f, line);
-  std::snprintf(line, sizeof(line), "hair shadow at x=%.2f: T=%.3f (expected partial, 0.15 .. 0.85)", hair_x, under_hair);
-  c.expect(under_hair > 0.15f && under_hair < 0.85f, line);
-  std::snprintf(line, sizeof(line), "lit pixel much brighter than the shadowed one: %.3f vs %.3f", beside, in_shadow);
-  c.expect(beside > 5.0f * std::max(in_shadow, 0.01f), line);
-
-  // The shadow's edges along z = 0: within a map texel and a pixel or two of the prediction.
-  constexpr float kTolerance = 0.15f;
-  const auto extent = shadow_extent_along_x(image, 0.0f);
-  if (!extent) {
-    c.expect(false, "a shadow along z = 0");
-  } else {
-    std::snprintf(line, sizeof(line), "shadow along z = 0 spans x = %.3f .. %.3f (predicted %.3f .. %.3f)", extent->first,
-                  extent->second, shadow_begin, shadow_end);
-    c.expect(std::abs(extent->first - shadow_begin) < kTolerance && std::abs(extent->second - shadow_end) < kTolerance, line);
-  }
-  return c.failures;
-}
 
 int run(const Options& options) {
   g_point_light = options.point_light;

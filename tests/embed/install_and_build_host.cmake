@@ -2,7 +2,8 @@
 #       -P install_and_build_host.cmake
 # Installs the engine into WORK/staging, moves the install to WORK/prefix (the package
 # must not depend on where it was installed, nor on the source and build trees), then
-# configures and builds examples/host_embed against it in a fresh WORK/host-build.
+# configures and builds each host example (examples/host_embed, examples/host_raw)
+# against it in a fresh WORK/<example>-build.
 if(NOT BUILD_TYPE)
   set(BUILD_TYPE Release)
 endif()
@@ -40,7 +41,10 @@ foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/gpu/context.h incl
   endif()
 endforeach()
 
-run_step("configure examples/host_embed against the package"
-  ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/host_embed" -B "${WORK}/host-build"
-  -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
-run_step("build examples/host_embed" ${CMAKE_COMMAND} --build "${WORK}/host-build" -j 2)
+foreach(example IN ITEMS host_embed host_raw)
+  set(build "${WORK}/${example}-build")
+  run_step("configure examples/${example} against the package"
+    ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/${example}" -B "${build}"
+    -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
+  run_step("build examples/${example}" ${CMAKE_COMMAND} --build "${build}" -j 2)
+endforeach()
