@@ -399,6 +399,7 @@ int run(const Options& options) {
     avsm::ShadowFrame frame;
     frame.camera = avsm::Camera{glm::vec3(0.0f, 10.0f, 0.0f), 0.8f, options.size};
     frame.casters = casters.views;  // written through mapped memory before the submission: already visible
+    frame.lookup_read_stages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;  // only the ground shading reads the shadows
     // Two frames: the second reuses what the first set up (the plan, the transients).
     for (int n = 0; n < 2; ++n) {
       loop.run([&](VkCommandBuffer cmd) {
