@@ -151,4 +151,50 @@ class HostDevice {
   VkQueue queue_ = VK_NULL_HANDLE;
 };
 
+// The host's render loop: one command buffer and one fence, a frame at a time.
+class FrameLoop {
+ public:
+  explicit FrameLoop(const HostDevice& host) : host_(host) {
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool.queueFamilyIndex = host.queue_family();
+    check_vk(vkCreateCommandPool(host.device(), &pool, nullptr, &pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    check_vk(vkAllocateCommandBuffers(host.device(), &alloc, &cmd_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    check_vk(vkCreateFence(host.device(), &fence, nullptr, &fence_), "vkCreateFence");
+  }
+  ~FrameLoop() {
+    vkDestroyFence(host_.device(), fence_, nullptr);
+    vkDestroyCommandPool(host_.device(), pool_, nullptr);
+  }
+  FrameLoop(const FrameLoop&) = delete;
+  FrameLoop& operator=(const FrameLoop&) = delete;
+
+  // Records `frame` into the command buffer, submits it and waits for it.
+  template <class Record>
+  void run(const Record& frame) {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check_vk(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
+    frame(cmd_);
+    check_vk(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd_;
+    check_vk(vkQueueSubmit(host_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+    check_vk(vkWaitForFences(host_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    check_vk(vkResetFences(host_.device(), 1, &fence_), "vkResetFences");
+  }
+
+ private:
+  const HostDevice& host_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+};
+
 }  // namespace host

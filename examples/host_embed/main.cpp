@@ -11,42 +11,26 @@
 // transmittance there. With --check it compares them with what the geometry predicts
 // (the box's shadow, displaced along the light; the hair's partial shadow) and exits
 // non-zero when they disagree. Any validation message also fails the run.
-//
-//   host_embed [--out DIR] [--size PIXELS] [--validation] [--check] [--no-shadows] [--fixed-memory-build]
-//              [--point-light]
-// --validation (or AVSM_VALIDATION=1) enables VK_LAYER_KHRONOS_validation with
-// synchronization validation. --no-shadows binds unshadowed inputs instead of the maps:
-// the checks must then fail (the test uses it to show that they can).
+// The command line: examples/common/host_run.h.
 #include <avsm/shadows.h>
 
 #include <rendergraph/vulkan/executor.h>
 #include <rendergraph/vulkan/pass_context.h>
 
-#include <algorithm>
-#include <atomic>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <optional>
-#include <stdexcept>
-#include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
-#include "io/image_io.h"
 
-#include "ground_scene.h"
-#include "ground_shading.h"
-#include "host_device.h"
+#include "host_run.h"
 
 namespace {
 
-using namespace host;  // examples/common: the scene, the checks, the host device
+using namespace host;  // examples/common: the scene, the checks, the host device and frame loop, the run
 
 // ---------------------------------------------------------------------------------------
 // The host's casters, in the layouts the caster views document.
@@ -122,9 +106,7 @@ class GroundShading {
           bindings.image("ground_image", c.view(d.image), c.layout(d.image));
           shadows.bind(bindings, c);
           bindings.push(c.cmd());
-          pipeline_.push_constants(c.cmd(), GroundPush{{-kGroundHalf, -kGroundHalf, 2 * kGroundHalf, 2 * kGroundHalf},
-                                                       g_point_light ? glm::vec4(kPointLight, 1.0f)
-                                                                     : glm::vec4(-kLightTravel, 0.0f)});
+          pipeline_.push_constants(c.cmd(), ground_push());
           pipeline_.dispatch_threads(c.cmd(), size, size);
         });
   }
@@ -140,141 +122,34 @@ class GroundShading {
   avsm::gpu::Image image_;
 };
 
-// Records the frame into the host's command buffer and submits it on the host's queue.
-void submit_frame(const HostDevice& host, VkCommandBuffer cmd, const rg::Graph& graph, rg::vulkan::Executor& executor) {
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  check_vk(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-  executor.record(graph, cmd);
-  check_vk(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  check_vk(vkCreateFence(host.device(), &fence_info, nullptr, &fence), "vkCreateFence");
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  VkResult result = vkQueueSubmit(host.queue(), 1, &submit, fence);
-  if (result == VK_SUCCESS) result = vkWaitForFences(host.device(), 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(host.device(), fence, nullptr);
-  check_vk(result, "frame submission");
-}
-
-// ---------------------------------------------------------------------------------------
-// Reading the result: transmittance at world points, and the shadow's extent along x.
-
-struct Options {
-  std::filesystem::path out = ".";
-  uint32_t size = 128;
-  bool validation = false, check = false, shadows = true;
-  bool fixed_memory_build = false;  // build the map straight from the casters (avsm::Light)
-  bool point_light = false;         // a point light (a cube of six maps) instead of the sun
-};
-
-Options parse_options(int argc, char** argv) {
-  Options options;
-  const char* env = std::getenv("AVSM_VALIDATION");
-  options.validation = env && std::strcmp(env, "0") != 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--out" && i + 1 < argc) options.out = argv[++i];
-    else if (arg == "--size" && i + 1 < argc) options.size = uint32_t(std::stoul(argv[++i]));
-    else if (arg == "--validation") options.validation = true;
-    else if (arg == "--check") options.check = true;
-    else if (arg == "--no-shadows") options.shadows = false;
-    else if (arg == "--fixed-memory-build") options.fixed_memory_build = true;
-    else if (arg == "--point-light") options.point_light = true;
-    else throw std::invalid_argument("unknown option '" + arg +
-                                     "' (--out DIR --size N --validation --check --no-shadows --fixed-memory-build "
-                                     "--point-light)");
-  }
-  return options;
-}
-
-
 int run(const Options& options) {
-  g_point_light = options.point_light;
   HostDevice host(options.validation);
   int failures = 0;
   {
     avsm::gpu::Context context(host.lend());
     avsm::Shadows shadows(context, avsm::ShaderLocation::of_package());
-    std::printf("device: %s; shaders: %s\n", context.info().name.c_str(),
-                shadows.shader_location().glsl_root.string().c_str());
+    print_setup(context, shadows);
 
     HostCasters casters = upload_casters(context);
-    avsm::Light sun;
-    sun.name = "sun";
-    sun.direction = kLightTravel;
-    if (options.point_light) {
-      sun.name = "point";
-      sun.type = avsm::LightType::point;
-      sun.position = kPointLight;
-      sun.range = 30.0f;
-    }
-    sun.nodes = 8;
-    sun.resolution = 256;
-    sun.fixed_memory_build = options.fixed_memory_build;
-    shadows.set_light(sun, casters.bounds);
+    shadows.set_light(make_light(options), casters.bounds);
     GroundShading ground(context, shadows, options.size);
-
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = host.queue_family();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    check_vk(vkCreateCommandPool(host.device(), &pool_info, nullptr, &pool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    check_vk(vkAllocateCommandBuffers(host.device(), &alloc, &cmd), "vkAllocateCommandBuffers");
-
+    FrameLoop loop(host);
     rg::vulkan::Executor executor(context, avsm::gpu::TimestampMode::Exact);
-    const avsm::Camera camera{glm::vec3(0.0f, 10.0f, 0.0f), 0.8f, options.size};
+    const avsm::Camera camera = make_camera(options);
     // Two frames: the second reuses the compiled plan (and a grown capture buffer, had the first overflowed).
     for (int frame = 0; frame < 2; ++frame) {
       rg::Graph graph;
       const avsm::ShadowInputs maps = options.shadows ? shadows.add_to_graph(graph, camera, casters.views)
                                                       : shadows.unshadowed_inputs();
       ground.add_to_graph(graph, maps);
-      submit_frame(host, cmd, graph, executor);
-      for (const avsm::LightStats& s : shadows.finish_frame())
-        std::printf("frame %d light '%s': %u map(s) of %u nodes, %ux%u, %llu segments captured (capacity %llu)%s, "
-                    "%llu bytes of fixed build\n", frame, s.name.c_str(), s.maps, s.nodes, s.resolution, s.resolution,
-                    (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
-                    s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
+      loop.run([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+      print_stats(frame, shadows.finish_frame());
     }
-    vkDestroyCommandPool(host.device(), pool, nullptr);
-
-    const avsm::gpu::ImageRGBA32F image = ground.read_back();
-    std::filesystem::create_directories(options.out);
-    avsm::io::write_png_srgb(options.out / "ground.png", opaque(image));
-    std::printf("wrote %s\n", (options.out / "ground.png").string().c_str());
-    if (options.check) failures += check_against_geometry(image);
-    const size_t engine_messages = context.validation_log().count();
-    if (engine_messages > 0) {
-      std::fprintf(stderr, "%s\n", avsm::gpu::describe(context.validation_log().take()).c_str());
-      ++failures;
-    }
+    failures += report_picture(ground.read_back(), options, context);
   }
-  if (host.validation_messages() > 0) {
-    std::fprintf(stderr, "%d validation message(s)\n", host.validation_messages());
-    ++failures;
-  }
-  std::printf("validation: %s\n", options.validation ? "on (with synchronization validation)" : "off");
-  return failures;
+  return failures + report_validation(host, options);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    const int failures = run(parse_options(argc, argv));
-    if (failures == 0) std::printf("host_embed: all checks passed\n");
-    else std::printf("host_embed: %d check(s) failed\n", failures);
-    return failures == 0 ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "host_embed: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return host::host_main("host_embed", argc, argv, run); }

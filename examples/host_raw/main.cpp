@@ -11,31 +11,24 @@
 //                                       bindings the host chose (kLookupBindings);
 //   its own dispatch, barriers and copy of the picture to a mapped buffer.
 //
-// Output: ground.png and the checks host_embed makes (examples/common/ground_scene.h).
-//   host_raw [--out DIR] [--size PIXELS] [--validation] [--check] [--no-shadows]
-// --validation (or AVSM_VALIDATION=1) enables VK_LAYER_KHRONOS_validation with
-// synchronization validation. --no-shadows binds the unshadowed lookup buffers instead of
-// recording the shadows: the checks must then fail.
+// Output: ground.png and the checks host_embed makes (examples/common/ground_scene.h),
+// with host_embed's options (examples/common/host_run.h); --no-shadows binds the
+// unshadowed lookup buffers instead of recording the shadows.
 #include <avsm/shadows.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "gpu/context.h"
-#include "io/image_io.h"
 
-#include "ground_scene.h"
-#include "ground_shading.h"
-#include "host_device.h"
+#include "host_run.h"
 
 namespace {
 
-using namespace host;  // examples/common: the scene, the checks, the host device
+using namespace host;  // examples/common: the scene, the checks, the host device and frame loop, the run
 using avsm::shared::GroundPush;
 
 // Where the shader has the lookup's buffers (shaders/ground_shading.comp's macros).
@@ -166,7 +159,7 @@ class GroundShading {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout_, 0, uint32_t(sets_.size()),
                             sets_.data(), 0, nullptr);
-    const GroundPush push{{-kGroundHalf, -kGroundHalf, 2 * kGroundHalf, 2 * kGroundHalf}, glm::vec4(-kLightTravel, 0.0f)};
+    const GroundPush push = ground_push();
     vkCmdPushConstants(cmd, pipeline_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (size_ + 7) / 8, (size_ + 7) / 8, 1);
 
@@ -306,76 +299,6 @@ class GroundShading {
   std::vector<VkDescriptorSet> sets_;
 };
 
-// ---------------------------------------------------------------------------------------
-// The host's render loop: one command buffer, one fence, a frame at a time.
-
-struct Options {
-  std::filesystem::path out = ".";
-  uint32_t size = 128;
-  bool validation = false, check = false, shadows = true;
-};
-
-Options parse_options(int argc, char** argv) {
-  Options options;
-  const char* env = std::getenv("AVSM_VALIDATION");
-  options.validation = env && std::strcmp(env, "0") != 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--out" && i + 1 < argc) options.out = argv[++i];
-    else if (arg == "--size" && i + 1 < argc) options.size = uint32_t(std::stoul(argv[++i]));
-    else if (arg == "--validation") options.validation = true;
-    else if (arg == "--check") options.check = true;
-    else if (arg == "--no-shadows") options.shadows = false;
-    else throw std::invalid_argument("unknown option '" + arg + "' (--out DIR --size N --validation --check --no-shadows)");
-  }
-  return options;
-}
-
-class FrameLoop {
- public:
-  explicit FrameLoop(const HostDevice& host) : host_(host) {
-    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool.queueFamilyIndex = host.queue_family();
-    check_vk(vkCreateCommandPool(host.device(), &pool, nullptr, &pool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    check_vk(vkAllocateCommandBuffers(host.device(), &alloc, &cmd_), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    check_vk(vkCreateFence(host.device(), &fence, nullptr, &fence_), "vkCreateFence");
-  }
-  ~FrameLoop() {
-    vkDestroyFence(host_.device(), fence_, nullptr);
-    vkDestroyCommandPool(host_.device(), pool_, nullptr);
-  }
-  FrameLoop(const FrameLoop&) = delete;
-  FrameLoop& operator=(const FrameLoop&) = delete;
-
-  // Records `frame` into the command buffer, submits it and waits for it.
-  template <class Record>
-  void run(const Record& frame) {
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check_vk(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
-    frame(cmd_);
-    check_vk(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd_;
-    check_vk(vkQueueSubmit(host_.queue(), 1, &submit, fence_), "vkQueueSubmit");
-    check_vk(vkWaitForFences(host_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    check_vk(vkResetFences(host_.device(), 1, &fence_), "vkResetFences");
-  }
-
- private:
-  const HostDevice& host_;
-  VkCommandPool pool_ = VK_NULL_HANDLE;
-  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
-};
-
 int run(const Options& options) {
   HostDevice host(options.validation);
   int failures = 0;
@@ -383,21 +306,15 @@ int run(const Options& options) {
     // The engine works on the host's device: it is lent, not created.
     avsm::gpu::Context context(host.lend());
     avsm::Shadows shadows(context, avsm::ShaderLocation::of_package());
-    std::printf("device: %s; shaders: %s\n", context.info().name.c_str(),
-                shadows.shader_location().glsl_root.string().c_str());
+    print_setup(context, shadows);
 
     const HostCasters casters(host);
-    avsm::Light sun;
-    sun.name = "sun";
-    sun.direction = kLightTravel;
-    sun.nodes = 8;
-    sun.resolution = 256;
-    shadows.set_light(sun, casters.bounds);
+    shadows.set_light(make_light(options), casters.bounds);
     GroundShading ground(host, shadows, options.size);
     FrameLoop loop(host);
 
     avsm::ShadowFrame frame;
-    frame.camera = avsm::Camera{glm::vec3(0.0f, 10.0f, 0.0f), 0.8f, options.size};
+    frame.camera = make_camera(options);
     frame.casters = casters.views;  // written through mapped memory before the submission: already visible
     frame.lookup_read_stages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;  // only the ground shading reads the shadows
     // Two frames: the second reuses what the first set up (the plan, the transients).
@@ -405,41 +322,13 @@ int run(const Options& options) {
       loop.run([&](VkCommandBuffer cmd) {
         ground.record(cmd, options.shadows ? shadows.record(cmd, frame) : shadows.unshadowed_lookup());
       });
-      for (const avsm::LightStats& s : shadows.finish_frame(frame.frame_slot))
-        std::printf("frame %d light '%s': %u map(s) of %u nodes, %ux%u, %llu segments captured (capacity %llu)%s\n", n,
-                    s.name.c_str(), s.maps, s.nodes, s.resolution, s.resolution,
-                    (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
-                    s.overflowed ? ", overflowed" : "");
+      print_stats(n, shadows.finish_frame(frame.frame_slot));
     }
-
-    const avsm::gpu::ImageRGBA32F image = ground.picture();
-    std::filesystem::create_directories(options.out);
-    avsm::io::write_png_srgb(options.out / "ground.png", opaque(image));
-    std::printf("wrote %s\n", (options.out / "ground.png").string().c_str());
-    if (options.check) failures += check_against_geometry(image);
-    if (context.validation_log().count() > 0) {
-      std::fprintf(stderr, "%s\n", avsm::gpu::describe(context.validation_log().take()).c_str());
-      ++failures;
-    }
+    failures += report_picture(ground.picture(), options, context);
   }
-  if (host.validation_messages() > 0) {
-    std::fprintf(stderr, "%d validation message(s)\n", host.validation_messages());
-    ++failures;
-  }
-  std::printf("validation: %s\n", options.validation ? "on (with synchronization validation)" : "off");
-  return failures;
+  return failures + report_validation(host, options);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    const int failures = run(parse_options(argc, argv));
-    if (failures == 0) std::printf("host_raw: all checks passed\n");
-    else std::printf("host_raw: %d check(s) failed\n", failures);
-    return failures == 0 ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "host_raw: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return host::host_main("host_raw", argc, argv, run); }
