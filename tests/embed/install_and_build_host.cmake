@@ -41,6 +41,21 @@ foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/gpu/context.h incl
   endif()
 endforeach()
 
+# host_raw embeds the engine through plain Vulkan values only: none of the engine's frame
+# graph, bindings or push descriptors in its sources (nor in the common ones it includes).
+file(GLOB raw_sources "${SOURCE_DIR}/examples/host_raw/*.cpp" "${SOURCE_DIR}/examples/host_raw/shaders/*"
+                      "${SOURCE_DIR}/examples/common/*")
+foreach(file IN LISTS raw_sources)
+  file(READ "${file}" text)
+  foreach(forbidden IN ITEMS "rg::" "rendergraph/" "gpu::Bindings" "gpu::Pipeline" "vkCmdPushDescriptorSet"
+                             "PUSH_DESCRIPTOR")
+    string(FIND "${text}" "${forbidden}" at)
+    if(NOT at EQUAL -1)
+      message(FATAL_ERROR "${file} uses ${forbidden}: host_raw must see plain Vulkan values only")
+    endif()
+  endforeach()
+endforeach()
+
 foreach(example IN ITEMS host_embed host_raw)
   set(build "${WORK}/${example}-build")
   run_step("configure examples/${example} against the package"
