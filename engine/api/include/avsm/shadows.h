@@ -212,7 +212,6 @@ struct ShadowFrame {
                                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 };
 
-
 class Shadows {
  public:
 
@@ -289,8 +288,8 @@ class Shadows {
   //     reads them there and never writes them. The next record() waits for those reads.
   //   - frame slots: as add_to_graph's; call finish_frame(frame_slot) after the frame has
   //     completed, and record into that slot again only then.
-  // Transient memory (capture lists, the fixed build's images) comes from the library,
-  // kept per frame slot and reused while the frame's shape is unchanged.
+  // Transient memory (capture lists, the fixed build's depth image and hair bins) comes
+  // from the library, kept per frame slot and reused while the frame's shape is unchanged.
   // std::invalid_argument naming "avsm::Shadows::record" and the argument for a null cmd,
   // a casters_written with access but no stages, no lookup_read_stages, and add_to_graph's
   // preconditions; nothing is recorded then.
@@ -317,7 +316,8 @@ class Shadows {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  // record()'s executors, one per frame slot, made on first use (shadows_record.cpp).
+  // record()'s executors, one per frame slot, made on first use (shadows_record.cpp). A
+  // shared_ptr, whose deleter is bound where Recorder is complete (not in shadows.cpp).
   struct Recorder;
   static std::shared_ptr<Recorder> make_recorder(gpu::Context& context);
   std::shared_ptr<Recorder> recorder_;
