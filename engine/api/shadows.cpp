@@ -300,7 +300,7 @@ const ShaderLocation& checked_location(const ShaderLocation& shaders) {
 }  // namespace
 
 Shadows::Shadows(gpu::Context& context, const ShaderLocation& shaders)
-    : impl_(std::make_unique<Impl>(context, checked_location(shaders))) {}
+    : impl_(std::make_unique<Impl>(context, checked_location(shaders))), recorder_(make_recorder(context)) {}
 
 Shadows::~Shadows() = default;
 

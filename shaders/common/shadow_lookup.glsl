@@ -1,10 +1,20 @@
 // Transmittance from a light to a world point: the one place every camera pass
 // asks about shadows (GpuShadow: shared/shadow.h).
 //
-// Before including, define AVSM_SHADOW_BINDING: the GpuShadow records are at that
-// binding, the map atlas at +1, and (uncompressed reference) the capture list heads at
-// +2 and nodes at +3. Each record finds its data at its own offsets in those buffers,
-// so any number of lights and maps share four bindings.
+// Four storage buffers (read only): the GpuShadow records, the map atlas and
+// (uncompressed reference) the capture list heads and nodes. Each record finds its data
+// at its own offsets in them, so any number of lights and maps share four bindings.
+// Before including, say where they are, either
+//   #define AVSM_SHADOW_BINDING b          // at bindings b, b + 1, b + 2, b + 3
+// or each one (the host's own numbers; they need not be consecutive):
+//   #define AVSM_SHADOW_PARAMETERS_BINDING 7
+//   #define AVSM_SHADOW_ATLAS_BINDING 2
+//   #define AVSM_SHADOW_LIST_HEADS_BINDING 3
+//   #define AVSM_SHADOW_LIST_NODES_BINDING 4
+// and optionally #define AVSM_SHADOW_SET s, the descriptor set (0 when not defined). The
+// set may be an ordinary one or a push-descriptor one: the shader does not tell them
+// apart. avsm::shadow_lookup_layout() (avsm/shadows.h) gives the matching
+// VkDescriptorSetLayoutBinding entries, avsm::ShadowLookupBuffers what to write there.
 //
 // The maps' layouts are in shared/map_layouts.h. AVSM lookups search a texel's
 // depths two levels deep (the course notes' 4-stride search): the last depth of each
@@ -19,10 +29,40 @@
 #include "shared/map_layouts.h"
 #include "shared/shadow.h"
 
-layout(std430, binding = AVSM_SHADOW_BINDING) readonly buffer ShadowParameters { GpuShadow shadows[]; };
-layout(std430, binding = AVSM_SHADOW_BINDING + 1) readonly buffer ShadowMapAtlas { vec4 shadow_atlas[]; };
-layout(std430, binding = AVSM_SHADOW_BINDING + 2) readonly buffer ShadowListHeads { uint shadow_heads[]; };
-layout(std430, binding = AVSM_SHADOW_BINDING + 3) readonly buffer ShadowListNodes { CaptureSegment shadow_nodes[]; };
+#ifndef AVSM_SHADOW_SET
+#define AVSM_SHADOW_SET 0
+#endif
+#ifdef AVSM_SHADOW_BINDING
+#ifndef AVSM_SHADOW_PARAMETERS_BINDING
+#define AVSM_SHADOW_PARAMETERS_BINDING AVSM_SHADOW_BINDING
+#endif
+#ifndef AVSM_SHADOW_ATLAS_BINDING
+#define AVSM_SHADOW_ATLAS_BINDING (AVSM_SHADOW_BINDING + 1)
+#endif
+#ifndef AVSM_SHADOW_LIST_HEADS_BINDING
+#define AVSM_SHADOW_LIST_HEADS_BINDING (AVSM_SHADOW_BINDING + 2)
+#endif
+#ifndef AVSM_SHADOW_LIST_NODES_BINDING
+#define AVSM_SHADOW_LIST_NODES_BINDING (AVSM_SHADOW_BINDING + 3)
+#endif
+#endif
+#if !defined(AVSM_SHADOW_PARAMETERS_BINDING) || !defined(AVSM_SHADOW_ATLAS_BINDING) || \
+    !defined(AVSM_SHADOW_LIST_HEADS_BINDING) || !defined(AVSM_SHADOW_LIST_NODES_BINDING)
+#error shadow_lookup.glsl: define AVSM_SHADOW_BINDING or all four AVSM_SHADOW_*_BINDING before including it
+#endif
+
+layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_PARAMETERS_BINDING) readonly buffer ShadowParameters {
+  GpuShadow shadows[];
+};
+layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_ATLAS_BINDING) readonly buffer ShadowMapAtlas {
+  vec4 shadow_atlas[];
+};
+layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_LIST_HEADS_BINDING) readonly buffer ShadowListHeads {
+  uint shadow_heads[];
+};
+layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_LIST_NODES_BINDING) readonly buffer ShadowListNodes {
+  CaptureSegment shadow_nodes[];
+};
 
 // vec4 i of the map record `s` describes.
 vec4 shadow_map_texel(GpuShadow s, uint i) { return shadow_atlas[s.map_offset + i]; }

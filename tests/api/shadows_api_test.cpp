@@ -264,5 +264,53 @@ TEST_F(ShadowsApiTest, PassListRunsThroughOurGraphAndAHostsOwn) {
   }
 }
 
+// record(): the same checks, naming record() and the field of its frame, before anything
+// is recorded; then a frame recorded into a command buffer of the test's own.
+TEST_F(ShadowsApiTest, RecordChecksItsFrameThenRecordsIntoTheHostsCommandBuffer) {
+  Shadows shadows(ctx(), ShaderLocation::of_package());
+  Bounds bounds;
+  bounds.extend(glm::vec3(-1.0f));
+  bounds.extend(glm::vec3(1.0f));
+  Light sun;
+  sun.resolution = 16;
+  shadows.set_light(sun, bounds);
+
+  ShadowFrame frame;
+  EXPECT_NE(message_of([&] { shadows.record(VK_NULL_HANDLE, frame); }).find("avsm::Shadows::record: cmd is VK_NULL_HANDLE"),
+            std::string::npos);
+  ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    ShadowFrame bad = frame;
+    bad.casters_written.access = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    EXPECT_NE(message_of([&] { shadows.record(cmd, bad); })
+                  .find("avsm::Shadows::record: frame.casters_written has access but no stages"),
+              std::string::npos);
+    bad = frame;
+    bad.lookup_read_stages = VK_PIPELINE_STAGE_2_NONE;
+    EXPECT_NE(message_of([&] { shadows.record(cmd, bad); }).find("avsm::Shadows::record: frame.lookup_read_stages is 0"),
+              std::string::npos);
+    bad = frame;
+    bad.casters.meshes.vertices = bad.casters.meshes.indices = (VkBuffer)uintptr_t(0x10);  // never read
+    bad.casters.meshes.vertices_size = 3 * sizeof(CasterVertex);
+    bad.casters.meshes.indices_size = 3 * sizeof(uint32_t);
+    bad.casters.meshes.draws = {{0, 6, 0}};
+    EXPECT_NE(message_of([&] { shadows.record(cmd, bad); })
+                  .find("avsm::Shadows::record: frame.casters.meshes.draws[0]: indices 0..6 exceed the index buffer"),
+              std::string::npos);
+    bad = frame;
+    bad.frame_slot = 1;
+    EXPECT_NE(message_of([&] { shadows.record(cmd, bad); }).find("frame slot 1 of 1 frames in flight"), std::string::npos);
+
+    // Nothing to cast: the light's passes still run (clear, build), under validation.
+    const ShadowLookupBuffers lookup = shadows.record(cmd, frame);
+    EXPECT_NE(lookup.parameters.buffer, VK_NULL_HANDLE);
+    EXPECT_NE(lookup.atlas.buffer, VK_NULL_HANDLE);
+    EXPECT_EQ(lookup.parameters.range, VK_WHOLE_SIZE);
+  });
+  const std::vector<LightStats> stats = shadows.finish_frame();
+  ASSERT_EQ(stats.size(), 1u);
+  EXPECT_EQ(stats[0].segments_captured, 0u);
+  EXPECT_NE(lookup_buffers(shadows.unshadowed_lookup()).parameters.buffer, VK_NULL_HANDLE);
+}
+
 }  // namespace
 }  // namespace avsm

@@ -2,7 +2,8 @@
 #       -P install_and_build_host.cmake
 # Installs the engine into WORK/staging, moves the install to WORK/prefix (the package
 # must not depend on where it was installed, nor on the source and build trees), then
-# configures and builds examples/host_embed against it in a fresh WORK/host-build.
+# configures and builds each host example (examples/host_embed, examples/host_raw)
+# against it in a fresh WORK/<example>-build.
 if(NOT BUILD_TYPE)
   set(BUILD_TYPE Release)
 endif()
@@ -41,7 +42,25 @@ foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/shadows_rendergrap
   endif()
 endforeach()
 
-run_step("configure examples/host_embed against the package"
-  ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/host_embed" -B "${WORK}/host-build"
-  -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
-run_step("build examples/host_embed" ${CMAKE_COMMAND} --build "${WORK}/host-build" -j 2)
+# host_raw embeds the engine through plain Vulkan values only: none of the engine's frame
+# graph, bindings or push descriptors in its sources (nor in the common ones it includes).
+file(GLOB raw_sources "${SOURCE_DIR}/examples/host_raw/*.cpp" "${SOURCE_DIR}/examples/host_raw/shaders/*"
+                      "${SOURCE_DIR}/examples/common/*")
+foreach(file IN LISTS raw_sources)
+  file(READ "${file}" text)
+  foreach(forbidden IN ITEMS "rg::" "rendergraph/" "gpu::Bindings" "gpu::Pipeline" "vkCmdPushDescriptorSet"
+                             "PUSH_DESCRIPTOR")
+    string(FIND "${text}" "${forbidden}" at)
+    if(NOT at EQUAL -1)
+      message(FATAL_ERROR "${file} uses ${forbidden}: host_raw must see plain Vulkan values only")
+    endif()
+  endforeach()
+endforeach()
+
+foreach(example IN ITEMS host_embed host_raw)
+  set(build "${WORK}/${example}-build")
+  run_step("configure examples/${example} against the package"
+    ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/${example}" -B "${build}"
+    -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
+  run_step("build examples/${example}" ${CMAKE_COMMAND} --build "${build}" -j 2)
+endforeach()

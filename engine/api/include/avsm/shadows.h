@@ -41,7 +41,9 @@
 // values, the segments' point and strand indices, the volumes' grids) cannot be checked
 // here: indices must stay within their buffers, or the captures read out of bounds.
 #include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -161,6 +163,65 @@ struct LightStats {
 // volumes of ShadowCasters it is.
 using passes::CasterObject;
 
+// ---------------------------------------------------------------------------------------
+// Your command buffer and your descriptor sets: plain Vulkan values, no rendergraph type.
+// (Shadows::record() below records a frame; README "Your command buffer: record()".)
+
+// Where the host's shader has the lookup's four storage buffers (common/shadow_lookup.glsl:
+// AVSM_SHADOW_PARAMETERS_BINDING, _ATLAS_, _LIST_HEADS_, _LIST_NODES_BINDING, in the set
+// AVSM_SHADOW_SET). Any four distinct numbers of one set.
+struct ShadowLookupBindings {
+  uint32_t parameters = 0, atlas = 1, list_heads = 2, list_nodes = 3;
+  // first, first + 1, first + 2, first + 3: what #define AVSM_SHADOW_BINDING first means.
+  static ShadowLookupBindings consecutive(uint32_t first) { return {first, first + 1, first + 2, first + 3}; }
+};
+
+// The entries the lookup needs in the host's VkDescriptorSetLayout (ordinary or push
+// descriptor): at each of `bindings`, one VK_DESCRIPTOR_TYPE_STORAGE_BUFFER visible to
+// `stages` (the stages of the shaders that include the lookup), no immutable samplers.
+// std::invalid_argument when two bindings share a number or `stages` is 0.
+std::array<VkDescriptorSetLayoutBinding, 4> shadow_lookup_layout(const ShadowLookupBindings& bindings,
+                                                                 VkShaderStageFlags stages);
+
+// What the host writes at those bindings: four whole buffers (offset 0, VK_WHOLE_SIZE).
+// They change when lights change and from one frame slot to the next, so write them
+// after every record() (into the set of that frame slot).
+struct ShadowLookupBuffers {
+  VkDescriptorBufferInfo parameters{}, atlas{}, list_heads{}, list_nodes{};
+  // Four STORAGE_BUFFER writes into `set` at `bindings`, for vkUpdateDescriptorSets (or
+  // vkCmdPushDescriptorSetKHR, which ignores dstSet). They point into this object: keep
+  // it alive until the call.
+  std::array<VkWriteDescriptorSet, 4> writes(VkDescriptorSet set, const ShadowLookupBindings& bindings) const;
+};
+
+// The buffers to write for `lookup` (a pass list's, or Shadows::unshadowed_lookup()).
+ShadowLookupBuffers lookup_buffers(const ShadowLookupResources& lookup);
+
+// A pipeline stage and access scope, as VkDependencyInfo takes them.
+struct AccessScope {
+  VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 access = VK_ACCESS_2_NONE;
+};
+
+// One frame for Shadows::record().
+struct ShadowFrame {
+  Camera camera;
+  ShadowCasters casters;  // the host's buffers, as pass_list takes them (same preconditions)
+  uint32_t frame_slot = 0;
+  // The host's writes to the casters' buffers (and the volume atlas) earlier in this queue
+  // that no barrier or fence has yet made visible: record() begins with a barrier from
+  // this scope. NONE (the default) when they are already visible, e.g. written through a
+  // mapped pointer before the submission, or uploaded in a submission the host waited for.
+  AccessScope casters_written;
+  // The shader stages in which the host reads the lookup buffers (storage reads, in `cmd`
+  // after record() or in later submissions on the queue): record() ends with a barrier
+  // that makes the frame's shadows visible there, and begins with one that waits for the
+  // previous frame's reads there. Not 0.
+  VkPipelineStageFlags2 lookup_read_stages = VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT |
+                                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+};
+
 class Shadows {
  public:
 
@@ -231,6 +292,26 @@ class Shadows {
   // resources to read, only buffers to bind.
   ShadowLookupResources unshadowed_lookup() const;
 
+  // ---- Your command buffer (no rendergraph type; README "Your command buffer: record()").
+  // Records the frame's shadow work (every light's capture, sort, build and mips, with the
+  // barriers between them) into `cmd`, and returns the buffers the host's lookup binds.
+  //   - cmd: a primary command buffer in the recording state, outside any render pass, for
+  //     the queue family the Context was given (graphics + compute), submitted on that queue.
+  //   - inputs: the casters' buffers written before the submission, or in `cmd` earlier
+  //     within frame.casters_written; the volume atlas (if any) in SHADER_READ_ONLY_OPTIMAL.
+  //     They must stay alive and unchanged until the frame completes.
+  //   - outputs: the four lookup buffers (ShadowLookupBuffers), left visible to storage
+  //     reads (VK_ACCESS_2_SHADER_STORAGE_READ_BIT) in frame.lookup_read_stages; the host
+  //     reads them there and never writes them. The next record() waits for those reads.
+  //   - frame slots: as pass_list's; call finish_frame(frame_slot) after the frame has
+  //     completed, and record into that slot again only then.
+  // Transient memory (capture lists, the fixed build's depth image and hair bins) comes
+  // from the library, kept per frame slot and reused while the frame's shape is unchanged.
+  // std::invalid_argument naming "avsm::Shadows::record" and the argument for a null cmd,
+  // a casters_written with access but no stages, no lookup_read_stages, and pass_list's
+  // preconditions; nothing is recorded then.
+  ShadowLookupBuffers record(VkCommandBuffer cmd, const ShadowFrame& frame);
+
   const ShaderLocation& shader_location() const;
   // Include directories for a host shader that uses the lookup (the engine's GLSL, NanoVDB).
   std::vector<std::filesystem::path> glsl_include_dirs() const;
@@ -250,6 +331,11 @@ class Shadows {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  // record()'s executors, one per frame slot, made on first use (shadows_record.cpp). A
+  // shared_ptr, whose deleter is bound where Recorder is complete (not in shadows.cpp).
+  struct Recorder;
+  static std::shared_ptr<Recorder> make_recorder(gpu::Context& context);
+  std::shared_ptr<Recorder> recorder_;
 };
 
 #if defined(AVSM_PACKAGE_GLSL_ROOT) && defined(AVSM_PACKAGE_SPIRV_ROOT)

@@ -1,6 +1,6 @@
-// The ground shading pass's push constants, declared once for its GLSL and the host's
-// C++ with the engine's shared-struct macros (the engine checks the two agree when it
-// creates the pipeline).
+// The host examples' ground shading pass's push constants, declared once for its GLSL
+// and the hosts' C++ with the engine's shared-struct macros (host_embed's pipeline checks
+// that the two agree when it is created).
 #ifndef HOST_GROUND_SHADING_H
 #define HOST_GROUND_SHADING_H
 #include "shared/gpu_struct.h"
