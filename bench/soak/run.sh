@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# The viewer soak (bench/soak/soak.py): FRAMES frames (a multiple of 50, at least 100) of
+# The viewer soak (bench/soak/soak.py): FRAMES frames (a multiple of 50, at least 250) of
 # avsm-viewer --control --validation at 96x54 with every kind of edit, on copies of the
 # shaders and the default scene in build/soak/. Prints resident memory and the heap in use
-# at frames 100, 1000, 5000, 10000 and the last, the validation message count and
+# at frames 100, 250, 1000, 5000, 10000 and the last, the validation message count and
 # frame-time percentiles; exits 1 saying why when memory grows more than 2% after frame
-# 100, validation reports anything, a frame hangs or an edit is not followed. Extra
-# arguments go to soak.py; --no-validation measures the engine's memory without the
-# validation layer's (which grows ~45 KiB per scene hand-off).
+# 250 (the warm-up: every technique's pipelines compiled once), validation reports
+# anything, a frame hangs or an edit is not followed. Extra arguments go to soak.py;
+# --no-validation measures the engine's memory without the validation layer's.
 #
 #   bench/soak/run.sh FRAMES [soak.py options]      e.g. bench/soak/run.sh 10000
 set -euo pipefail

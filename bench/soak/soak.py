@@ -29,7 +29,7 @@ include the reload; the first frame, which compiles every shader, is left out). 
 saying why, when
   - memory (resident or heap in use) at a checkpoint after --flat-from differs from memory
     at --flat-from by more than --tolerance (--heap-tolerance) percent: growth or a leak
-    (before --flat-from is warm-up);
+    (before --flat-from, by default the first cycle of each technique, is warm-up);
   - the viewer reported a validation message (it runs with validation and sync validation);
   - a frame does not come back within --watchdog seconds (a hang: the viewer is stopped);
   - an edit's reply is not what that edit must give;
@@ -60,6 +60,9 @@ CYCLE = 50  # frames per cycle of edits; checkpoints must be multiples of it
 TECHNIQUES = ["uncompressed", "osm", "fom", "dsm", "constant"]  # light 1 tries one per cycle, then avsm again
 NODE_COUNTS = [4, 12, 16]                                       # light 0, then 8 again
 FILTERS = ["point", "bilinear"]                                 # light 1, then trilinear again
+# Warm-up: until every technique has had its cycle, each compiling its pipelines once into
+# the context's pipeline cache (which keeps them); memory is judged from here on.
+WARM_UP = CYCLE * len(TECHNIQUES)
 
 
 def thin_hair(path, keep_every):
@@ -309,14 +312,14 @@ def main():
     parser.add_argument("--size", default="96x54")
     parser.add_argument("--shadow-res", type=int, default=64)
     parser.add_argument("--hair-every", type=int, default=20, help="keep every Nth hair strand in the copy")
-    parser.add_argument("--checkpoints", default="100,1000,5000,10000",
+    parser.add_argument("--checkpoints", default=f"100,{WARM_UP},1000,5000,10000",
                         help=f"frames whose memory is read (multiples of {CYCLE}); the last frame is read too")
-    parser.add_argument("--flat-from", type=int, default=100, help="the checkpoint that ends the warm-up")
+    parser.add_argument("--flat-from", type=int, default=WARM_UP, help="the checkpoint that ends the warm-up")
     parser.add_argument("--tolerance", type=float, default=2.0, help="percent")
     parser.add_argument("--heap-tolerance", type=float, help="percent for the heap in use (default: --tolerance; "
                         "negative: printed, not judged)")
     parser.add_argument("--no-validation", action="store_true",
-                        help="memory of the engine alone: the validation layer (1.3.239) keeps ~45 KiB per scene hand-off")
+                        help="memory of the engine alone, without the validation layer's")
     parser.add_argument("--watchdog", type=float, default=120.0, help="seconds a frame may take to come back")
     parser.add_argument("--progress", type=int, default=250, help="print memory every this many frames")
     parser.add_argument("--work", type=Path, default=Path("out/soak"))

@@ -92,7 +92,8 @@ Context::~Context() {
     if (owns_device_) vkDeviceWaitIdle(device_);
     else vkQueueWaitIdle(graphics_queue_.handle);
     pipelines_.reset();
-    vkDestroyCommandPool(device_, command_pool_, nullptr);
+    vkDestroyFence(device_, submit_fence_, nullptr);
+    vkDestroyCommandPool(device_, command_pool_, nullptr);  // frees one_shot_cmd_ too
     if (owns_device_) vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
@@ -383,7 +384,8 @@ void Context::set_name(uint64_t handle, VkObjectType type, const std::string& na
   VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
   info.objectType = type;
   info.objectHandle = handle;
-  info.pObjectName = name.c_str();
+  // An empty name removes it (forget_name); the validation layer erases only on null.
+  info.pObjectName = name.empty() ? nullptr : name.c_str();
   set_object_name_(device_, &info);
 }
 
@@ -410,34 +412,47 @@ VkCommandBuffer Context::allocate_command_buffer(const std::string& name) const 
 }
 
 void Context::submit_and_wait(VkCommandBuffer cmd) const {
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &fence));
+  if (!submit_fence_) {
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &submit_fence_));
+    set_name(submit_fence_, VK_OBJECT_TYPE_FENCE, "submit_and_wait fence");
+  }
   VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cmd_info.commandBuffer = cmd;
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmd_info;
-  VkResult result = vkQueueSubmit2(graphics_queue_.handle, 1, &submit, fence);
-  if (result == VK_SUCCESS) result = vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(device_, fence, nullptr);
+  VkResult result = vkQueueSubmit2(graphics_queue_.handle, 1, &submit, submit_fence_);
+  if (result == VK_SUCCESS) {
+    result = vkWaitForFences(device_, 1, &submit_fence_, VK_TRUE, UINT64_MAX);
+    vkResetFences(device_, 1, &submit_fence_);
+  }
   VK_CHECK(result);
 }
 
 void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
-  VkCommandBuffer cmd = allocate_command_buffer("one-shot");
+  // The reused command buffer, unless a submit_and_wait inside `record` finds it taken.
+  const bool reuse = !one_shot_recording_;
+  if (reuse && !one_shot_cmd_) one_shot_cmd_ = allocate_command_buffer("one-shot");
+  VkCommandBuffer cmd = reuse ? one_shot_cmd_ : allocate_command_buffer("one-shot (nested)");
+  if (reuse) one_shot_recording_ = true;
+  const auto release = [&] {
+    if (reuse) one_shot_recording_ = false;
+    else vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
+  };
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   try {
+    VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     record(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
     submit_and_wait(cmd);
   } catch (...) {
-    vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
+    release();
     throw;
   }
-  vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
+  release();
 }
 
 }  // namespace avsm::gpu

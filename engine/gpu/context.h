@@ -147,14 +147,25 @@ class Context {
   void set_name(Handle handle, VkObjectType type, const std::string& name) const {
     set_name(reinterpret_cast<uint64_t>(handle), type, name);
   }
+  // Removes a name, before its object is destroyed: the validation layer (1.3.239)
+  // otherwise keeps the names of destroyed objects for good, and a long session that
+  // makes and frees resources grew by their names (bench/soak).
+  template <class Handle>
+  void forget_name(Handle handle, VkObjectType type) const {
+    set_name(reinterpret_cast<uint64_t>(handle), type, std::string());
+  }
   void begin_label(VkCommandBuffer cmd, const std::string& label) const;
   void end_label(VkCommandBuffer cmd) const;
 
   // Records with `record`, submits to the graphics queue and waits. For uploads,
-  // readbacks, tests and one-off work; frames use their own command buffers.
+  // readbacks, tests and one-off work; frames use their own command buffers. One
+  // command buffer is reset and reused for this (a fresh one only when `record` itself
+  // calls submit_and_wait): the validation layer (1.3.239) keeps the state of every
+  // command buffer ever allocated, so a new one per upload grew a long validated viewer
+  // session without bound (bench/soak).
   void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
 
-  // Submits one recorded command buffer and waits for it to finish.
+  // Submits one recorded command buffer and waits for it to finish (on one reused fence).
   void submit_and_wait(VkCommandBuffer cmd) const;
 
   VkCommandPool command_pool() const { return command_pool_; }
@@ -183,6 +194,10 @@ class Context {
   VkDevice device_ = VK_NULL_HANDLE;
   Queue graphics_queue_;
   VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  // submit_and_wait's: made on first use, reused after.
+  mutable VkCommandBuffer one_shot_cmd_ = VK_NULL_HANDLE;
+  mutable bool one_shot_recording_ = false;
+  mutable VkFence submit_fence_ = VK_NULL_HANDLE;
   DeviceInfo info_;
   VkPhysicalDeviceMemoryProperties memory_properties_{};
   bool validation_enabled_ = false;

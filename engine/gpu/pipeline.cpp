@@ -33,12 +33,26 @@ struct Pipeline::Objects {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-  ~Objects() {
-    if (pipeline) vkDestroyPipeline(ctx->device(), pipeline, nullptr);
-    if (layout) vkDestroyPipelineLayout(ctx->device(), layout, nullptr);
-    if (set_layout) vkDestroyDescriptorSetLayout(ctx->device(), set_layout, nullptr);
+  ~Objects() {  // names first: Context::forget_name says why
+    if (pipeline) {
+      ctx->forget_name(pipeline, VK_OBJECT_TYPE_PIPELINE);
+      vkDestroyPipeline(ctx->device(), pipeline, nullptr);
+    }
+    if (layout) {
+      ctx->forget_name(layout, VK_OBJECT_TYPE_PIPELINE_LAYOUT);
+      vkDestroyPipelineLayout(ctx->device(), layout, nullptr);
+    }
+    if (set_layout) {
+      ctx->forget_name(set_layout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT);
+      vkDestroyDescriptorSetLayout(ctx->device(), set_layout, nullptr);
+    }
   }
 };
+
+static void destroy_module(const Context& ctx, VkShaderModule module) {
+  ctx.forget_name(module, VK_OBJECT_TYPE_SHADER_MODULE);
+  vkDestroyShaderModule(ctx.device(), module, nullptr);
+}
 
 namespace {
 
@@ -233,7 +247,7 @@ Pipeline Pipeline::create_compute(const Context& ctx, std::span<const uint32_t> 
   info.stage.pName = reflection.entry_point.c_str();
   info.layout = p.layout_;
   VkResult result = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-  vkDestroyShaderModule(ctx.device(), module, nullptr);
+  destroy_module(ctx, module);
   VK_CHECK(result);
   p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
@@ -333,7 +347,7 @@ Pipeline Pipeline::create_graphics(const Context& ctx, const GraphicsPipelineDes
   info.pDynamicState = &dynamic;
   info.layout = p.layout_;
   VkResult result = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-  for (VkShaderModule m : modules) vkDestroyShaderModule(ctx.device(), m, nullptr);
+  for (VkShaderModule m : modules) destroy_module(ctx, m);
   VK_CHECK(result);
   p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, desc.name);

@@ -42,6 +42,28 @@ static VkDeviceMemory allocate(const Context& ctx, VkDeviceSize size, uint32_t t
   return memory;
 }
 
+// Destruction of what this file names, its name first (Context::forget_name says why).
+static void free_memory(const Context& ctx, VkDeviceMemory memory) {
+  ctx.forget_name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY);
+  vkFreeMemory(ctx.device(), memory, nullptr);
+}
+static void destroy_buffer(const Context& ctx, VkBuffer buffer) {
+  ctx.forget_name(buffer, VK_OBJECT_TYPE_BUFFER);
+  vkDestroyBuffer(ctx.device(), buffer, nullptr);
+}
+static void destroy_image(const Context& ctx, VkImage image) {
+  ctx.forget_name(image, VK_OBJECT_TYPE_IMAGE);
+  vkDestroyImage(ctx.device(), image, nullptr);
+}
+static void destroy_view(const Context& ctx, VkImageView view) {
+  ctx.forget_name(view, VK_OBJECT_TYPE_IMAGE_VIEW);
+  vkDestroyImageView(ctx.device(), view, nullptr);
+}
+static void destroy_sampler(const Context& ctx, VkSampler sampler) {
+  ctx.forget_name(sampler, VK_OBJECT_TYPE_SAMPLER);
+  vkDestroySampler(ctx.device(), sampler, nullptr);
+}
+
 // ---------------------------------------------------------------- MemoryHeap
 
 MemoryHeap::MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
@@ -69,7 +91,7 @@ MemoryHeap& MemoryHeap::operator=(MemoryHeap&& other) noexcept {
 }
 
 void MemoryHeap::release() {
-  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
+  if (memory_) free_memory(*ctx_, memory_);
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
 }
@@ -186,8 +208,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 }
 
 void Buffer::release() {
-  if (buffer_ && owns_handle_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
-  if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
+  if (buffer_ && owns_handle_) destroy_buffer(*ctx_, buffer_);
+  if (own_memory_) free_memory(*ctx_, own_memory_);
   buffer_ = VK_NULL_HANDLE;
   own_memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
@@ -368,11 +390,11 @@ Image& Image::operator=(Image&& other) noexcept {
 void Image::release() {
   if (!ctx_) return;
   for (VkImageView v : mip_views_)
-    if (v) vkDestroyImageView(ctx_->device(), v, nullptr);
+    if (v) destroy_view(*ctx_, v);
   mip_views_.clear();
-  if (view_ && !borrowed_) vkDestroyImageView(ctx_->device(), view_, nullptr);
-  if (image_ && !borrowed_) vkDestroyImage(ctx_->device(), image_, nullptr);
-  if (own_memory_) vkFreeMemory(ctx_->device(), own_memory_, nullptr);
+  if (view_ && !borrowed_) destroy_view(*ctx_, view_);
+  if (image_ && !borrowed_) destroy_image(*ctx_, image_);
+  if (own_memory_) free_memory(*ctx_, own_memory_);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   own_memory_ = VK_NULL_HANDLE;
@@ -395,14 +417,14 @@ Sampler::Sampler(const Context& ctx, const SamplerDesc& desc) : ctx_(&ctx) {
 }
 
 Sampler::~Sampler() {
-  if (sampler_) vkDestroySampler(ctx_->device(), sampler_, nullptr);
+  if (sampler_) destroy_sampler(*ctx_, sampler_);
 }
 
 Sampler::Sampler(Sampler&& other) noexcept { *this = std::move(other); }
 
 Sampler& Sampler::operator=(Sampler&& other) noexcept {
   if (this != &other) {
-    if (sampler_) vkDestroySampler(ctx_->device(), sampler_, nullptr);
+    if (sampler_) destroy_sampler(*ctx_, sampler_);
     ctx_ = std::exchange(other.ctx_, nullptr);
     sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
   }
