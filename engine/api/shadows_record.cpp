@@ -28,13 +28,15 @@ std::invalid_argument record_error(const std::string& what) {
 
 VkDescriptorBufferInfo whole(VkBuffer buffer) { return {buffer, 0, VK_WHOLE_SIZE}; }
 
+VkDescriptorBufferInfo region(const PassBufferRange& range) { return {range.buffer, range.offset, range.size}; }
+
 }  // namespace
 
 ShadowLookupBuffers lookup_buffers(const ShadowLookupResources& lookup) {
   const auto or_unused = [&](const PassBufferRange& range) {
-    return whole(range.buffer ? range.buffer : lookup.unused_buffer);
+    return range.buffer ? region(range) : whole(lookup.unused_buffer);
   };
-  return {whole(lookup.parameters.buffer), or_unused(lookup.atlas), or_unused(lookup.list_heads),
+  return {region(lookup.parameters), or_unused(lookup.atlas), or_unused(lookup.list_heads),
           or_unused(lookup.list_nodes)};
 }
 

@@ -112,5 +112,25 @@ TEST(ShadowLookupLayout, WritesPutEachBufferAtItsBinding) {
   }
 }
 
+// The atlas and the lists are regions of larger buffers: the writes take each range's
+// offset and size, and fall back to the whole unused buffer where a range is absent.
+TEST(ShadowLookupLayout, BuffersKeepEachRangesOffsetAndSize) {
+  ShadowLookupResources lookup;
+  lookup.parameters = {(VkBuffer)uintptr_t(0x10), 0, VK_WHOLE_SIZE};
+  lookup.atlas = {(VkBuffer)uintptr_t(0x20), 256, 4096};
+  lookup.list_heads = {(VkBuffer)uintptr_t(0x30), 64, 1024};
+  lookup.unused_buffer = (VkBuffer)uintptr_t(0x50);  // list_nodes: absent
+  const ShadowLookupBuffers buffers = lookup_buffers(lookup);
+  const auto expect = [](const VkDescriptorBufferInfo& info, uintptr_t buffer, VkDeviceSize offset, VkDeviceSize range) {
+    EXPECT_EQ(info.buffer, (VkBuffer)buffer);
+    EXPECT_EQ(info.offset, offset);
+    EXPECT_EQ(info.range, range);
+  };
+  expect(buffers.parameters, 0x10, 0, VK_WHOLE_SIZE);
+  expect(buffers.atlas, 0x20, 256, 4096);
+  expect(buffers.list_heads, 0x30, 64, 1024);
+  expect(buffers.list_nodes, 0x50, 0, VK_WHOLE_SIZE);
+}
+
 }  // namespace
 }  // namespace avsm

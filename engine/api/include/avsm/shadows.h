@@ -11,8 +11,11 @@
 //   avsm::Shadows shadows(context, avsm::ShaderLocation::of_package());
 //   shadows.set_light(light, casters_bounds);
 //
-//   // Every frame: the frame's shadow passes as data, for the host's graph to schedule.
-//   avsm::ShadowPassList frame = shadows.pass_list(camera, casters);
+//   shadows.set_frames_in_flight(2);                          // optional; 1 by default
+//
+//   // Every frame, in frame slot `slot` (0, 1, 0, 1, ...): its shadow passes as data, for
+//   // the host's graph to schedule.
+//   avsm::ShadowPassList frame = shadows.pass_list(camera, casters, slot);
 //   for (avsm::ShadowPass& pass : frame.passes) {
 //     // a node of the host's graph: pass.uses say which of frame.resources it reads and
 //     // writes, with Vulkan stages, accesses and layouts; transients are the host's to
@@ -20,8 +23,9 @@
 //     ... in the node's execute: pass.record(cmd, resolved);   // resolved[i]: resource i
 //   }
 //   ... the host's shading reads frame.lookup (declare its resources as storage reads)
-//   submit, wait;
-//   shadows.finish_frame();
+//   submit with the slot's fence; record the next slot meanwhile;
+//   when the slot's fence has signalled (before its next pass_list):
+//   std::vector<avsm::LightStats> stats = shadows.finish_frame(slot);
 //
 // In the shading pass's GLSL (include directory: ShaderLocation::glsl_include_dir()):
 //   #define AVSM_SHADOW_BINDING 4                  // any 4 free bindings
@@ -183,7 +187,8 @@ struct ShadowLookupBindings {
 std::array<VkDescriptorSetLayoutBinding, 4> shadow_lookup_layout(const ShadowLookupBindings& bindings,
                                                                  VkShaderStageFlags stages);
 
-// What the host writes at those bindings: four whole buffers (offset 0, VK_WHOLE_SIZE).
+// What the host writes at those bindings: the lookup's four buffer ranges (offset and
+// size as the lookup gives them; unused_buffer whole where a range is absent).
 // They change when lights change and from one frame slot to the next, so write them
 // after every record() (into the set of that frame slot).
 struct ShadowLookupBuffers {
