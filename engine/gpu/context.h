@@ -154,6 +154,14 @@ class Context {
   void forget_name(Handle handle, VkObjectType type) const {
     set_name(reinterpret_cast<uint64_t>(handle), type, std::string());
   }
+  // Destroys (or frees) a named object, its name first:
+  //   ctx.destroy_named(buffer, VK_OBJECT_TYPE_BUFFER, vkDestroyBuffer);
+  template <class Handle>
+  void destroy_named(Handle handle, VkObjectType type,
+                     void (*destroy)(VkDevice, Handle, const VkAllocationCallbacks*)) const {
+    forget_name(handle, type);
+    destroy(device_, handle, nullptr);
+  }
   void begin_label(VkCommandBuffer cmd, const std::string& label) const;
   void end_label(VkCommandBuffer cmd) const;
 

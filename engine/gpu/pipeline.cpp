@@ -34,25 +34,11 @@ struct Pipeline::Objects {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   ~Objects() {  // names first: Context::forget_name says why
-    if (pipeline) {
-      ctx->forget_name(pipeline, VK_OBJECT_TYPE_PIPELINE);
-      vkDestroyPipeline(ctx->device(), pipeline, nullptr);
-    }
-    if (layout) {
-      ctx->forget_name(layout, VK_OBJECT_TYPE_PIPELINE_LAYOUT);
-      vkDestroyPipelineLayout(ctx->device(), layout, nullptr);
-    }
-    if (set_layout) {
-      ctx->forget_name(set_layout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT);
-      vkDestroyDescriptorSetLayout(ctx->device(), set_layout, nullptr);
-    }
+    if (pipeline) ctx->destroy_named(pipeline, VK_OBJECT_TYPE_PIPELINE, vkDestroyPipeline);
+    if (layout) ctx->destroy_named(layout, VK_OBJECT_TYPE_PIPELINE_LAYOUT, vkDestroyPipelineLayout);
+    if (set_layout) ctx->destroy_named(set_layout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, vkDestroyDescriptorSetLayout);
   }
 };
-
-static void destroy_module(const Context& ctx, VkShaderModule module) {
-  ctx.forget_name(module, VK_OBJECT_TYPE_SHADER_MODULE);
-  vkDestroyShaderModule(ctx.device(), module, nullptr);
-}
 
 namespace {
 
@@ -247,7 +233,7 @@ Pipeline Pipeline::create_compute(const Context& ctx, std::span<const uint32_t> 
   info.stage.pName = reflection.entry_point.c_str();
   info.layout = p.layout_;
   VkResult result = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-  destroy_module(ctx, module);
+  ctx.destroy_named(module, VK_OBJECT_TYPE_SHADER_MODULE, vkDestroyShaderModule);
   VK_CHECK(result);
   p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
@@ -347,7 +333,7 @@ Pipeline Pipeline::create_graphics(const Context& ctx, const GraphicsPipelineDes
   info.pDynamicState = &dynamic;
   info.layout = p.layout_;
   VkResult result = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-  for (VkShaderModule m : modules) destroy_module(ctx, m);
+  for (VkShaderModule m : modules) ctx.destroy_named(m, VK_OBJECT_TYPE_SHADER_MODULE, vkDestroyShaderModule);
   VK_CHECK(result);
   p.objects_->pipeline = p.pipeline_;
   ctx.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, desc.name);

@@ -42,28 +42,6 @@ static VkDeviceMemory allocate(const Context& ctx, VkDeviceSize size, uint32_t t
   return memory;
 }
 
-// Destruction of what this file names, its name first (Context::forget_name says why).
-static void free_memory(const Context& ctx, VkDeviceMemory memory) {
-  ctx.forget_name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY);
-  vkFreeMemory(ctx.device(), memory, nullptr);
-}
-static void destroy_buffer(const Context& ctx, VkBuffer buffer) {
-  ctx.forget_name(buffer, VK_OBJECT_TYPE_BUFFER);
-  vkDestroyBuffer(ctx.device(), buffer, nullptr);
-}
-static void destroy_image(const Context& ctx, VkImage image) {
-  ctx.forget_name(image, VK_OBJECT_TYPE_IMAGE);
-  vkDestroyImage(ctx.device(), image, nullptr);
-}
-static void destroy_view(const Context& ctx, VkImageView view) {
-  ctx.forget_name(view, VK_OBJECT_TYPE_IMAGE_VIEW);
-  vkDestroyImageView(ctx.device(), view, nullptr);
-}
-static void destroy_sampler(const Context& ctx, VkSampler sampler) {
-  ctx.forget_name(sampler, VK_OBJECT_TYPE_SAMPLER);
-  vkDestroySampler(ctx.device(), sampler, nullptr);
-}
-
 // ---------------------------------------------------------------- MemoryHeap
 
 MemoryHeap::MemoryHeap(const Context& ctx, VkDeviceSize size, uint32_t memory_type_bits, MemoryLocation location,
@@ -91,7 +69,7 @@ MemoryHeap& MemoryHeap::operator=(MemoryHeap&& other) noexcept {
 }
 
 void MemoryHeap::release() {
-  if (memory_) free_memory(*ctx_, memory_);
+  if (memory_) ctx_->destroy_named(memory_, VK_OBJECT_TYPE_DEVICE_MEMORY, vkFreeMemory);
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
 }
@@ -208,8 +186,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 }
 
 void Buffer::release() {
-  if (buffer_ && owns_handle_) destroy_buffer(*ctx_, buffer_);
-  if (own_memory_) free_memory(*ctx_, own_memory_);
+  if (buffer_ && owns_handle_) ctx_->destroy_named(buffer_, VK_OBJECT_TYPE_BUFFER, vkDestroyBuffer);
+  if (own_memory_) ctx_->destroy_named(own_memory_, VK_OBJECT_TYPE_DEVICE_MEMORY, vkFreeMemory);
   buffer_ = VK_NULL_HANDLE;
   own_memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
@@ -390,11 +368,11 @@ Image& Image::operator=(Image&& other) noexcept {
 void Image::release() {
   if (!ctx_) return;
   for (VkImageView v : mip_views_)
-    if (v) destroy_view(*ctx_, v);
+    if (v) ctx_->destroy_named(v, VK_OBJECT_TYPE_IMAGE_VIEW, vkDestroyImageView);
   mip_views_.clear();
-  if (view_ && !borrowed_) destroy_view(*ctx_, view_);
-  if (image_ && !borrowed_) destroy_image(*ctx_, image_);
-  if (own_memory_) free_memory(*ctx_, own_memory_);
+  if (view_ && !borrowed_) ctx_->destroy_named(view_, VK_OBJECT_TYPE_IMAGE_VIEW, vkDestroyImageView);
+  if (image_ && !borrowed_) ctx_->destroy_named(image_, VK_OBJECT_TYPE_IMAGE, vkDestroyImage);
+  if (own_memory_) ctx_->destroy_named(own_memory_, VK_OBJECT_TYPE_DEVICE_MEMORY, vkFreeMemory);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   own_memory_ = VK_NULL_HANDLE;
@@ -417,14 +395,14 @@ Sampler::Sampler(const Context& ctx, const SamplerDesc& desc) : ctx_(&ctx) {
 }
 
 Sampler::~Sampler() {
-  if (sampler_) destroy_sampler(*ctx_, sampler_);
+  if (sampler_) ctx_->destroy_named(sampler_, VK_OBJECT_TYPE_SAMPLER, vkDestroySampler);
 }
 
 Sampler::Sampler(Sampler&& other) noexcept { *this = std::move(other); }
 
 Sampler& Sampler::operator=(Sampler&& other) noexcept {
   if (this != &other) {
-    if (sampler_) destroy_sampler(*ctx_, sampler_);
+    if (sampler_) ctx_->destroy_named(sampler_, VK_OBJECT_TYPE_SAMPLER, vkDestroySampler);
     ctx_ = std::exchange(other.ctx_, nullptr);
     sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
   }
