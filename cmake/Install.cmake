@@ -26,14 +26,14 @@ install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes a
 install(TARGETS avsm-capture avsm-sweep avsm-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Headers, laid out as the engine includes them. The C++ builds of the shader math
-# (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h) include GLSL from the
+# (avsm_core.h, deep_shadow.h, opacity_maps.h, hair_geometry.h, pbr_brdf.h) include GLSL from the
 # source tree and serve the tests only, so they stay out.
 install(DIRECTORY engine/gpu engine/io engine/scene DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}
         FILES_MATCHING PATTERN "*.h" PATTERN "fuzz" EXCLUDE)
 install(DIRECTORY passes/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT}/passes
         FILES_MATCHING PATTERN "*.h"
         PATTERN "avsm_core.h" EXCLUDE PATTERN "deep_shadow.h" EXCLUDE PATTERN "opacity_maps.h" EXCLUDE
-        PATTERN "hair_geometry.h" EXCLUDE)
+        PATTERN "hair_geometry.h" EXCLUDE PATTERN "pbr_brdf.h" EXCLUDE)
 install(DIRECTORY rendergraph/include/rendergraph rendergraph/vulkan/include/rendergraph
         DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY engine/api/include/avsm/ DESTINATION ${AVSM_INSTALL_INCLUDE_ROOT} FILES_MATCHING PATTERN "*.h")
@@ -48,7 +48,7 @@ install(DIRECTORY shaders/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/shaders
 install(DIRECTORY ${AVSM_SPIRV_DIR}/ DESTINATION ${AVSM_INSTALL_DATA_DIR}/spirv
         FILES_MATCHING PATTERN "*.spv" PATTERN "*.glsl" PATTERN "tests" EXCLUDE)
 # The shadow techniques' lookups, as in the source tree (gpu::glsl_include_dirs).
-install(DIRECTORY passes/techniques DESTINATION ${AVSM_INSTALL_DATA_DIR}/passes
+install(DIRECTORY passes/shadows/techniques DESTINATION ${AVSM_INSTALL_DATA_DIR}/passes/shadows
         FILES_MATCHING PATTERN "*.glsl" PATTERN "*.comp")
 
 # The package. The static libraries' private dependencies are link dependencies of the

@@ -14,7 +14,7 @@ set(AVSM_SPIRV_DIR "${CMAKE_BINARY_DIR}/spirv" CACHE INTERNAL "Compiled SPIR-V")
 set(AVSM_SHADER_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/shaders" CACHE INTERNAL "GLSL include root")
 # The shadow techniques' lookups ("techniques/<name>/<name>.glsl") and the dispatch over
 # them that cmake/ShadowTechniques.cmake generates.
-set(AVSM_TECHNIQUE_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/passes" CACHE INTERNAL "GLSL include root of the techniques")
+set(AVSM_TECHNIQUE_INCLUDE_DIR "${CMAKE_SOURCE_DIR}/passes/shadows" CACHE INTERNAL "GLSL include root of the techniques")
 set(AVSM_GENERATED_GLSL_DIR "${AVSM_SPIRV_DIR}/glsl" CACHE INTERNAL "Generated GLSL")
 
 # One glslangValidator command: `abs` (GLSL) to `out` (SPIR-V) with extra flags.

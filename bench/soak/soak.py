@@ -5,7 +5,7 @@
           [--hair-every K] [--checkpoints F,F,...] [--flat-from F] [--tolerance PCT]
           [--watchdog S] [--progress F] [--work DIR]
 
-Copies the shader sources (SHADERS_DIR, the repository's shaders/, with passes/techniques)
+Copies the shader sources (SHADERS_DIR, the repository's shaders/, with passes/shadows/techniques)
 and the scene folder (SCENE_DIR, the generated default scene) into a work folder, sets
 every light's shadow resolution to --shadow-res and keeps every --hair-every-th hair
 strand in the copy (the hair passes dominate a CPU device's frame), and drives
@@ -97,7 +97,7 @@ class Workspace:
         shutil.rmtree(work, ignore_errors=True)
         self.source_root = work / "src"
         shutil.copytree(shaders, self.source_root / "shaders")
-        # The shadow techniques' lookups, which the shaders include (passes/techniques/<name>/<name>.glsl).
+        # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
         shutil.copytree(shaders.parent / "passes" / "techniques", self.source_root / "passes" / "techniques")
         shutil.copytree(scene_dir, work / "scene")
         self.scene_file = work / "scene" / "scene.json"

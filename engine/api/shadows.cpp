@@ -10,9 +10,9 @@
 
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
-#include "passes/shadow_maps.h"
-#include "passes/shadow_pass_list_builder.h"
-#include "passes/view.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/shadows/shadow_pass_list_builder.h"
+#include "passes/frame/view.h"
 #include "shared/volume.h"
 
 #ifndef AVSM_NANOVDB_INCLUDE_DIR

@@ -25,7 +25,7 @@
 #include "gpu/shader_compiler.h"
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
@@ -120,7 +120,7 @@ void report_lowered_resolutions(const renderer::SceneRenderer& frame, const scen
 
 // The fixed build keeps one blocker per light texel, so a blended (alphaMode BLEND)
 // caster cannot be translucent there: it blocks only where its alpha is 1 and lets all
-// light through elsewhere (passes/light_depth_pass.h). Says so for every light built
+// light through elsewhere (passes/shadows/fixed_build/light_depth_pass.h). Says so for every light built
 // that way while the scene has such casters; the lists build casts them translucently.
 void report_blend_casters_in_fixed_builds(const scene::Scene& scene) {
   std::set<std::string> blended;

@@ -24,7 +24,7 @@ struct CaptureOptions {
   uint32_t width = 1280;
   uint32_t height = 720;
   uint32_t frames = 5;  // timing statistics over frames after the first (warm-up)
-  // Frames the CPU records ahead of the GPU (passes/frames_in_flight.h): 1 submits and
+  // Frames the CPU records ahead of the GPU (passes/frame/frames_in_flight.h): 1 submits and
   // waits for each frame; 2 records frame N+1 while the GPU runs frame N.
   uint32_t frames_in_flight = 2;
   bool validation = false;

@@ -5,7 +5,7 @@
 #include <functional>
 #include <optional>
 
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 namespace avsm::capture {
 namespace {

@@ -10,7 +10,7 @@
 #include "gpu/transfer.h"
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
-#include "passes/shadow_debug_pass.h"
+#include "passes/shadows/inspection/shadow_debug_pass.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 
@@ -34,7 +34,7 @@ TimingReport timing_report(const FrameOutputSources& frame) {
   return report;
 }
 
-// light<i>_transmittance.png: each light's map as grey levels (passes/shadow_debug_pass.h).
+// light<i>_transmittance.png: each light's map as grey levels (passes/shadows/inspection/shadow_debug_pass.h).
 void write_light_images(const FrameOutputSources& frame, const fs::path& out_dir) {
   const std::vector<gpu::Image>& images = frame.renderer.light_images();
   for (size_t i = 0; i < images.size() && i < frame.scene.lights.size(); ++i)

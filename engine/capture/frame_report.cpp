@@ -8,7 +8,7 @@
 #include "capture/frame_outputs.h"
 #include "capture/json_read.h"
 #include "capture/pass_stages.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 namespace avsm::capture {
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "capture/quality.h"
-#include "passes/shadow_stats.h"
+#include "passes/shadows/shadow_stats.h"
 #include "scene/bounds.h"
 #include "scene/volume.h"
 

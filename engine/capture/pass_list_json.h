@@ -1,12 +1,12 @@
 #pragma once
-// The shadow pass list (passes/shadow_pass_list.h) as JSON: what avsm-capture
+// The shadow pass list (passes/shadows/shadow_pass_list.h) as JSON: what avsm-capture
 // --dump-passes writes, for the author of a host's frame graph to read. Vulkan values
 // by name ("COMPUTE_SHADER", "SHADER_STORAGE_WRITE", "GENERAL", "STORAGE_BUFFER");
 // no handles, so the same scene and settings give the same file on any device.
 #include <filesystem>
 #include <string>
 
-#include "passes/shadow_pass_list.h"
+#include "passes/shadows/shadow_pass_list.h"
 
 namespace avsm::capture {
 

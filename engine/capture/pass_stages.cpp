@@ -11,7 +11,7 @@ bool has(std::string_view text, std::string_view part) { return text.find(part) 
 bool starts_with(std::string_view text, std::string_view start) { return text.substr(0, start.size()) == start; }
 
 // A shadow map's passes are named "light <index>[ face|cascade|cluster <index>] <what>"
-// (passes/shadow_maps.cpp).
+// (passes/shadows/shadow_maps.cpp).
 bool is_light_pass(std::string_view name) {
   return starts_with(name, "light ") && name.size() > 6 && std::isdigit(static_cast<unsigned char>(name[6]));
 }

@@ -18,8 +18,8 @@
 #include "capture/frame_report.h"
 #include "capture/html.h"
 #include "io/image_io.h"
-#include "passes/shadow_maps.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/shadows/techniques/techniques.h"
 
 namespace avsm::capture {
 namespace fs = std::filesystem;

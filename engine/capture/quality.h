@@ -1,6 +1,6 @@
 #pragma once
 // Shadow quality against the exact reference, on the CPU side of avsm-capture:
-//  - --compare-to uncompressed: the per-pixel errors of passes/shadow_quality_pass.h
+//  - --compare-to uncompressed: the per-pixel errors of passes/camera/quality/shadow_quality_pass.h
 //    summed up per light into quality.json, and light<i>_error.png per light;
 //  - --plot-texel LIGHT:X,Y: one texel's transmittance curve, technique over the
 //    exact curve, as curve_<light index>_<x>_<y>.svg (like Figures 6-7 of the AVSM paper).
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "passes/light_view.h"
-#include "passes/shadow_probe_pass.h"
-#include "passes/shadow_quality_hair_pass.h"
-#include "passes/shadow_quality_pass.h"
+#include "passes/shadows/light_view.h"
+#include "passes/shadows/inspection/shadow_probe_pass.h"
+#include "passes/camera/quality/shadow_quality_hair_pass.h"
+#include "passes/camera/quality/shadow_quality_pass.h"
 #include "scene/scene.h"
 
 namespace avsm::gpu {

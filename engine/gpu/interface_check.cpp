@@ -15,9 +15,11 @@ const char* stage_name(VkShaderStageFlagBits stage) {
   }
 }
 
-// "shaders/passes/x.comp" out of an absolute path.
+// "shaders/passes/x.comp", or a shadow technique's "passes/shadows/techniques/x/y.comp",
+// out of an absolute path.
 std::string relative_to_repository(std::string path) {
-  if (size_t at = path.rfind("shaders/"); at != std::string::npos) path = path.substr(at);
+  for (const char* root : {"shaders/", "passes/"})
+    if (size_t at = path.rfind(root); at != std::string::npos) return path.substr(at);
   return path;
 }
 

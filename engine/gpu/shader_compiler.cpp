@@ -161,7 +161,7 @@ std::vector<uint32_t> read_spirv_file(const fs::path& path) {
 
 std::vector<std::filesystem::path> glsl_include_dirs(const ShaderLibrary::Paths& paths) {
   std::vector<std::filesystem::path> dirs;
-  for (const std::filesystem::path& dir : {paths.source_root / "shaders", paths.source_root / "passes",
+  for (const std::filesystem::path& dir : {paths.source_root / "shaders", paths.source_root / "passes" / "shadows",
                                            paths.spirv_root / "glsl", std::filesystem::path(AVSM_NANOVDB_INCLUDE_DIR)})
     if (std::filesystem::is_directory(dir)) dirs.push_back(dir);
   return dirs;

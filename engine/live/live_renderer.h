@@ -25,7 +25,7 @@
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "live/file_watcher.h"
-#include "passes/shadow_maps.h"
+#include "passes/shadows/shadow_maps.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 

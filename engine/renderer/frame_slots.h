@@ -1,5 +1,5 @@
 #pragma once
-// Frames in flight (passes/frames_in_flight.h): one slot per frame the CPU may record
+// Frames in flight (passes/frame/frames_in_flight.h): one slot per frame the CPU may record
 // ahead of the GPU, each with its command buffer, fence and frame-graph executor (whose
 // transient heaps and timestamp queries serve the frame that last used the slot, so
 // they are never replaced while the GPU uses them). Slots are used in turn and their

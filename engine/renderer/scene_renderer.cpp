@@ -5,8 +5,8 @@
 #include <string>
 
 #include "gpu/context.h"
-#include "passes/lights.h"
-#include "passes/shadow_pass_list_builder.h"
+#include "passes/frame/lights.h"
+#include "passes/shadows/shadow_pass_list_builder.h"
 
 namespace avsm::renderer {
 

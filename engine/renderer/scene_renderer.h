@@ -1,13 +1,13 @@
 #pragma once
 // Renders a loaded scene through the frame graph: per light its transmittance
-// map (passes/shadow_maps.h), then opaque geometry, fog volumes, hair, all shaded
+// map (passes/shadows/shadow_maps.h), then opaque geometry, fog volumes, hair, all shaded
 // with those maps, then tonemapping. The volumes are seen the fast way (lighting
 // cache, reduced-resolution march and upsample, per-vertex hair lighting) or the
 // reference way (full-resolution march with shadow lookups along every ray), as the
 // scene's volume_shading says. Owns the per-scene GPU data and the frame's output
 // images; each frame declares its passes anew (the executor reuses the plan).
 //
-// Frames in flight (set_frames_in_flight; passes/frames_in_flight.h): each frame is
+// Frames in flight (set_frames_in_flight; passes/frame/frames_in_flight.h): each frame is
 // declared into a frame slot, whose lights, shadow parameters, counters and readbacks
 // are its own; the caller records slot s again only after the frame it last held
 // completed (renderer/frame_slots.h keeps a command buffer, fence and executor per slot).
@@ -19,21 +19,21 @@
 #include <string>
 
 #include "gpu/resources.h"
-#include "passes/hair_lighting_pass.h"
-#include "passes/hair_pass.h"
-#include "passes/opaque_pass.h"
-#include "passes/shadow_maps.h"
-#include "passes/shadow_pass_list.h"
-#include "passes/shadow_debug_pass.h"
-#include "passes/shadow_probe_pass.h"
-#include "passes/shadow_quality_hair_pass.h"
-#include "passes/shadow_quality_pass.h"
-#include "passes/tonemap_pass.h"
-#include "passes/view.h"
-#include "passes/volume_cached_march_pass.h"
-#include "passes/volume_lighting_cache_pass.h"
-#include "passes/volume_pass.h"
-#include "passes/volume_upsample_pass.h"
+#include "passes/camera/hair/hair_lighting_pass.h"
+#include "passes/camera/hair/hair_pass.h"
+#include "passes/camera/surfaces/opaque_pass.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/shadows/shadow_pass_list.h"
+#include "passes/shadows/inspection/shadow_debug_pass.h"
+#include "passes/shadows/inspection/shadow_probe_pass.h"
+#include "passes/camera/quality/shadow_quality_hair_pass.h"
+#include "passes/camera/quality/shadow_quality_pass.h"
+#include "passes/camera/tonemap_pass.h"
+#include "passes/frame/view.h"
+#include "passes/camera/volumes/volume_cached_march_pass.h"
+#include "passes/camera/volumes/volume_lighting_cache_pass.h"
+#include "passes/camera/volumes/volume_pass.h"
+#include "passes/camera/volumes/volume_upsample_pass.h"
 
 #include "scene/scene.h"
 
@@ -89,25 +89,25 @@ class SceneRenderer {
   std::vector<std::vector<float>> probe_results() const;
 
   // Evaluates single texels' curves (technique and exact reference) at chosen light
-  // depths in each frame (passes/shadow_probe_pass.h, texel-curve mode); results in
+  // depths in each frame (passes/shadows/inspection/shadow_probe_pass.h, texel-curve mode); results in
   // texel_results() once the frame completed. Throws std::invalid_argument for a
   // light or texel the shadow maps do not have.
   void set_texel_samples(const std::vector<passes::TexelSample>& samples);
   std::vector<passes::TexelSampleResult> texel_results() const;
 
   // Measures every light's shadows against the exact reference, per camera pixel, at
-  // the receivers the camera sees (passes/shadow_quality_pass.h), in each frame after
+  // the receivers the camera sees (passes/camera/quality/shadow_quality_pass.h), in each frame after
   // the camera passes. Needs ShadowOptions::keep_reference (std::logic_error without).
   // quality_results() once the frame completed: [light][pixel], row 0 at the top.
   void enable_quality();
   std::vector<passes::PixelShadowError> quality_results() const;
-  // The same at the hair the camera sees (passes/shadow_quality_hair_pass.h):
+  // The same at the hair the camera sees (passes/camera/quality/shadow_quality_hair_pass.h):
   // [light * hair_receiver_count() + receiver], -1 where a strand vertex is not a receiver.
   std::vector<float> hair_quality_results() const;
   uint32_t hair_receiver_count() const { return hair_quality_ ? hair_quality_->receiver_count() : 0; }
 
   // Renders a picture of every light's transmittance map in each frame
-  // (passes/shadow_debug_pass.h); light_images() after the frame completed.
+  // (passes/shadows/inspection/shadow_debug_pass.h); light_images() after the frame completed.
   void enable_light_images();
   const std::vector<gpu::Image>& light_images() const;
 
@@ -117,7 +117,7 @@ class SceneRenderer {
   void finish_frame(uint32_t slot = 0);
   const passes::ShadowMaps& shadows() const { return shadows_; }
   // The shadow work build_frame() would declare for `view` into `slot`, as a pass list
-  // (passes/shadow_pass_list.h): what avsm-capture --dump-passes writes.
+  // (passes/shadows/shadow_pass_list.h): what avsm-capture --dump-passes writes.
   passes::ShadowPassList describe_shadows(const passes::View& view, uint32_t slot = 0);
   // Fits the maps that follow the camera to `view` before the next frame (ShadowMaps::follow_camera).
   void fit_shadows_to(const passes::View& view) { shadows_.follow_camera(view); }

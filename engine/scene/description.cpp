@@ -281,7 +281,7 @@ std::vector<Entry> read_list(ObjectReader& top, const std::string& key, ReadEntr
 
 ShadowOverrides read_shadow_overrides(ObjectReader& object) {
   ShadowOverrides shadow;
-  // A name; which names exist is the renderer's registry's to say (passes/techniques/).
+  // A name; which names exist is the renderer's registry's to say (passes/shadows/techniques/).
   shadow.technique = object.optional("technique") ? std::optional(object.string("technique")) : std::nullopt;
   object.check(!shadow.technique || !shadow.technique->empty(), "technique", "must name a shadow technique");
   auto whole_number = [&](const char* key, bool (*allowed)(int), const std::string& range) {

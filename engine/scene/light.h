@@ -31,7 +31,7 @@ enum class ShadowFit { view, scene };
 
 struct ShadowSettings {
   // A shadow technique by name: avsm (adaptive volumetric shadow maps, Salvi et al.
-  // 2010), uncompressed (the exact reference) or another of passes/techniques/. The
+  // 2010), uncompressed (the exact reference) or another of passes/shadows/techniques/. The
   // scene file only checks it is a name; the renderer checks it is a known one.
   std::string technique = "avsm";
   int nodes = 8;                 // 4, 8, 12 or 16

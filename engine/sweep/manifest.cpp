@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "capture/capture_args.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 #include "scene/binary_reader.h"
 #include "scene/description.h"
 #include "scene/json_reader.h"

@@ -1,5 +1,5 @@
 #include "viewer/control_commands.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 #include <cmath>
 #include <sstream>

@@ -14,7 +14,7 @@
 
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
-#include "passes/frames_in_flight.h"
+#include "passes/frame/frames_in_flight.h"
 
 namespace avsm::gpu {
 class Context;

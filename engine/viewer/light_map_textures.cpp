@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gpu/context.h"
-#include "passes/shadow_debug_pass.h"
+#include "passes/shadows/inspection/shadow_debug_pass.h"
 
 namespace avsm::viewer {
 

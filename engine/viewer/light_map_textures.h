@@ -1,5 +1,5 @@
 #pragma once
-// Sampled copies of the renderer's light images (passes/shadow_debug_pass.h), so
+// Sampled copies of the renderer's light images (passes/shadows/inspection/shadow_debug_pass.h), so
 // the panel can show every light's transmittance map and let the user click a
 // texel. The renderer's own images are storage images the next frame rewrites;
 // the copies are made at the end of each scene frame, in its command buffer.

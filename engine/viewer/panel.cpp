@@ -8,7 +8,7 @@
 
 #include "capture/frame_outputs.h"
 #include "capture/frame_report.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 namespace avsm::viewer {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "live/live_renderer.h"
-#include "passes/shadow_maps.h"
+#include "passes/shadows/shadow_maps.h"
 #include "viewer/camera_controller.h"
 #include "viewer/scene_overrides.h"
 #include "viewer/texel_inspector.h"

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "scene/scene.h"
 
 namespace avsm::viewer {

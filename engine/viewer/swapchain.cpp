@@ -5,7 +5,7 @@
 
 #include "gpu/context.h"
 #include "gpu/vk_check.h"
-#include "passes/frames_in_flight.h"
+#include "passes/frame/frames_in_flight.h"
 #include "viewer/window.h"
 
 namespace avsm::viewer {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "capture/files.h"
-#include "passes/shadow_maps.h"
+#include "passes/shadows/shadow_maps.h"
 #include "viewer/scene_picking.h"
 
 namespace avsm::viewer {

@@ -4,7 +4,7 @@
 // pixel: which level-0 texel of the light's map it falls in, and that texel's
 // transmittance curve over the light's whole depth range, for the light's technique
 // and for the exact (uncompressed) curve, evaluated by the renderer's texel-curve
-// probes (passes/shadow_probe_pass.h; needs ShadowOptions::keep_reference).
+// probes (passes/shadows/inspection/shadow_probe_pass.h; needs ShadowOptions::keep_reference).
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "capture/quality.h"
-#include "passes/light_view.h"
-#include "passes/shadow_probe_pass.h"
-#include "passes/view.h"
+#include "passes/shadows/light_view.h"
+#include "passes/shadows/inspection/shadow_probe_pass.h"
+#include "passes/frame/view.h"
 #include "scene/scene.h"
 
 namespace avsm::gpu {

@@ -12,7 +12,7 @@
 // dropped iterations for some lanes after long divergent loops and stored corrupt
 // curves. No array is indexed by a value that differs between lanes.
 //
-// C++ includes this file through passes/avsm_core.h, which defines AVSM_INOUT
+// C++ includes this file through passes/shadows/techniques/avsm/avsm_core.h, which defines AVSM_INOUT
 // and brings GLSL's built-ins (min, max, abs, mix, exp, pow) in from GLM. Keep
 // to the common subset: no GLSL-only syntax, float literals with an f suffix.
 #ifndef AVSM_CORE_GLSL
@@ -24,7 +24,7 @@
 
 // Loops over a curve's slots: unrolled, so that every slot is a register. The compiler
 // unrolls short loops by itself (on lavapipe up to 16 iterations) and not the 18 of a
-// 16-node curve without being asked. C++ (passes/avsm_core.h) defines it empty.
+// 16-node curve without being asked. C++ (passes/shadows/techniques/avsm/avsm_core.h) defines it empty.
 #ifndef AVSM_UNROLL
 #extension GL_EXT_control_flow_attributes : require
 #define AVSM_UNROLL [[unroll]]

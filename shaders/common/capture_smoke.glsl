@@ -1,4 +1,4 @@
-// Smoke seen from a light (passes/capture_smoke_pass.h): one thread per light texel
+// Smoke seen from a light (passes/shadows/capture/capture_smoke_pass.h): one thread per light texel
 // marches the fog volumes (common/smoke_light_march.glsl) and appends each segment to
 // the texel's list. The density comes from the brick atlas where the includer defines
 // AVSM_VOLUME_BINDING_ATLAS (capture_smoke.comp), else from NanoVDB
@@ -21,7 +21,7 @@ void smoke_light_segment(ivec2 texel, float entry_depth, float exit_depth, float
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-#include "shared/passes/capture_smoke.h"
+#include "shared/passes/shadows/capture/capture_smoke.h"
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

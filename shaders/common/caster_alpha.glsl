@@ -1,5 +1,5 @@
 // How much light a mesh caster lets through at a fragment, from its material's alpha
-// (passes/caster_alpha.h; shared/mesh.h's kCasterAlpha* modes): opaque 0; mask 0 where
+// (passes/frame/caster_alpha.h; shared/mesh.h's kCasterAlpha* modes): opaque 0; mask 0 where
 // the alpha reaches the cutoff, else 1; blend 1 - alpha. Alpha is the base colour
 // factor's times the base-colour texture's at the caster's uv.
 // Before including: the push block `pc` with GPU_CASTER_ALPHA_PUSH's members, and

@@ -1,5 +1,5 @@
 // A light's map built straight from its casters, without per-fragment lists
-// (passes/fixed_build_pass.h): one workgroup per 8x8 tile of the map, one thread per
+// (passes/shadows/fixed_build/fixed_build_pass.h): one workgroup per 8x8 tile of the map, one thread per
 // texel, the texel's state (an AVSM curve, opacity planes, Fourier terms) in registers
 // from start to end. Each texel takes, in this order:
 //   1. the nearest opaque caster (the light depth image) as one blocking segment;
@@ -16,7 +16,7 @@
 //   void fixed_clear();                        // the empty texel
 //   void fixed_take(float entry_depth, float exit_depth, float transmittance);
 //   void fixed_store(uint texel_index);        // into `map_texels`
-// and may read `pc` (shared/passes/fixed_build.h).
+// and may read `pc` (shared/passes/shadows/fixed_build/fixed_build.h).
 #ifndef AVSM_FIXED_BUILD_GLSL
 #define AVSM_FIXED_BUILD_GLSL
 #extension GL_GOOGLE_include_directive : require
@@ -28,7 +28,7 @@
 #define AVSM_VOLUME_BINDING_ATLAS 3  // the atlas, and its brick slots at 4
 #define AVSM_HAIR_BINDING 5          // points, segments, strands
 #include "shared/hair_bins.h"
-#include "shared/passes/fixed_build.h"
+#include "shared/passes/shadows/fixed_build/fixed_build.h"
 
 // The numbers packed in pc.sizes (fixed_build_sizes()).
 uint fixed_technique_size() { return pc.sizes & 0xffu; }

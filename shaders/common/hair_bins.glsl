@@ -1,4 +1,4 @@
-// Binning hair strand segments into a light's 8x8-texel tiles (passes/hair_bins_pass.h;
+// Binning hair strand segments into a light's 8x8-texel tiles (passes/shadows/fixed_build/hair_bins_pass.h;
 // the layout is shared/hair_bins.h). Count, scan and fill are three passes so that a
 // tile's bin is one contiguous range: the count pass adds every segment to the tiles
 // its ribbon's box overlaps, the scan gives each tile its range (or kHairBinOverflow
@@ -7,7 +7,7 @@
 #define AVSM_HAIR_BINS_GLSL
 #extension GL_GOOGLE_include_directive : require
 #include "shared/hair_bins.h"
-#include "shared/passes/hair_bins.h"
+#include "shared/passes/shadows/fixed_build/hair_bins.h"
 #ifdef AVSM_HAIR_BINS_SEGMENTS
 #include "common/hair_footprint.glsl"
 #endif

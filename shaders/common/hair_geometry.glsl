@@ -4,7 +4,7 @@
 // fixed-memory build cover light texels with it themselves). Pure functions of the
 // segment's two points, its strand's width and opacity: the includers read the buffers.
 //
-// C++ includes this file through passes/hair_geometry.h, which defines AVSM_OUT and
+// C++ includes this file through passes/frame/hair_geometry.h, which defines AVSM_OUT and
 // brings GLSL's types and built-ins in from GLM, so tests can reproduce the GPU's
 // coverage and depths on the CPU with the same arithmetic. Keep to the common subset:
 // no swizzles, no array constructors, float literals with an f suffix, out

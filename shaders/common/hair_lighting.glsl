@@ -1,4 +1,4 @@
-// The body of the hair lighting passes (passes/hair_lighting_pass.h): one thread per
+// The body of the hair lighting passes (passes/camera/hair/hair_lighting_pass.h): one thread per
 // strand vertex computes its Kajiya-Kay diffuse lighting with every light's shadow
 // lookup, and the fog between the camera and the vertex (the smoke's in-scattering
 // and transmittance), which the hair pass interpolates along each ribbon. The 2010
@@ -13,7 +13,7 @@
 
 #extension GL_GOOGLE_include_directive : require
 #include "shared/hair.h"
-#include "shared/passes/hair_lighting.h"
+#include "shared/passes/camera/hair/hair_lighting.h"
 
 layout(local_size_x = 64) in;
 

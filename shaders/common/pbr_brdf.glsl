@@ -9,7 +9,7 @@
 // pi x f(l, v) x light x (n . l), and a Lambert-white surface head-on gives the light's
 // value back, as it did before this BRDF.
 //
-// C++ includes this file through passes/pbr_brdf.h, which brings GLSL's types and
+// C++ includes this file through passes/camera/surfaces/pbr_brdf.h, which brings GLSL's types and
 // built-ins in from GLM. Keep to the common subset: no GLSL-only syntax (swizzles
 // such as .zw, constructors of structs), float literals with an f suffix.
 #ifndef AVSM_PBR_BRDF_GLSL

@@ -86,7 +86,7 @@ float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.
 const float kShadowOpaque = 1e-4;
 
 // shadow_texel_transmittance(s, level, texel, d): the light's technique's texel
-// lookup, dispatched over the registry (passes/techniques/registry.h) by the code the
+// lookup, dispatched over the registry (passes/shadows/techniques/registry.h) by the code the
 // build generates (cmake/ShadowTechniques.cmake).
 #include "techniques_lookup.glsl"
 
@@ -182,7 +182,7 @@ vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
 }
 
 // The face of a point light's cube that direction d (from the light) leaves through:
-// its major axis, in the order +x -x +y -y +z -z (passes/light_view.cpp builds the faces
+// its major axis, in the order +x -x +y -y +z -z (passes/shadows/light_view.cpp builds the faces
 // so, each a little wider than 90 degrees, so filtering at a face's edge reads texels
 // the face captured).
 uint shadow_cube_face(vec3 d) {

@@ -3,7 +3,7 @@
 // segments of `samples_per_segment` samples that never cross an empty brick, so each
 // carries its exact transmittance exp(-tau). The capture appends them to lists
 // (common/capture_smoke.glsl); the fixed-memory build inserts them into the texel's
-// curve as the march goes (passes/avsm_fixed_build.comp).
+// curve as the march goes (passes/shadows/techniques/avsm/avsm_fixed_build.comp).
 //
 // Before including, define the volume bindings (common/volume.glsl; with
 // AVSM_VOLUME_BINDING_ATLAS the density comes from the brick atlas, else from NanoVDB)

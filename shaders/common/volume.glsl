@@ -6,7 +6,7 @@
 //   AVSM_VOLUME_BINDING_NANOVDB    every volume's NanoVDB grid, one after another
 //   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid, one after another
 //   AVSM_VOLUME_BINDING_PARAMETERS one GpuVolume per volume
-// optionally, for the density brick atlas (passes/volume_density_atlas.h):
+// optionally, for the density brick atlas (passes/frame/volume_density_atlas.h):
 //   AVSM_VOLUME_BINDING_ATLAS      the atlas (sampler3D) at this binding, every
 //                                  brick's atlas slot (uint buffer) at +1
 // and, to get the brick walk (walk_volume_bricks), AVSM_VOLUME_WALK_STATE: the

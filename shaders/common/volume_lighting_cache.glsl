@@ -1,4 +1,4 @@
-// The volume lighting cache (passes/volume_lighting_cache_pass.h): per fog volume a
+// The volume lighting cache (passes/camera/volumes/volume_lighting_cache_pass.h): per fog volume a
 // box of cells over its support, each holding the radiance scattered towards the
 // camera per unit sigma_s at its centre (sum over lights of radiance * phase * the
 // light's map transmittance). All volumes' boxes are stacked along z in one 3D image.

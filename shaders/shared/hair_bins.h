@@ -1,5 +1,5 @@
 // Hair strand segments binned into light-space tiles for the fixed-memory AVSM build
-// (passes/hair_bins_pass.h, shaders/passes/avsm_fixed_build.comp). Per tile three
+// (passes/shadows/fixed_build/hair_bins_pass.h, passes/shadows/techniques/avsm/avsm_fixed_build.comp). Per tile three
 // words: how many segments overlap it, where its bin starts in the entry buffer
 // (kHairBinOverflow: it did not fit, the build walks every segment for that tile) and
 // a fill cursor. Entries are segment indices.
@@ -21,7 +21,7 @@ GPU_FUNCTION uint hair_tile_count_word(uint tile) { return kHairTileWords * tile
 GPU_FUNCTION uint hair_tile_offset_word(uint tile) { return kHairTileWords * tile + 1u; }
 GPU_FUNCTION uint hair_tile_cursor_word(uint tile) { return kHairTileWords * tile + 2u; }
 
-// The light's capture counter words in the fixed build (passes/capture_lists.h has the lists').
+// The light's capture counter words in the fixed build (passes/shadows/capture/capture_lists.h has the lists').
 GPU_CONST(uint, kFixedCounterInserted, 0u)     // segments inserted into curves
 GPU_CONST(uint, kFixedCounterBinEntries, 2u)   // bin entries asked for
 GPU_CONST(uint, kFixedCounterTilesWalked, 3u)  // tiles whose bin did not fit

@@ -27,7 +27,7 @@ GPU_STRUCT(CasterVertex, GPU_CASTER_VERTEX)
 GPU_STRUCT(GpuMaterial, GPU_MATERIAL)
 
 // How a mesh caster's base-colour alpha casts into the shadow maps (glTF alphaMode;
-// passes/shadow_casters.h, shaders/common/caster_alpha.glsl): opaque blocks, mask blocks
+// passes/shadows/shadow_casters.h, shaders/common/caster_alpha.glsl): opaque blocks, mask blocks
 // where alpha >= cutoff, blend lets 1 - alpha through.
 GPU_CONST(uint, kCasterAlphaOpaque, 0u)
 GPU_CONST(uint, kCasterAlphaMask, 1u)

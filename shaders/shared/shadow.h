@@ -9,7 +9,7 @@
 GPU_NAMESPACE_BEGIN
 
 // GpuShadow::technique: a light without shadows; the techniques' codes follow their
-// registry order from 1 (passes/techniques/registry.h).
+// registry order from 1 (passes/shadows/techniques/registry.h).
 GPU_CONST(uint, kShadowNone, 0u)
 // GpuShadow::filter_mode
 GPU_CONST(uint, kFilterPoint, 0u)

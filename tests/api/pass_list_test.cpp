@@ -13,7 +13,7 @@
 
 #include "avsm/shadows_rendergraph.h"
 #include "gpu/resources.h"
-#include "passes/shadow_pass_list_builder.h"
+#include "passes/shadows/shadow_pass_list_builder.h"
 
 namespace avsm {
 namespace {

@@ -23,8 +23,8 @@
 #include "avsm/shadows_rendergraph.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
-#include "passes/shadow_maps.h"
-#include "passes/shadow_probe_pass.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/shadows/inspection/shadow_probe_pass.h"
 #include "renderer/frame_slots.h"
 #include "support/gpu_test.h"
 

@@ -1,6 +1,6 @@
 // The AVSM core (shaders/avsm/avsm_core.glsl) on the CPU, against the exact
 // product of the inserted segments.
-#include "passes/avsm_core.h"
+#include "passes/shadows/techniques/avsm/avsm_core.h"
 
 #include <gtest/gtest.h>
 

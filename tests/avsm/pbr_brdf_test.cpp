@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "passes/pbr_brdf.h"
+#include "passes/camera/surfaces/pbr_brdf.h"
 
 namespace avsm {
 namespace {

@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "passes/deep_shadow.h"
-#include "passes/opacity_maps.h"
+#include "passes/shadows/techniques/dsm/deep_shadow.h"
+#include "passes/shadows/techniques/opacity_maps.h"
 
 namespace avsm {
 namespace {

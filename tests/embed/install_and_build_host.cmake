@@ -34,9 +34,9 @@ foreach(file IN LISTS package_files)
     endif()
   endforeach()
 endforeach()
-foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/shadows_rendergraph.h include/avsm/passes/shadow_pass_list.h
+foreach(expected IN ITEMS include/avsm/shadows.h include/avsm/shadows_rendergraph.h include/avsm/passes/shadows/shadow_pass_list.h
                           include/avsm/gpu/context.h include/avsm/rendergraph/graph.h
-                          share/avsm/shaders/common/shadow_lookup.glsl share/avsm/spirv/shaders/passes/avsm_resolve.comp.AVSM_NODES-8.spv)
+                          share/avsm/shaders/common/shadow_lookup.glsl share/avsm/spirv/passes/shadows/techniques/avsm/avsm_resolve.comp.AVSM_NODES-8.spv)
   if(NOT EXISTS "${WORK}/prefix/${expected}")
     message(FATAL_ERROR "the install lacks ${expected}")
   endif()

@@ -7,7 +7,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "shared/lights.h"
-#include "shared/passes/volume_lighting_cache.h"
+#include "shared/passes/camera/volumes/volume_lighting_cache.h"
 #include "support/gpu_test.h"
 #include "tests/graph_fill.h"
 #include "tests/misaligned.h"
@@ -51,7 +51,7 @@ TEST_F(GpuTest, PushConstantsWithoutACppDeclarationAreRefused) {
 
 TEST_F(GpuTest, SharedStructsMatchTheirShaders) {
   EXPECT_EQ(interface_error(ctx(), shaders(), "shaders/tests/graph_fill.comp"), "");
-  EXPECT_EQ(interface_error(ctx(), shaders(), "shaders/passes/volume_lighting_cache.comp"), "");
+  EXPECT_EQ(interface_error(ctx(), shaders(), "shaders/passes/camera/volumes/volume_lighting_cache.comp"), "");
 }
 
 TEST_F(GpuTest, PushingAnotherStructIsRefused) {

@@ -21,7 +21,7 @@
 #include "gpu/transfer.h"
 #include "gpu/vk_check.h"
 #include "live/live_renderer.h"
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "rendergraph/vulkan/executor.h"
 #include "support/gpu_test.h"
 
@@ -83,9 +83,9 @@ class LiveRendererTest : public testing::GpuTest {
     fs::remove_all(root_);
     fs::create_directories(root_ / "content");
     fs::copy(fs::path(AVSM_SOURCE_ROOT) / "shaders", root_ / "shaders", fs::copy_options::recursive);
-    // The shadow techniques' lookups, which the shaders include (passes/techniques/<name>/<name>.glsl).
-    fs::create_directories(root_ / "passes");
-    fs::copy(fs::path(AVSM_SOURCE_ROOT) / "passes/techniques", root_ / "passes/techniques", fs::copy_options::recursive);
+    // The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
+    fs::create_directories(root_ / "passes/shadows");
+    fs::copy(fs::path(AVSM_SOURCE_ROOT) / "passes/shadows/techniques", root_ / "passes/shadows/techniques", fs::copy_options::recursive);
     const fs::path stage_dir = fs::path(AVSM_DEFAULT_SCENE).parent_path();
     fs::copy_file(stage_dir / "stage.gltf", root_ / "content/stage.gltf");
     fs::copy_file(stage_dir / "stage.bin", root_ / "content/stage.bin");
@@ -145,7 +145,7 @@ TEST_F(LiveRendererTest, NothingChangedMeansNothingReloads) {
   EXPECT_TRUE(watches(scene_file()));
   EXPECT_TRUE(watches(root_ / "content/stage.gltf"));
   EXPECT_TRUE(watches(root_ / "content/stage.bin"));  // the glTF's buffer
-  EXPECT_TRUE(watches(shader("passes/tonemap.comp")));
+  EXPECT_TRUE(watches(shader("passes/camera/tonemap.comp")));
   EXPECT_TRUE(watches(shader("common/shadow_lookup.glsl")));
 }
 
@@ -155,7 +155,7 @@ TEST_F(LiveRendererTest, BrokenShaderKeepsTheLastPipelineAndFixedShaderSwapsIn) 
   renderer::SceneRenderer* const good_renderer = &live.renderer();
 
   // A syntax error: the old pipelines keep rendering the same picture.
-  const fs::path tonemap = shader("passes/tonemap.comp");
+  const fs::path tonemap = shader("passes/camera/tonemap.comp");
   replace_in_file(tonemap, "vec3 mapped = filmic(c);", "vec3 mapped = filmic(c) oops;");
   PollResult broken = live.poll();
   EXPECT_TRUE(broken.failed);
@@ -351,7 +351,7 @@ class EditorSaveTest : public LiveRendererTest {
     const std::string scene = kSceneJson;
     const fs::path gltf = root_ / "content/stage.gltf";
     const std::string stage = read_text(gltf);
-    const fs::path tonemap = shader("passes/tonemap.comp");
+    const fs::path tonemap = shader("passes/camera/tonemap.comp");
     const std::string tonemapper = read_text(tonemap);
     return {
         {"scene file", scene_file(),

@@ -1,4 +1,4 @@
-// Material alpha in the shadow maps (MeshDraw::alpha, passes/caster_alpha.h): under a
+// Material alpha in the shadow maps (MeshDraw::alpha, passes/frame/caster_alpha.h): under a
 // directional light, a masked quad whose texture is a checker of alpha 0 and 1 (cutoff
 // 0.5) lets the light through its holes and blocks it elsewhere, built from lists and
 // in fixed memory; blended quads (alpha from factor x texture, and from the factor
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_test.h"

@@ -1,5 +1,5 @@
 // The AVSM shadow passes on the device, inside a frame graph, under validation:
-//  - AvsmResolvePass against the C++ core (passes/avsm_core.h) run over the same lists,
+//  - AvsmResolvePass against the C++ core (passes/shadows/techniques/avsm/avsm_core.h) run over the same lists,
 //    node by node, and exact where the node budget holds the whole curve;
 //  - AvsmMipsPass against the CPU mip chain (avsm_mip_merge), with odd sizes;
 //  - the sort on lists of up to 20,000 segments beside short ones, against the CPU;
@@ -34,16 +34,16 @@
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
-#include "passes/avsm_core.h"
-#include "passes/avsm_map_layout.h"
-#include "passes/avsm_mips_pass.h"
-#include "passes/avsm_resolve_pass.h"
-#include "passes/capture_lists.h"
-#include "passes/capture_sort_pass.h"
-#include "passes/hair_geometry.h"
-#include "passes/light_view.h"
-#include "passes/shadow_maps.h"
-#include "passes/view.h"
+#include "passes/shadows/techniques/avsm/avsm_core.h"
+#include "passes/shadows/techniques/avsm_map_layout.h"
+#include "passes/shadows/techniques/avsm/avsm_mips_pass.h"
+#include "passes/shadows/techniques/avsm/avsm_resolve_pass.h"
+#include "passes/shadows/capture/capture_lists.h"
+#include "passes/shadows/capture/capture_sort_pass.h"
+#include "passes/frame/hair_geometry.h"
+#include "passes/shadows/light_view.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_test.h"
@@ -136,7 +136,7 @@ std::vector<std::vector<Segment>> random_texel_segments(std::mt19937& rng, uint3
   return per_texel;
 }
 
-// ---- Stored curves (layout: shaders/shared/map_layouts.h, passes/avsm_map_layout.h) ----
+// ---- Stored curves (layout: shaders/shared/map_layouts.h, passes/shadows/techniques/avsm_map_layout.h) ----
 
 // A texel's N stored nodes (decoded), padding included.
 struct StoredCurve {
@@ -466,7 +466,7 @@ TEST_F(AvsmShadowTest, AvsmSortedResolveIgnoresAppendOrder) {
 // Long lists next to short ones in one subgroup (a row of 8 texels), as hair gives them:
 // each sorts completely, so the resolve matches the CPU core over the sorted lists. The
 // sort used to stop part way once its lanes' loops had iterated 65535 times together
-// (lavapipe's limit; shaders/passes/capture_sort.comp): 12,000 segments would have taken
+// (lavapipe's limit; shaders/passes/shadows/capture/capture_sort.comp): 12,000 segments would have taken
 // it 72 million steps. A list over its 16,384-segment limit stays whole in capture order.
 TEST_F(AvsmShadowTest, AvsmSortSortsLongListsCompletely) {
   constexpr uint32_t kRes = 8, kNodes = 16;
@@ -605,7 +605,7 @@ bool same_segments(const std::vector<Segment>& a, const std::vector<Segment>& b)
 // curtain's longest lists (over a thousand segments), the spot's has mips. Every list
 // must come out of the sort front to back, and every stored node of every level must be
 // the C++ core's over the sorted lists, bit for bit. (The sort used to stop part way on
-// long lists under lavapipe's loop limit: shaders/passes/capture_sort.comp.)
+// long lists under lavapipe's loop limit: shaders/passes/shadows/capture/capture_sort.comp.)
 TEST_F(AvsmShadowTest, AvsmDefaultSceneMatchesTheCoreAtEveryTexel) {
   constexpr uint32_t kNodes = 16, kResolution = 32;
   const scene::Scene scene = default_scene(int(kNodes), int(kResolution));
@@ -795,7 +795,7 @@ TEST_F(AvsmShadowTest, AvsmComparisonTechniquesMatchBeerLambertThroughABox) {
   });
 }
 
-// The constant debug technique (passes/techniques/constant/): no map, and every lookup
+// The constant debug technique (passes/shadows/techniques/constant/): no map, and every lookup
 // inside the light's map returns its transmittance parameter, whatever casts there.
 TEST_F(AvsmShadowTest, ConstantTechniqueReturnsItsTransmittanceEverywhere) {
   scene::Scene scene = default_scene(8, 64);
@@ -1062,7 +1062,7 @@ TEST_F(AvsmShadowTest, FixedBuildMemoryDoesNotGrowWithHairLayers) {
 // The CPU reproduces common/fixed_build.glsl texel by texel: the nearest opaque caster
 // (the light depth raster, redone here by point-in-triangle tests at texel centres) as
 // one blocking segment, then every hair segment whose ribbon covers the texel centre in
-// segment order (footprints from passes/hair_geometry.h, the file the shaders include),
+// segment order (footprints from passes/frame/hair_geometry.h, the file the shaders include),
 // each inserted with the C++ AVSM core. Texels where a decision sits within rounding of
 // its threshold are marked: there the GPU may legitimately decide the other way.
 
@@ -1195,7 +1195,7 @@ enum NearTie : uint8_t {
 };
 // The rasterizer snaps vertices to 1/256 texel (lavapipe: 8 subpixel bits) ...
 constexpr float kOpaqueEdgeTie = 1e-2f;
-// ... while the hair footprints are the GPU's own arithmetic (passes/hair_geometry.h),
+// ... while the hair footprints are the GPU's own arithmetic (passes/frame/hair_geometry.h),
 // off by a few ulps of texel coordinates below 64 (about 1e-5).
 constexpr float kHairEdgeTie = 1e-4f;
 
@@ -1251,7 +1251,7 @@ CpuFixedBuild cpu_fixed_build(const scene::Scene& scene, const passes::LightView
   out.ties.assign(texels, 0);
 
   // 1. Opaque: the nearest light-clip z per texel centre, both faces, cleared to 1
-  // (passes/light_depth_pass.h).
+  // (passes/shadows/fixed_build/light_depth_pass.h).
   std::vector<float> z_buffer(texels, 1.0f);
   for (const scene::Mesh& mesh : scene.meshes)
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
@@ -1283,7 +1283,7 @@ CpuFixedBuild cpu_fixed_build(const scene::Scene& scene, const passes::LightView
     }
 
   // 2. Hair: every texel's crossings in segment order (the renderer's: grooms, strands,
-  // points; passes/hair_pass.cpp), footprints and coverage as the shaders compute them.
+  // points; passes/camera/hair/hair_pass.cpp), footprints and coverage as the shaders compute them.
   std::vector<std::vector<glm::vec2>> crossings(texels);  // (depth, transmittance)
   const glm::vec3 facing = passes::hair_ribbon_facing_point(light);
   struct SegmentRef {

@@ -1,6 +1,6 @@
-// The deep shadow map build (passes/techniques/dsm/dsm_build.comp) on the default
+// The deep shadow map build (passes/shadows/techniques/dsm/dsm_build.comp) on the default
 // scene's real capture lists: every texel's nodes against the C++ reference
-// (passes/deep_shadow.h) built from the same lists, and against the exact curve of
+// (passes/shadows/techniques/dsm/deep_shadow.h) built from the same lists, and against the exact curve of
 // the texel's whole list, including the sun's hair texels of over a thousand segments.
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "gpu/transfer.h"
-#include "passes/deep_shadow.h"
-#include "passes/shadow_maps.h"
-#include "passes/view.h"
+#include "passes/shadows/techniques/dsm/deep_shadow.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "shared/map_layouts.h"

@@ -1,4 +1,4 @@
-// Frames in flight (passes/frames_in_flight.h, renderer/frame_slots.h): the default
+// Frames in flight (passes/frame/frames_in_flight.h, renderer/frame_slots.h): the default
 // scene with its spot light moving, rendered with one frame in flight (submit and wait,
 // as before) and with two (frame N+1 recorded and submitted while frame N runs), under
 // validation + synchronization validation (support/gpu_test.cpp). Every frame's image,
@@ -17,7 +17,7 @@
 #include "capture/frame_outputs.h"
 #include "gpu/barriers.h"
 #include "gpu/resources.h"
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"

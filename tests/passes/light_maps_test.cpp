@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "gpu/device_limits.h"
-#include "passes/light_view.h"
-#include "passes/shadow_maps.h"
-#include "passes/view.h"
+#include "passes/shadows/light_view.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_test.h"

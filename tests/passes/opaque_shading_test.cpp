@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "gpu/transfer.h"
-#include "passes/view.h"
+#include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "support/gpu_test.h"

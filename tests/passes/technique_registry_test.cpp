@@ -1,4 +1,4 @@
-// The shadow technique registry (passes/techniques/): what every technique declares,
+// The shadow technique registry (passes/shadows/techniques/): what every technique declares,
 // the checks made from it, and the GLSL dispatch the build generates from the same list.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "gpu/shader_compiler.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 namespace avsm {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "passes/volume_lighting_cache_pass.h"
+#include "passes/camera/volumes/volume_lighting_cache_pass.h"
 #include "scene/camera.h"
 
 namespace avsm::passes {

@@ -23,14 +23,14 @@
 #include "gpu/device_limits.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
-#include "passes/lights.h"
-#include "passes/view.h"
-#include "passes/shadow_maps.h"
-#include "passes/volume_pass.h"
+#include "passes/frame/lights.h"
+#include "passes/frame/view.h"
+#include "passes/shadows/shadow_maps.h"
+#include "passes/camera/volumes/volume_pass.h"
 #include "scene/volume.h"
 #include "support/gpu_test.h"
 #include "support/test_volumes.h"
-#include "passes/frame_inputs.h"
+#include "passes/frame/frame_inputs.h"
 
 namespace avsm {
 namespace {
@@ -553,7 +553,7 @@ TEST_F(GpuTest, VolumeGridsOverTheStorageRangeAreRefusedNamingTheVolumes) {
 // builds a pipeline that runs like the prebuilt one.
 TEST_F(GpuTest, VolumeShaderCompilesFromSourceAtRunTime) {
   const gpu::ShaderLibrary from_source(gpu::ShaderLibrary::default_paths(), /*compile_from_source=*/true);
-  const gpu::CompiledShader compiled = from_source.compile("shaders/passes/volume_march.comp");
+  const gpu::CompiledShader compiled = from_source.compile("shaders/passes/camera/volumes/volume_march.comp");
   auto included = [&](const std::string& name) {
     return std::any_of(compiled.files.begin(), compiled.files.end(),
                        [&](const std::filesystem::path& file) { return file.filename() == name; });

@@ -80,7 +80,7 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     source_root = work / "src"
     shutil.copytree(shaders, source_root / "shaders")
-    # The shadow techniques' lookups, which the shaders include (passes/techniques/<name>/<name>.glsl).
+    # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
     shutil.copytree(shaders.parent / "passes" / "techniques", source_root / "passes" / "techniques")
     shutil.copytree(scene_dir, work / "scene")
     scene_file = work / "scene" / "scene.json"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "passes/light_view.h"
-#include "passes/view.h"
+#include "passes/shadows/light_view.h"
+#include "passes/frame/view.h"
 #include "viewer/camera_controller.h"
 #include "viewer/control_commands.h"
 #include "viewer/panel.h"

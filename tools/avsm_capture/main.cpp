@@ -7,7 +7,7 @@
 
 #include "capture/capture.h"
 #include "capture/capture_args.h"
-#include "passes/techniques/techniques.h"
+#include "passes/shadows/techniques/techniques.h"
 
 int main(int argc, char** argv) {
   using namespace avsm::capture;

@@ -5,7 +5,7 @@
 #include <exception>
 #include <string>
 
-#include "passes/frames_in_flight.h"
+#include "passes/frame/frames_in_flight.h"
 #include "viewer/viewer_app.h"
 #include "viewer/window.h"
 

@@ -54,9 +54,9 @@
 #include <string>
 #include <vector>
 
-#include "passes/shadow_casters.h"
-#include "passes/shadow_clusters.h"
-#include "passes/shadow_pass_list.h"
+#include "passes/shadows/shadow_casters.h"
+#include "passes/shadows/shadow_clusters.h"
+#include "passes/shadows/shadow_pass_list.h"
 #include "scene/bounds.h"
 
 namespace avsm::gpu {
@@ -266,7 +266,7 @@ class Shadows {
 
   // Describes this frame's passes for every light (capture, sort, resolve, mips) into
   // frame slot `frame_slot`, without recording anything: the ordered passes, the
-  // resources they use and how, and their record functions (passes/shadow_pass_list.h);
+  // resources they use and how, and their record functions (passes/shadows/shadow_pass_list.h);
   // `lookup` is what the host's shading passes read and bind. The list is the frame's
   // whole description: avsm::add_to_graph (avsm/shadows_rendergraph.h) declares it into
   // the engine's graph. Record it before this slot's finish_frame(). The casters' buffers

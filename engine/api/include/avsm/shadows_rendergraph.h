@@ -19,7 +19,7 @@
 #include <cstdint>
 
 #include "avsm/shadows.h"
-#include "passes/shadow_inputs.h"
+#include "passes/shadows/shadow_inputs.h"
 
 namespace avsm {
 

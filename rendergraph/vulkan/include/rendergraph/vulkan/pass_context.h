@@ -3,7 +3,7 @@
 // buffer to record into and the physical resources behind the handles it declared.
 // Defines the rg::PassContext that the planning core only forward-declares. The
 // executor makes one per pass; so does the shadow pass list's record function
-// (passes/shadow_pass_list.h), which runs a pass on resources a host's graph resolved.
+// (passes/shadows/shadow_pass_list.h), which runs a pass on resources a host's graph resolved.
 #include <rendergraph/graph.h>
 #include <vulkan/vulkan.h>
 

@@ -1,0 +1,160 @@
+#include "passes/camera/surfaces/opaque_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/context.h"
+#include "gpu/rendering.h"
+#include "gpu/transfer.h"
+#include "passes/frame/caster_alpha.h"
+#include "passes/shadows/shadow_maps.h"
+#include "shared/passes/camera/surfaces/opaque.h"
+#include "passes/frame/frame_inputs.h"
+
+namespace avsm::passes {
+
+namespace {
+
+using GpuVertex = CasterVertex;  // the captures read the same vertex buffer
+using shared::GpuMaterial;      // shaders/shared/mesh.h
+using OpaquePush = shared::OpaquePush;  // shaders/shared/passes/camera/surfaces/opaque.h
+
+constexpr glm::vec4 kSkyColor{0.35f, 0.45f, 0.6f, 1.0f};
+
+GpuMaterial gpu_material(const scene::Material& m) {
+  GpuMaterial g{};
+  g.base_color = m.base_color_factor;
+  g.alpha_mask = m.alpha_mode == scene::AlphaMode::mask ? 1u : 0u;
+  g.alpha_cutoff = m.alpha_cutoff;
+  g.has_texture = m.base_color_texture >= 0 ? 1u : 0u;
+  g.metallic = m.metallic_factor;
+  g.emissive = glm::vec4(m.emissive, 0.0f);
+  g.roughness = m.roughness_factor;
+  g.normal_scale = m.normal_scale;
+  g.occlusion_strength = m.occlusion_strength;
+  g.has_normal_texture = m.normal_texture >= 0 ? 1u : 0u;
+  return g;
+}
+
+// For meshes without a material: grey, rough, not metallic.
+scene::Material fallback_material() {
+  scene::Material m;
+  m.base_color_factor = glm::vec4(0.8f);
+  m.metallic_factor = 0.0f;
+  return m;
+}
+
+}  // namespace
+
+OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
+    : ctx_(ctx), sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}) {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = "opaque";
+  desc.vertex = shaders.load("shaders/passes/camera/surfaces/opaque.vert");
+  desc.fragment = shaders.load("shaders/passes/camera/surfaces/opaque.frag");
+  desc.color_formats = {kColorFormat};
+  desc.depth_format = kDepthFormat;
+  desc.depth_test = desc.depth_write = true;
+  desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
+  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+  const uint8_t white[4] = {255, 255, 255, 255};
+  white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
+}
+
+void OpaquePass::set_scene(const scene::Scene& scene) {
+  std::vector<GpuVertex> vertices;
+  std::vector<glm::vec4> tangents;  // parallel to vertices
+  std::vector<uint32_t> indices;
+  draws_.clear();
+  for (const scene::Mesh& mesh : scene.meshes) {
+    Draw draw{uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size()), mesh.material};
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0, 1, 0);
+      glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0);
+      const glm::vec3& p = mesh.positions[v];
+      vertices.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}});
+      tangents.push_back(v < mesh.tangents.size() ? mesh.tangents[v] : glm::vec4(0.0f));
+    }
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    if (draw.index_count > 0) draws_.push_back(draw);
+  }
+  std::vector<GpuMaterial> materials;
+  scene_materials_ = scene.materials;
+  for (const scene::Material& m : scene.materials) materials.push_back(gpu_material(m));
+  if (materials.empty()) materials.push_back(gpu_material(fallback_material()));
+  if (tangents.empty()) tangents.emplace_back(0.0f);  // no zero-sized buffers
+  vertices_ = gpu::create_buffer_from(ctx_, std::move(vertices), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque vertices");
+  tangents_ = gpu::create_buffer_from(ctx_, std::move(tangents), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque tangents");
+  indices_ = gpu::create_buffer_from(ctx_, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
+  materials_ = gpu::create_buffer_from(ctx_, std::move(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
+  textures_.clear();
+  for (const scene::Texture& t : scene.textures)
+    textures_.push_back(upload_material_texture(ctx_, t.width, t.height, t.rgba8.data(), t.color_space, "texture " + t.name));
+}
+
+MeshCasters OpaquePass::casters() const {
+  MeshCasters casters{vertices_.handle(), vertices_.size(), indices_.handle(), indices_.size(), {}};
+  for (const Draw& draw : draws_) {
+    const MeshDraw range{draw.first_index, draw.index_count, draw.vertex_offset};
+    if (draw.material >= scene_materials_.size()) {
+      casters.draws.push_back(range);  // the grey default material: opaque
+      continue;
+    }
+    const scene::Material& material = scene_materials_[draw.material];
+    const int texture = material.base_color_texture;
+    casters.draws.push_back(with_material_alpha(range, material,
+                                                texture >= 0 ? texture_view(texture) : VK_NULL_HANDLE));
+  }
+  return casters;
+}
+
+VkImageView OpaquePass::texture_view(int texture) const {
+  return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
+}
+
+OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame) {
+  const View& view = frame.view;
+  const gpu::Buffer& lights = *frame.lights;
+  const uint32_t light_count = frame.light_count;
+  const ShadowInputs& shadows = frame.shadows;
+  const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, Outputs& d) {
+        d.color = b.write(color, rg::Usage::ColorAttachment);
+        rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat, kCameraSizeSetting};
+        d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
+        shadows.declare_reads(b);
+      },
+      [this, view, &lights, light_count, shadows](const Outputs& d, rg::PassContext& c) {
+        record(c, d, view, lights, light_count, shadows);
+      });
+  return out;
+}
+
+void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
+                        uint32_t light_count, const ShadowInputs& shadows) const {
+  VkCommandBuffer cmd = c.cmd();
+  gpu::ColorTarget color{c.view(targets.color), c.layout(targets.color),
+                         {{kSkyColor.r, kSkyColor.g, kSkyColor.b, kSkyColor.a}}};
+  gpu::DepthTarget depth{c.view(targets.depth), c.layout(targets.depth), 1.0f, /*store=*/true};
+  gpu::begin_rendering(cmd, {view.width, view.height}, {&color, 1}, &depth, /*flip_y=*/true);
+  pipeline_.bind(cmd);
+  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  static constexpr const char* kTextureBindings[] = {"base_color_texture", "metallic_roughness_texture", "normal_texture",
+                                                     "occlusion_texture", "emissive_texture"};  // Material::textures() order
+  for (const Draw& draw : draws_) {
+    const scene::Material* material = draw.material < scene_materials_.size() ? &scene_materials_[draw.material] : nullptr;
+    gpu::Bindings bindings(ctx_, pipeline_);
+    bindings.buffer("Vertices", vertices_).buffer("Tangents", tangents_).buffer("Materials", materials_).buffer("Lights", lights);
+    for (size_t i = 0; i < std::size(kTextureBindings); ++i) {
+      const int texture = material ? *material->textures()[i] : -1;  // -1: the white texture
+      bindings.image(kTextureBindings[i], texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+    }
+    shadows.bind(bindings, c);
+    bindings.push(cmd);
+    pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
+                                             draw.material, light_count});
+    vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+  }
+  vkCmdEndRendering(cmd);
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,64 @@
+#pragma once
+// Opaque glTF geometry from the camera: depth + lit HDR colour. Shading is glTF's
+// metallic-roughness BRDF (shaders/common/pbr_brdf.glsl) with normal, occlusion and
+// emissive textures, lit by every light attenuated by its transmittance map
+// (shaders/common/shadow_lookup.glsl, passes/shadows/shadow_maps.h), the sky, and emission.
+// All meshes share one vertex, one tangent and one index buffer; a draw per mesh
+// pushes its material index and binds its textures.
+#include <rendergraph/graph.h>
+
+#include <array>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/shader_compiler.h"
+#include "gpu/resources.h"
+#include "passes/shadows/shadow_casters.h"
+#include "passes/shadows/shadow_maps_fwd.h"
+#include "passes/frame/view.h"
+#include "scene/scene.h"
+
+namespace avsm::passes {
+
+struct FrameInputs;  // passes/frame/frame_inputs.h
+
+class OpaquePass {
+ public:
+  static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+  OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
+  void set_scene(const scene::Scene& scene);
+
+  struct Outputs {
+    rg::TextureHandle color;  // written as ColorAttachment
+    rg::TextureHandle depth;  // written as DepthAttachmentWrite
+  };
+  // The geometry as shadow casters (vertices are CasterVertex; passes/shadows/capture/capture_opaque_pass.h).
+  MeshCasters casters() const;
+
+  // Clears `color` to the sky colour and a new transient depth buffer to far,
+  // then draws every mesh.
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame);
+
+ private:
+  struct Draw {
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+    uint32_t material;
+  };
+  void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
+              uint32_t light_count, const ShadowInputs& shadows) const;
+  VkImageView texture_view(int texture) const;
+
+  gpu::Context& ctx_;
+  gpu::Pipeline pipeline_;
+  gpu::Sampler sampler_;
+  gpu::Buffer vertices_, tangents_, indices_, materials_;
+  std::vector<gpu::Image> textures_;
+  gpu::Image white_;
+  std::vector<Draw> draws_;
+  std::vector<scene::Material> scene_materials_;  // their textures per draw, and their alpha as casters
+};
+
+}  // namespace avsm::passes

@@ -1,0 +1,34 @@
+#include "passes/frame/lights.h"
+
+#include <cmath>
+
+#include "gpu/transfer.h"
+
+namespace avsm::passes {
+
+namespace {
+uint32_t type_code(scene::LightType type) {
+  switch (type) {
+    case scene::LightType::directional: return shared::kLightDirectional;
+    case scene::LightType::spot: return shared::kLightSpot;
+    case scene::LightType::point: return shared::kLightPoint;
+  }
+  return shared::kLightDirectional;
+}
+}  // namespace
+
+GpuLight to_gpu(const scene::Light& light) {
+  return {glm::vec4(light.position, float(type_code(light.type))),
+          glm::vec4(glm::normalize(light.direction), std::cos(light.outer_cone_angle)),
+          glm::vec4(light.color * light.intensity, std::cos(light.inner_cone_angle)),
+          glm::vec4(light.range, 0.0f, 0.0f, 0.0f)};
+}
+
+gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {
+  std::vector<GpuLight> data;
+  for (const scene::Light& light : lights) data.push_back(to_gpu(light));
+  // No lights: one zero-radiance entry, which lights nothing.
+  return gpu::create_buffer_from(ctx, std::move(data), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene lights");
+}
+
+}  // namespace avsm::passes

@@ -1,5 +1,0 @@
-#pragma once
-// Forward declaration for camera passes that take shadow inputs (passes/shadow_maps.h).
-namespace avsm::passes {
-struct ShadowInputs;
-}

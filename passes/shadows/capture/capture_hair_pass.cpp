@@ -1,0 +1,46 @@
+#include "passes/shadows/capture/capture_hair_pass.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include "gpu/rendering.h"
+#include "shared/passes/shadows/capture/capture_hair.h"
+
+namespace avsm::passes {
+namespace {
+
+using Push = shared::CaptureHairPush;  // shaders/shared/passes/shadows/capture/capture_hair.h
+
+}  // namespace
+
+CaptureHairPass::CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders) : ctx_(ctx) {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = "capture hair";
+  desc.vertex = shaders.load("shaders/passes/shadows/capture/capture_hair.vert");
+  desc.fragment = shaders.load("shaders/passes/shadows/capture/capture_hair.frag");
+  desc.cull_mode = VK_CULL_MODE_NONE;
+  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+}
+
+CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                                           const LightView& light, const StrandCasters& hair) const {
+  if (hair.empty()) return lists;
+  return graph.add_pass<CaptureLists>(prefix + " capture hair", rg::QueueType::Graphics,
+      [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
+      [this, light, hair](const CaptureLists& d, rg::PassContext& c) {
+        VkCommandBuffer cmd = c.cmd();
+        gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
+        pipeline_.bind(cmd);
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer("Points", hair.points).buffer("Segments", hair.segments).buffer("Strands", hair.strands);
+        bind_capture_lists(bindings, c, d);
+        bindings.push(cmd);
+        const float resolution = float(light.resolution);
+        pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(hair_ribbon_facing_point(light), 1.0f),
+                                           {resolution, resolution}, 0, 0.0f, light.depth_plane,
+                                           {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
+        vkCmdDraw(cmd, hair.segment_count * 6, 1, hair.first_segment * 6, 0);  // gl_VertexIndex counts from the first
+        vkCmdEndRendering(cmd);
+      });
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,79 @@
+#pragma once
+// How a shadowed light sees the scene: the projection its transmittance map is
+// rendered with, and the light-space depth every capture, resolve and lookup
+// uses. Depth is distance along the light's axis (from the light for a spot, from
+// a plane in front of the casters for a directional light), linear in world
+// units, so segments, nodes and receivers compare directly.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "scene/bounds.h"
+#include "passes/frame/view.h"
+#include "scene/light.h"
+
+namespace avsm::passes {
+
+// What sizes a map's resources (resolution^2 texels each): the setting a message names
+// when one does not fit the device (gpu/device_limits.h).
+inline constexpr const char* kShadowResolutionSetting = "the light's shadow.resolution (--shadow-res)";
+
+struct LightView {
+  glm::mat4 light_from_world{1.0f};  // world -> light clip space (Vulkan, z 0..1); map uv = clip.xy / w * 0.5 + 0.5
+  glm::mat4 world_from_light{1.0f};  // its inverse, for per-texel rays
+  glm::vec4 depth_plane{0.0f};       // depth(p) = dot(xyz, p) + w
+  glm::vec3 eye{0.0f};               // the spot light, or the centre of the directional light's near face
+  bool perspective = false;          // spot light
+  float near_depth = 0.0f;           // depth range the casters lie in
+  float far_depth = 1.0f;
+  // World size of one level-0 texel at depth d: texel_size_base + texel_size_per_depth * d.
+  float texel_size_base = 0.0f;
+  float texel_size_per_depth = 0.0f;
+  uint32_t resolution = 1;
+
+  float depth(const glm::vec3& p) const { return glm::dot(glm::vec3(depth_plane), p) + depth_plane.w; }
+  float texel_size(float d) const { return texel_size_base + texel_size_per_depth * d; }
+};
+
+// The camera's view between two distances along its axis: what a directional light's
+// map is fitted to (ShadowFit::view), one slice per cascade.
+struct CameraSlice {
+  glm::vec3 position{0.0f}, forward{0.0f, 0.0f, -1.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 1.0f, 0.0f};
+  float tan_half_x = 1.0f, tan_half_y = 1.0f;
+  float near_distance = 0.1f, far_distance = 100.0f;
+};
+CameraSlice camera_slice(const View& camera, float near_distance, float far_distance);
+
+// Fits the light's frustum around `casters` (the scene bounds: everything that casts
+// or receives), whatever the camera sees. A directional light gets an orthographic
+// square around the box's bounding sphere; a spot light a perspective frustum of its
+// outer cone (narrowed to the casters inside it for ShadowFit::view), from a near plane
+// just in front of the casters to the farthest corner; a point light its +x face.
+LightView make_light_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution);
+
+// A directional light's map over what the camera slice sees of the casters: a square
+// of the slice's bounding-sphere size (or the casters' rectangle, when smaller) around
+// their intersection, moved in whole texels, with the casters' whole depth range.
+LightView make_fitted_directional_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution,
+                                       const CameraSlice& slice);
+
+// Texels a point light's cube face keeps beyond its 90 degrees on each side, so that
+// filtered lookups next to a face's edge read texels that face captured.
+inline constexpr uint32_t kCubeGuardTexels = 4;
+// tan(half the face's field of view) for faces of `resolution` texels.
+float cube_face_tangent(uint32_t resolution);
+// A point light's face `face` (+x -x +y -y +z -z): a square frustum from the light
+// along that axis out to the casters (and the light's range, when it has one).
+LightView make_point_face_view(const scene::Light& light, uint32_t face, const scene::Bounds& casters,
+                               uint32_t resolution);
+
+// Camera distances where each of `count` cascades over [near, far] ends (the practical
+// split scheme: half logarithmic, half uniform).
+std::vector<float> cascade_ends(float near_distance, float far_distance, uint32_t count);
+// The point hair ribbons turn to face in the light's captures: the spot light itself,
+// or for a directional light a point far back along its direction (so ribbons face
+// along it).
+glm::vec3 hair_ribbon_facing_point(const LightView& light);
+
+}  // namespace avsm::passes

@@ -1,0 +1,42 @@
+#include "passes/shadows/shadow_inputs.h"
+
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+
+#include "gpu/pipeline.h"
+#include "gpu/transfer.h"
+
+namespace avsm::passes {
+
+void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
+  if (records.valid()) builder.read(records, rg::Usage::StorageRead);
+  for (rg::BufferHandle map : maps) builder.read(map, rg::Usage::StorageRead);
+  for (rg::BufferHandle list : lists) builder.read(list, rg::Usage::StorageRead);
+}
+
+void ShadowInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  auto or_unused = [&](const gpu::BufferRange& range) { return range.buffer ? range : gpu::BufferRange(unused_buffer); };
+  bindings.buffer("ShadowParameters", records.valid() ? context.buffer(records) : gpu::BufferRange(parameters))
+      .buffer("ShadowMapAtlas", or_unused(atlas))
+      .buffer("ShadowListHeads", or_unused(list_heads))
+      .buffer("ShadowListNodes", or_unused(list_nodes));
+}
+
+UnshadowedInputs::UnshadowedInputs(gpu::Context& ctx) : ctx_(ctx) { reserve(64); }
+
+void UnshadowedInputs::reserve(uint32_t lights) {
+  const uint64_t count = std::max(lights, 64u);
+  if (parameters_ && parameters_.size() >= count * sizeof(GpuShadow)) return;
+  parameters_ = gpu::create_buffer_from(ctx_, std::vector<GpuShadow>(count, GpuShadow{}),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "unshadowed parameters");
+}
+
+ShadowInputs UnshadowedInputs::inputs() const {
+  ShadowInputs inputs;
+  inputs.parameters = parameters_.handle();
+  inputs.unused_buffer = parameters_.handle();
+  return inputs;
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,166 @@
+// ShadowMaps' memory: the maps' bytes against the budget, the one atlas buffer every map
+// is a region of, and the buffers of the capture lists that lookups read.
+#include <algorithm>
+
+#include "gpu/context.h"
+#include "gpu/device_limits.h"
+#include "passes/shadows/shadow_maps.h"
+
+namespace avsm::passes {
+
+using gpu::format_mib;
+
+uint64_t ShadowMaps::map_budget() const {
+  const uint64_t range = ctx_.info().max_storage_buffer_range;
+  return options_.map_budget_bytes == 0 ? range : std::min(options_.map_budget_bytes, range);
+}
+
+// A map's state before its first frame, at its light's (possibly lowered) resolution.
+TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
+  const uint32_t resolution = uint32_t(light.light.shadow.resolution);
+  TechniqueMapState state;
+  state.layout.resolution = resolution;
+  state.layout.nodes = uint32_t(light.light.shadow.nodes);
+  // Techniques without mips look trilinear up as bilinear.
+  state.layout.levels = light.technique->mip_levels(light.light.shadow, resolution);
+  light.technique->prepare(state);
+  return state;
+}
+
+// What a map takes of the atlas: its bytes, aligned as the atlas places it (0: no map).
+uint64_t ShadowMaps::atlas_bytes(const MapState& map) const {
+  const LightState& light = lights_[map.light];
+  if (!light.technique->has_map()) return 0;
+  return round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
+}
+
+uint64_t ShadowMaps::atlas_bytes_needed() const {
+  uint64_t bytes = 0;
+  for (const MapState& map : maps_) bytes += atlas_bytes(map);
+  return bytes;
+}
+
+// The maps' bytes against the budget: an error naming the lights, or (fit_budget) the
+// largest lights' resolutions halved until everything fits.
+void ShadowMaps::fit_to_budget() {
+  const uint64_t range = ctx_.info().max_storage_buffer_range;
+  const uint64_t budget = map_budget();
+  auto light_bytes = [&](const LightState& light) {
+    uint64_t bytes = 0;
+    for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) bytes += atlas_bytes(maps_[m]);
+    return bytes;
+  };
+  auto total = [&] { return atlas_bytes_needed(); };
+  while (total() > budget) {
+    if (!options_.fit_budget) {
+      std::string lights;
+      for (size_t i = 0; i < lights_.size(); ++i)
+        lights += (i ? ", " : "") + light_display_name(lights_[i].light, i) + " " + format_mib(light_bytes(lights_[i]));
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " +
+                              format_mib(budget) + (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
+                              "; lower their shadow.resolution or nodes, raise the budget (shadows.budget_mib) "
+                              "or let it lower resolutions (shadows.fit_budget)");
+    }
+    // Halve the resolution of the light with the most bytes that can still go lower.
+    LightState* largest = nullptr;
+    for (LightState& light : lights_)
+      if (light.light.shadow.resolution > 16 && light_bytes(light) > 0 && (!largest || light_bytes(light) > light_bytes(*largest)))
+        largest = &light;
+    if (!largest)
+      throw ShadowBudgetError("the shadow maps need " + format_mib(total()) +
+                              " at their smallest resolution, over the budget of " + format_mib(budget) +
+                              "; raise the budget (shadows.budget_mib) or shadow fewer lights");
+    if (largest->lowered_from == 0) largest->lowered_from = uint32_t(largest->light.shadow.resolution);
+    largest->light.shadow.resolution /= 2;
+    for (uint32_t m = largest->first_map; m < largest->first_map + largest->map_count; ++m) {
+      MapState& map = maps_[m];
+      map.map_state = initial_map_state(*largest);
+      map.view = initial_view(map);
+    }
+  }
+}
+
+// One buffer for every map, each a region of it.
+void ShadowMaps::create_atlas() {
+  uint64_t offset = 0;
+  for (MapState& map : maps_) {
+    map.atlas_offset = offset;
+    offset += atlas_bytes(map);
+  }
+  for (MapState& map : maps_) map.map = {};
+  atlas_ = {};
+  if (offset == 0) return;
+  // Transfer source too, so tests and tools can read a map back.
+  atlas_ = gpu::Buffer::create(
+      ctx_, {offset, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+             gpu::MemoryLocation::DeviceLocal, "shadow map atlas", "the lights' shadow.resolution or nodes"});
+  for (MapState& map : maps_) {
+    const LightState& light = lights_[map.light];
+    if (!light.technique->has_map()) continue;
+    map.map = gpu::Buffer::region(atlas_, map.atlas_offset, light.technique->map_bytes(light.light.shadow, map.map_state),
+                                  map.prefix + " " + light.light.shadow.technique + " map");
+  }
+}
+
+// What sizes the looked-up lists, for a message when they do not fit: the resolution of
+// every light whose lookups read its lists.
+std::string ShadowMaps::list_readers() const {
+  std::string lights;
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
+    const MapState& first = maps_[lights_[i].first_map];
+    if (!first.lookups_read_lists) continue;
+    lights += (lights.empty() ? "" : ", ") + light_display_name(lights_[i].light, i) + " " +
+              std::to_string(first.map_state.layout.resolution) + "x" +
+              std::to_string(first.map_state.layout.resolution) +
+              (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : "");
+  }
+  return "the shadow.resolution (--shadow-res) of the lights whose lookups read the exact lists (technique "
+         "uncompressed, --compare-to): " + lights;
+}
+
+// The lists that lookups read (the exact reference), copied each frame into two buffers
+// every record addresses by offset. Their node capacities share the device's storage
+// buffer range, so each map's capture grows to its share at most.
+void ShadowMaps::create_list_buffers() {
+  uint32_t readers = 0;
+  for (const MapState& map : maps_) readers += map.lookups_read_lists ? 1 : 0;
+  const uint64_t share = readers == 0 ? options_.capture_limit_bytes
+                                      : std::min<uint64_t>(options_.capture_limit_bytes,
+                                                           ctx_.info().max_storage_buffer_range / readers);
+  uint64_t heads = 0, nodes = 0;
+  for (MapState& map : maps_) {
+    const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
+    const uint64_t limit = (map.lookups_read_lists ? share : options_.capture_limit_bytes) / kCaptureSegmentBytes;
+    // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
+    if (map.capacity == 0) map.capacity = texels * 8;
+    map.capacity = std::min(map.capacity, limit);
+    if (!map.lookups_read_lists) continue;
+    map.list_heads_offset = heads;
+    map.list_nodes_offset = nodes;
+    heads += round_up(texels * sizeof(uint32_t), kAtlasAlignment);
+    nodes += round_up(map.capacity * kCaptureSegmentBytes, kAtlasAlignment);
+  }
+  for (MapState& map : maps_) {
+    map.list_heads = {};
+    map.list_nodes = {};
+  }
+  list_heads_ = {};
+  list_nodes_ = {};
+  if (heads == 0) return;
+  // TRANSFER_SRC: they can be read back (looked_up_list_heads/nodes), like the atlas.
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  const std::string sized_by = list_readers();
+  constexpr gpu::MemoryLocation kDevice = gpu::MemoryLocation::DeviceLocal;
+  list_heads_ = gpu::Buffer::create(ctx_, {heads, usage, kDevice, "looked-up list heads", sized_by});
+  list_nodes_ = gpu::Buffer::create(ctx_, {nodes, usage, kDevice, "looked-up list nodes", sized_by});
+  for (MapState& map : maps_) {
+    if (!map.lookups_read_lists) continue;
+    const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
+    map.list_heads = gpu::Buffer::region(list_heads_, map.list_heads_offset, texels * sizeof(uint32_t), map.prefix + " looked-up list heads");
+    map.list_nodes = gpu::Buffer::region(list_nodes_, map.list_nodes_offset, map.capacity * kCaptureSegmentBytes,
+                                         map.prefix + " looked-up list nodes");
+  }
+}
+
+}  // namespace avsm::passes

@@ -1,0 +1,141 @@
+// ShadowMaps' frame: the passes declared per map (capture lists, the technique's build or
+// the fixed build, the copies of the lists that lookups read) and what a map's casters are.
+#include <rendergraph/vulkan/executor.h>
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "passes/shadows/shadow_maps.h"
+
+namespace avsm::passes {
+
+ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, const ShadowCasters& casters,
+                                      uint32_t slot) {
+  if (slot >= frames_in_flight())
+    throw std::invalid_argument("ShadowMaps: frame slot " + std::to_string(slot) + " of " +
+                                std::to_string(frames_in_flight()) + " frames in flight");
+  retired_.declared(slot);
+  ShadowInputs inputs = unshadowed_inputs();
+  inputs.frame_slot = slot;
+  if (lights_.empty()) return inputs;
+  update_views(camera);
+  inputs.parameters = parameters_[slot].handle();
+  inputs.records = add_parameter_upload(graph, camera, slot);
+  inputs.atlas = atlas_ ? gpu::BufferRange(atlas_) : gpu::BufferRange();
+  inputs.list_heads = list_heads_ ? gpu::BufferRange(list_heads_) : gpu::BufferRange();
+  inputs.list_nodes = list_nodes_ ? gpu::BufferRange(list_nodes_) : gpu::BufferRange();
+  for (MapState& map : maps_) {
+    const LightState& light = lights_[map.light];
+    const scene::ShadowSettings& settings = light.light.shadow;
+    const ShadowCasters map_casters = casters_of(map, casters);
+    const bool fixed = settings.build == scene::ShadowBuild::fixed;
+    const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+    // The fixed build needs no lists; they are still captured for lookups that read them
+    // (the uncompressed reference).
+    std::optional<CaptureLists> lists;
+    DeclaredMap& declared = map.declared[slot];
+    declared = {map.capacity, map.map_state, !fixed || map.lookups_read_lists, map_casters.strands.segment_count};
+    if (declared.captured_lists) lists = add_capture_lists(graph, map, map_casters, slot);
+    if (map.lookups_read_lists) add_list_copy(graph, map, *lists, inputs);
+    if (!light.technique->has_map()) continue;
+    // The map persists from frame to frame: this frame's build waits for the previous one's lookups.
+    rg::BufferHandle handle = rg::vulkan::import(graph, map.prefix + " " + settings.technique + " map", map.map,
+                                                 rewritten_after(map_state_after_frame()), map_state_after_frame());
+    if (fixed) {
+      rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " fixed build counter", map.fixed_counter[slot],
+                                                    rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+      inputs.maps.push_back(builder.add_fixed_to_graph({graph, map.prefix, handle, counter, map.view, settings,
+                                                        map.map_state, map_casters, options_.smoke_samples_per_segment}));
+    } else {
+      inputs.maps.push_back(
+          builder.add_to_graph({graph, map.prefix, *lists, handle, map.view, settings, map.map_state}, *lists));
+    }
+  }
+  return inputs;
+}
+
+// A map's capture lists: cleared, every caster appended, sorted if its settings ask.
+CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
+                                           uint32_t slot) const {
+  const scene::ShadowSettings& settings = lights_[map.light].light.shadow;
+  const LightView& view = map.view;
+  rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " capture counter", map.counter[slot],
+                                                rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  CaptureLists lists = add_capture_clear_pass(graph, map.prefix, view.resolution, map.capacity, counter);
+  lists = capture_opaque_.add_to_graph(graph, map.prefix, lists, view, casters.meshes);
+  lists = capture_hair_.add_to_graph(graph, map.prefix, lists, view, casters.strands);
+  lists = capture_smoke_.add_to_graph(graph, map.prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
+  if (settings.sort) lists = sort_.add_to_graph(graph, map.prefix, lists, view.resolution);
+  return lists;
+}
+
+// "<map> copy lists": the heads and nodes into the map's regions of the looked-up list
+// buffers, which every camera pass binds whole.
+void ShadowMaps::add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists,
+                               ShadowInputs& inputs) const {
+  const rg::ImportState after = rg::ImportState::of(rg::Usage::StorageRead);
+  rg::BufferHandle heads = rg::vulkan::import(graph, map.prefix + " looked-up list heads", map.list_heads,
+                                              rewritten_after(after), after);
+  rg::BufferHandle nodes = rg::vulkan::import(graph, map.prefix + " looked-up list nodes", map.list_nodes,
+                                              rewritten_after(after), after);
+  struct Data {
+    rg::TextureHandle source_heads;
+    rg::BufferHandle source_nodes, heads, nodes;
+  };
+  const uint32_t resolution = map.view.resolution;
+  const uint64_t node_bytes = map.capacity * kCaptureSegmentBytes;
+  const Data& copy = graph.add_pass<Data>(map.prefix + " copy lists", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b, Data& d) {
+        d.source_heads = b.read(lists.heads, rg::Usage::TransferSrc);
+        d.source_nodes = b.read(lists.nodes, rg::Usage::TransferSrc);
+        d.heads = b.write(heads, rg::Usage::TransferDst);
+        d.nodes = b.write(nodes, rg::Usage::TransferDst);
+      },
+      [resolution, node_bytes](const Data& d, rg::PassContext& c) {
+        const gpu::BufferRange heads = c.buffer(d.heads), nodes = c.buffer(d.nodes), source = c.buffer(d.source_nodes);
+        VkBufferImageCopy image_copy{};
+        image_copy.bufferOffset = heads.offset;
+        image_copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        image_copy.imageExtent = {resolution, resolution, 1};
+        vkCmdCopyImageToBuffer(c.cmd(), c.image(d.source_heads), c.layout(d.source_heads), heads, 1, &image_copy);
+        const VkBufferCopy node_copy{source.offset, nodes.offset, node_bytes};
+        vkCmdCopyBuffer(c.cmd(), source, nodes, 1, &node_copy);
+      });
+  inputs.lists.push_back(copy.heads);
+  inputs.lists.push_back(copy.nodes);
+}
+
+// The casters a map takes: all of them, or its cluster's.
+ShadowCasters ShadowMaps::casters_of(const MapState& map, const ShadowCasters& all) const {
+  if (!map.objects) return all;
+  ShadowCasters casters = all;
+  casters.meshes.draws.clear();
+  casters.strands.segment_count = 0;
+  casters.volumes.volume_mask = 0;
+  uint32_t first_segment = ~0u, end_segment = 0;
+  for (uint32_t object : *map.objects) {
+    const CasterObject& o = objects_.at(object);
+    switch (o.kind) {
+      case CasterObject::Kind::mesh_draw:
+        if (o.first < all.meshes.draws.size()) casters.meshes.draws.push_back(all.meshes.draws[o.first]);
+        break;
+      case CasterObject::Kind::strands:
+        first_segment = std::min(first_segment, o.first);
+        end_segment = std::max(end_segment, o.first + o.count);
+        break;
+      case CasterObject::Kind::volume:
+        if (o.first < kMaxClusteredVolumes) casters.volumes.volume_mask |= 1u << o.first;
+        break;
+    }
+  }
+  // A cluster's grooms are one range of segments (cluster_casters() keeps them contiguous).
+  if (end_segment > first_segment && first_segment < all.strands.segment_count) {
+    casters.strands.first_segment = first_segment;
+    casters.strands.segment_count = std::min(end_segment, all.strands.segment_count) - first_segment;
+  }
+  if (casters.volumes.volume_mask == 0) casters.volumes.volume_count = 0;
+  return casters;
+}
+
+}  // namespace avsm::passes

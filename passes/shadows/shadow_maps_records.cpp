@@ -1,0 +1,119 @@
+// ShadowMaps' per-frame records: one GpuShadow per map and multi-map light (and per exact
+// reference), what the lookups read (shaders/shared/shadow.h), written by the frame itself.
+#include <rendergraph/vulkan/executor.h>
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "passes/shadows/shadow_maps.h"
+#include "passes/shadows/techniques/techniques.h"
+
+namespace avsm::passes {
+
+namespace {
+
+uint32_t filter_code(scene::ShadowFilter filter) {
+  switch (filter) {
+    case scene::ShadowFilter::point: return shared::kFilterPoint;
+    case scene::ShadowFilter::bilinear: return shared::kFilterBilinear;
+    case scene::ShadowFilter::trilinear: return shared::kFilterTrilinear;
+  }
+  return shared::kFilterBilinear;
+}
+
+}  // namespace
+
+GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const {
+  const LightView& v = map.view;
+  const LightState& light = lights_[map.light];
+  const scene::ShadowSettings& settings = light.light.shadow;
+  GpuShadow g{};
+  g.light_from_world = v.light_from_world;
+  g.depth_plane = v.depth_plane;
+  // A camera pixel spans about 2 tan(fov/2) / height radians; tan(fov/2) = 1 / |P[1][1]|.
+  const float radians_per_pixel = 2.0f / (std::abs(camera.projection[1][1]) * float(std::max(camera.height, 1u)));
+  g.texel_camera = glm::vec4(v.texel_size_base, v.texel_size_per_depth, v.far_depth, radians_per_pixel);
+  g.camera_position = glm::vec4(camera.camera_position, options_.normal_offset_texels);
+  g.technique = light.technique->code();
+  g.depth_range = glm::vec4(v.near_depth, v.far_depth, 0.0f, 0.0f);
+  g.resolution = map.map_state.layout.resolution;
+  g.mip_count = map.map_state.layout.levels;
+  g.filter_mode = filter_code(settings.filter);
+  g.kernel = settings.kernel == scene::ShadowKernel::box        ? shared::kKernelBox
+             : settings.kernel == scene::ShadowKernel::gaussian ? shared::kKernelGaussian
+                                                                : shared::kKernelNone;
+  g.kernel_radius = uint32_t(settings.kernel_radius);
+  g.exponential = options_.exponential_interpolation ? 1u : 0u;
+  g.map_offset = uint32_t(map.atlas_offset / sizeof(glm::vec4));
+  g.list_heads_offset = uint32_t(map.list_heads_offset / sizeof(uint32_t));
+  g.list_nodes_offset = uint32_t(map.list_nodes_offset / kCaptureSegmentBytes);
+  g.views = shared::kViewsSingle;
+  g.reference = options_.keep_reference ? record_count_ + map.record : kNoReference;
+  light.technique->fill(g, settings, v);
+  return g;
+}
+
+// Every record of the frame: each map's, each multi-map light's (its first map's with how
+// to find the others), then the exact references.
+std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
+  std::vector<GpuShadow> records(uint64_t(record_count_) * (options_.keep_reference ? 2 : 1));
+  for (const MapState& map : maps_) records[map.record] = gpu_shadow(map, camera);
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
+    const LightState& light = lights_[i];
+    if (light.views == shared::kViewsSingle) continue;
+    const MapState& first = maps_[light.first_map];
+    GpuShadow& g = records[i];
+    g = records[first.record];
+    g.views = light.views;
+    g.first_view = first.record;
+    g.view_count = light.map_count;
+    g.reference = options_.keep_reference ? record_count_ + i : kNoReference;
+    if (light.views == shared::kViewsCube) g.view_select = glm::vec4(light.light.position, 0.0f);
+    if (light.views == shared::kViewsCascades) {
+      const glm::mat4 world_from_view = glm::inverse(camera.view);
+      g.view_select = glm::vec4(-glm::normalize(glm::vec3(world_from_view[2])), light.light.shadow.cascade_blend);
+      for (uint32_t c = 0; c < 4; ++c)
+        g.cascade_ends[c] = c < light.cascade_ends.size() ? light.cascade_ends[c] : camera.far_plane;
+    }
+  }
+  if (options_.keep_reference) {
+    for (uint32_t r = 0; r < record_count_; ++r) {
+      GpuShadow& reference = records[record_count_ + r];
+      reference = records[r];
+      reference.technique = shadow_technique_code("uncompressed");
+      reference.mip_count = 1;  // the lists have no mips: the exact curve at every level of detail
+      reference.reference = kNoReference;
+      if (reference.views != shared::kViewsSingle) reference.first_view += record_count_;
+    }
+  }
+  return records;
+}
+
+// "shadow parameters": the frame's GpuShadow records, written by the GPU in the frame
+// (not through a mapped pointer while it is declared), so the camera passes' reads are
+// ordered after the write like any other graph access.
+// One block per frame slot: a frame in flight keeps reading its own while the next is written.
+rg::BufferHandle ShadowMaps::add_parameter_upload(rg::Graph& graph, const View& camera, uint32_t slot) const {
+  std::vector<GpuShadow> records = frame_records(camera);
+  rg::BufferHandle buffer = rg::vulkan::import(graph, "shadow parameters", parameters_[slot], rg::ImportState::none(),
+                                               rg::ImportState::of(rg::Usage::StorageRead));
+  struct Data {
+    rg::BufferHandle records;
+  };
+  return graph.add_pass<Data>("shadow parameters", rg::QueueType::Compute,
+      [&](rg::PassBuilder& b, Data& d) { d.records = b.write(buffer, rg::Usage::TransferDst); },
+      [records = std::move(records)](const Data& d, rg::PassContext& c) {
+        // vkCmdUpdateBuffer takes at most 64 KiB a call.
+        constexpr size_t kPerCall = (64 << 10) / sizeof(GpuShadow);
+        const gpu::BufferRange target = c.buffer(d.records);
+        for (size_t first = 0; first < records.size(); first += kPerCall) {
+          const size_t count = std::min(kPerCall, records.size() - first);
+          vkCmdUpdateBuffer(c.cmd(), target, target.offset + first * sizeof(GpuShadow), count * sizeof(GpuShadow),
+                            records.data() + first);
+        }
+      })
+      .records;
+}
+
+}  // namespace avsm::passes

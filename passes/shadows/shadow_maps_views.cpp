@@ -1,0 +1,58 @@
+// ShadowMaps' light views: where each map looks from, fitted to the scene's bounds, or
+// to the camera for directional lights that follow it (fit view, cascades).
+#include <algorithm>
+
+#include "passes/shadows/shadow_maps.h"
+
+namespace avsm::passes {
+
+void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const glm::vec3& direction) {
+  LightState& light = lights_.at(index);
+  light.light.position = position;
+  light.light.direction = direction;
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) maps_[m].view = initial_view(maps_[m]);
+  // Maps fitted to the camera are fitted again by the next frame (update_views).
+  views_[index] = maps_[light.first_map].view;
+}
+
+// A map's view before any camera is known (update_views() fits the camera's).
+LightView ShadowMaps::initial_view(const MapState& map) const {
+  const LightState& light = lights_[map.light];
+  const uint32_t resolution = uint32_t(light.light.shadow.resolution);
+  if (map.face >= 0) return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution);
+  return make_light_view(light.light, map.fit_bounds, resolution);
+}
+
+// Maps fitted to the camera follow it: a directional light's (fit view) and its cascades.
+void ShadowMaps::update_views(const View& camera) {
+  last_camera_ = camera;
+  for (LightState& light : lights_) {
+    const scene::Light& l = light.light;
+    if (l.type != scene::LightType::directional || l.shadow.fit != scene::ShadowFit::view) continue;
+    if (light.views == shared::kViewsClusters) continue;  // fitted to their clusters
+    const float far = l.shadow.distance > 0.0f ? std::min(l.shadow.distance, camera.far_plane) : camera.far_plane;
+    const uint32_t resolution = uint32_t(l.shadow.resolution);
+    if (light.views == shared::kViewsCascades) {
+      light.cascade_ends = cascade_ends(camera.near_plane, far, light.map_count);
+      float begin = camera.near_plane;
+      for (uint32_t c = 0; c < light.map_count; ++c) {
+        const float end = light.cascade_ends[c];
+        maps_[light.first_map + c].view = make_fitted_directional_view(l, casters_, resolution, camera_slice(camera, begin, end));
+        // The next cascade starts where this one's blend band does, so both cover the band.
+        begin = end - (end - begin) * l.shadow.cascade_blend;
+      }
+    } else {
+      maps_[light.first_map].view = make_fitted_directional_view(l, casters_, resolution, camera_slice(camera, camera.near_plane, far));
+    }
+  }
+  for (uint32_t i = 0; i < lights_.size(); ++i) views_[i] = maps_[lights_[i].first_map].view;
+}
+
+std::vector<LightView> ShadowMaps::map_views(uint32_t light) const {
+  std::vector<LightView> views;
+  const LightState& l = lights_.at(light);
+  for (uint32_t m = l.first_map; m < l.first_map + l.map_count; ++m) views.push_back(maps_[m].view);
+  return views;
+}
+
+}  // namespace avsm::passes

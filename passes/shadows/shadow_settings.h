@@ -1,0 +1,39 @@
+#pragma once
+// What a caller and the scene file set for the shadow maps: the options every light
+// shares (ShadowOptions) and the check of each light's own shadow settings, which
+// ShadowMaps::set_scene() and set_lights() run before anything is allocated.
+#include <cstdint>
+#include <string>
+
+#include "passes/shadows/capture/capture_smoke_pass.h"
+#include "scene/light.h"
+
+namespace avsm::passes {
+
+struct ShadowOptions {
+  bool exponential_interpolation = false;
+  float normal_offset_texels = 2.0f;           // receivers move this many texels along their normal
+  uint64_t capture_limit_bytes = 128ull << 20;  // node buffer growth limit (lavapipe's maxStorageBufferRange)
+  uint32_t smoke_samples_per_segment = CaptureSmokePass::kDefaultSamplesPerSegment;
+  // Keep every light's capture lists to the end of the frame, so passes can look up
+  // the exact (uncompressed) transmittance next to the technique's: every record has an
+  // exact-reference record (GpuShadow::reference; reference_light_transmittance() in
+  // shaders/common/shadow_lookup.glsl). Costs a copy of the lists for the whole frame.
+  bool keep_reference = false;
+  // Bytes all maps together may take (they share one atlas buffer); 0: the device's
+  // storage buffer range, the most one binding can see. Checked before allocating.
+  uint64_t map_budget_bytes = 0;
+  // Over the budget: halve the resolution of the lights with the largest maps until
+  // they fit (LightShadowStats::lowered_from says which) instead of failing.
+  bool fit_budget = false;
+};
+
+// Throws std::invalid_argument, naming light `index`, for shadow settings this build
+// cannot render (cascades, clusters, nodes, kernel radius, resolution, the technique's
+// own); set_scene() and set_lights() check every light with it.
+void check_light_settings(const scene::Light& light, size_t index);
+
+// "light 2 'key'": how messages name a light.
+std::string light_display_name(const scene::Light& light, size_t index);
+
+}  // namespace avsm::passes

@@ -1,0 +1,71 @@
+#version 460
+// glTF metallic-roughness shading (common/pbr_brdf.glsl): every light times its
+// transmittance map, the sky, emission.
+#extension GL_GOOGLE_include_directive : require
+#include "common/lights.glsl"
+#include "common/pbr_brdf.glsl"
+#define AVSM_SHADOW_BINDING 4
+#include "common/shadow_lookup.glsl"
+
+#include "shared/mesh.h"
+
+layout(std430, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
+layout(std430, binding = 2) readonly buffer Lights { GpuLight lights[]; };
+layout(binding = 3) uniform sampler2D base_color_texture;    // sRGB
+layout(binding = 8) uniform sampler2D metallic_roughness_texture;  // linear: G roughness, B metallic
+layout(binding = 9) uniform sampler2D normal_texture;        // linear, tangent space
+layout(binding = 10) uniform sampler2D occlusion_texture;    // linear, R
+layout(binding = 11) uniform sampler2D emissive_texture;     // sRGB
+#include "shared/passes/camera/surfaces/opaque.h"
+
+layout(location = 0) in vec3 in_world;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+layout(location = 0) out vec4 out_color;
+
+// The normal texture's normal in world space, through the interpolated tangent frame
+// (bitangent = cross(normal, tangent) x handedness); the vertex normal where the
+// vertex has no tangent.
+vec3 mapped_normal(GpuMaterial m, vec3 n) {
+  vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
+  if (m.has_normal_texture == 0u || dot(t, t) < 1e-12) return n;
+  t = normalize(t);
+  vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 local = texture(normal_texture, in_uv).xyz * 2.0 - 1.0;
+  local.xy *= m.normal_scale;
+  return normalize(t * local.x + b * local.y + n * local.z);
+}
+
+void main() {
+  GpuMaterial m = materials[pc.material];
+  vec4 albedo = m.base_color;
+  if (m.has_texture != 0u) albedo *= texture(base_color_texture, in_uv);
+  if (m.alpha_mask != 0u && albedo.a < m.alpha_cutoff) discard;
+
+  vec3 to_camera = normalize(pc.camera_position.xyz - in_world);
+  vec3 vertex_normal = normalize(in_normal);
+  // Shade the side we see: seen from behind, the whole frame (and so the bent normal) turns round.
+  float side = dot(vertex_normal, to_camera) < 0.0 ? -1.0 : 1.0;
+  vec3 geometric_n = side * vertex_normal;
+  vec3 n = side * mapped_normal(m, vertex_normal);
+
+  vec4 metallic_roughness = texture(metallic_roughness_texture, in_uv);
+  PbrSurface surface;
+  surface.base_color = albedo.rgb;
+  surface.metallic = clamp(m.metallic * metallic_roughness.b, 0.0, 1.0);
+  surface.roughness = clamp(m.roughness * metallic_roughness.g, 0.0, 1.0);
+  float occlusion = 1.0 + m.occlusion_strength * (texture(occlusion_texture, in_uv).r - 1.0);
+
+  vec3 lit = pbr_sky(surface, dot(n, to_camera), kSkyAmbient, occlusion);
+  lit += m.emissive.rgb * texture(emissive_texture, in_uv).rgb;
+  for (uint i = 0u; i < pc.light_count; ++i) {
+    vec3 to_light;
+    vec3 radiance = light_radiance(lights[i], in_world, to_light);
+    // A light behind the surface itself does not reach it, whatever the normal texture says.
+    if (dot(geometric_n, to_light) <= 0.0 || dot(n, to_light) <= 0.0) continue;
+    lit += pbr_direct(surface, n, to_camera, to_light, radiance) *
+           surface_light_transmittance(i, in_world, geometric_n, to_light);
+  }
+  out_color = vec4(lit, 1.0);
+}

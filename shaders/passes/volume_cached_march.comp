@@ -1,4 +1,0 @@
-#version 460
-// The fast camera march (shaders/passes/volume_cached_march.glsl), for volumes that all have a lighting cache.
-#extension GL_GOOGLE_include_directive : require
-#include "passes/volume_cached_march.glsl"

@@ -1,6 +1,0 @@
-#version 460
-// The fast camera march (shaders/passes/volume_cached_march.glsl), with shadow-map lookups for volumes
-// whose lighting cache is off.
-#extension GL_GOOGLE_include_directive : require
-#define AVSM_MARCH_MAP_LOOKUPS
-#include "passes/volume_cached_march.glsl"
