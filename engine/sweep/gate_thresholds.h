@@ -1,7 +1,7 @@
 #pragma once
 // The regression gate's thresholds (avsm-compare --thresholds FILE): defaults with
 // room for a GPU's run-to-run spread of timings, overridable per key from a JSON file.
-// The file's format and the reasons for each default: README.md, "Regression gate".
+// The file's format and the reasons for each default: docs/farm.md, "Regression gate".
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>

@@ -1,7 +1,7 @@
 #pragma once
 // Sweep manifests: the JSON file that lists a sweep's jobs, as a cross product of
 // scenes x resolutions x shadow settings and/or an explicit list (the format is in the
-// README, "Running captures on a farm"). Reading is strict, as scene files are: unknown
+// docs/farm.md). Reading is strict, as scene files are: unknown
 // keys, wrong types, unknown techniques, duplicate ids, a reference_job that does not
 // exist and values out of range are scene::LoadErrors naming the file and the JSON path
 // (e.g. "jobs[3].shadow.nodes: must be 4, 8, 12 or 16, got 7").

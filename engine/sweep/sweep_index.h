@@ -1,6 +1,6 @@
 #pragma once
 // A sweep's job index: what DIR/index.json and each DIR/<job id>/job.json hold
-// (the sweep folder layout is described in the README, "Running captures on a farm").
+// (the sweep folder layout is described in docs/farm.md).
 // One writer (to_json) and one reader (from_json) per type; the reader's errors name
 // the key, and the file readers prefix the file.
 #include <nlohmann/json_fwd.hpp>

@@ -1,5 +1,5 @@
 // avsm-sweep: captures over scenes x settings, from a manifest, as a folder of capture
-// folders with one index (README, "Running captures on a farm").
+// folders with one index (docs/farm.md).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -130,7 +130,7 @@ struct Light {
   ShadowFilter filter = ShadowFilter::bilinear;  // trilinear builds and reads mips
   bool sort = true;                        // sort each texel's segments first: the same map every run
   // Build the map straight from the casters, in fixed memory (no capture lists;
-  // volumes need their density atlas): see README "fixed-memory build".
+  // volumes need their density atlas): see docs/shadows.md, "The fixed-memory build".
   bool fixed_memory_build = false;
 
   bool operator==(const Light&) const = default;
@@ -169,7 +169,7 @@ using passes::CasterObject;
 
 // ---------------------------------------------------------------------------------------
 // Your command buffer and your descriptor sets: plain Vulkan values, no rendergraph type.
-// (Shadows::record() below records a frame; README "Your command buffer: record()".)
+// (Shadows::record() below records a frame; docs/embedding.md, "Your command buffer: record()".)
 
 // Where the host's shader has the lookup's four storage buffers (common/shadow_lookup.glsl:
 // AVSM_SHADOW_PARAMETERS_BINDING, _ATLAS_, _LIST_HEADS_, _LIST_NODES_BINDING, in the set
@@ -297,7 +297,7 @@ class Shadows {
   // resources to read, only buffers to bind.
   ShadowLookupResources unshadowed_lookup() const;
 
-  // ---- Your command buffer (no rendergraph type; README "Your command buffer: record()").
+  // ---- Your command buffer (no rendergraph type; docs/embedding.md, "Your command buffer: record()").
   // Records the frame's shadow work (every light's capture, sort, build and mips, with the
   // barriers between them) into `cmd`, and returns the buffers the host's lookup binds.
   //   - cmd: a primary command buffer in the recording state, outside any render pass, for
