@@ -116,7 +116,7 @@ std::vector<glm::vec4> read_map_vec4s(gpu::Context& ctx, const gpu::Buffer& map,
         copy.srcOffset += c.buffer(source).offset;  // the map is a region of the shadow map atlas
         vkCmdCopyBuffer(c.cmd(), c.buffer(source), c.buffer(target), 1, &copy);
       });
-  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact, /*max_passes=*/1);
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact, /*timed_passes=*/1);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
   std::vector<glm::vec4> out(count);
   std::memcpy(out.data(), stage.mapped(), bytes);

@@ -1,5 +1,6 @@
 #include "gpu/gpu_timer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -30,26 +31,37 @@ void GpuTimer::write_timestamp(VkCommandBuffer cmd, uint32_t query) {
                    {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE});
 }
 
-GpuTimer::GpuTimer(const Context& ctx, uint32_t max_scopes, TimestampMode mode)
-    : ctx_(ctx), max_scopes_(max_scopes), mode_(mode) {
+GpuTimer::GpuTimer(const Context& ctx, uint32_t scopes, TimestampMode mode) : ctx_(ctx), mode_(mode) {
   if (ctx.info().timestamp_valid_bits == 0) throw std::runtime_error("the device's queue has no timestamps");
-  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  info.queryCount = query_count(max_scopes);
-  VK_CHECK(vkCreateQueryPool(ctx.device(), &info, nullptr, &pool_));
-  ctx.set_name(pool_, VK_OBJECT_TYPE_QUERY_POOL, "gpu timer");
+  create_pool(std::max(scopes, 1u));
 }
 
-GpuTimer::~GpuTimer() { vkDestroyQueryPool(ctx_.device(), pool_, nullptr); }
+GpuTimer::~GpuTimer() { ctx_.destroy_named(pool_, VK_OBJECT_TYPE_QUERY_POOL, vkDestroyQueryPool); }
 
-void GpuTimer::begin_frame(VkCommandBuffer cmd) {
+void GpuTimer::create_pool(uint32_t scopes) {
+  if (pool_) ctx_.destroy_named(pool_, VK_OBJECT_TYPE_QUERY_POOL, vkDestroyQueryPool);
+  pool_ = VK_NULL_HANDLE;
+  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  info.queryCount = query_count(scopes);
+  VK_CHECK(vkCreateQueryPool(ctx_.device(), &info, nullptr, &pool_));
+  ctx_.set_name(pool_, VK_OBJECT_TYPE_QUERY_POOL, "gpu timer");
+  max_scopes_ = scopes;
+}
+
+void GpuTimer::begin_frame(VkCommandBuffer cmd, uint32_t scopes) {
+  // Twice what is asked for, so that a graph that grows by a pass at a time does not make a
+  // pool each frame.
+  if (scopes > max_scopes_) create_pool(std::max(scopes, 2 * max_scopes_));
   names_.clear();
   vkCmdResetQueryPool(cmd, pool_, 0, query_count(max_scopes_));
   write_timestamp(cmd, 0);
 }
 
 uint32_t GpuTimer::begin_scope(VkCommandBuffer cmd, const std::string& name) {
-  if (names_.size() == max_scopes_) throw std::runtime_error("GpuTimer: more than " + std::to_string(max_scopes_) + " scopes");
+  if (names_.size() == max_scopes_)
+    throw std::logic_error("GpuTimer: scope '" + name + "' is one more than the " + std::to_string(max_scopes_) +
+                           " begin_frame() was told of");
   uint32_t scope = uint32_t(names_.size());
   names_.push_back(name);
   if (mode_ == TimestampMode::Exact) write_timestamp(cmd, begin_query(scope));
@@ -109,7 +121,7 @@ TimestampCalibration calibrate_timestamps(const Context& ctx, const ShaderLibrar
     auto start = std::chrono::steady_clock::now();
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       clear_with_rendering(cmd, target);  // timestamps go late only after rendering
-      timer.begin_frame(cmd);
+      timer.begin_frame(cmd, 1);
       uint32_t scope = timer.begin_scope(cmd, "spin");
       spin.bind(cmd);
       Bindings(ctx, spin).buffer("Values", values).push(cmd);

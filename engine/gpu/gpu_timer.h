@@ -48,15 +48,21 @@ struct ScopeTiming {
   double gpu_ms = 0;
 };
 
+// Times up to a frame's number of scopes, which begin_frame() is told: the query pool
+// grows with the frame graph (a scene of many lights has many passes), so no scene
+// meets a fixed limit.
 class GpuTimer {
  public:
-  GpuTimer(const Context& ctx, uint32_t max_scopes, TimestampMode mode);
+  // `scopes`: the query pool's first size (it grows as frames need).
+  GpuTimer(const Context& ctx, uint32_t scopes, TimestampMode mode);
   ~GpuTimer();
   GpuTimer(const GpuTimer&) = delete;
   GpuTimer& operator=(const GpuTimer&) = delete;
 
+  // Starts a frame of at most `scopes` scopes, growing the query pool to fit; the frame
+  // this timer recorded before must have completed (as for every resource it reuses).
   // Scopes must not nest, and must be recorded in submission order.
-  void begin_frame(VkCommandBuffer cmd);
+  void begin_frame(VkCommandBuffer cmd, uint32_t scopes);
   uint32_t begin_scope(VkCommandBuffer cmd, const std::string& name);
   void end_scope(VkCommandBuffer cmd, uint32_t scope);
 
@@ -66,6 +72,7 @@ class GpuTimer {
 
  private:
   void write_timestamp(VkCommandBuffer cmd, uint32_t query);
+  void create_pool(uint32_t scopes);
   const Context& ctx_;
   VkQueryPool pool_ = VK_NULL_HANDLE;
   uint32_t max_scopes_;

@@ -219,5 +219,36 @@ TEST_F(GpuTest, FrameGraphRejectsAnUnboundImport) {
   vkFreeCommandBuffers(ctx().device(), ctx().command_pool(), 1, &cmd);
 }
 
+
+// The timer has room for any number of passes: a graph of more passes than the executor
+// was first made for (and more than the 512 it once stopped at) is timed pass by pass, as a
+// scene of 200 shadowed lights needs.
+TEST_F(GpuTest, FrameGraphTimesEveryPassOfALargeGraph) {
+  gpu::Buffer target = gpu::Buffer::create(ctx(), {256, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                   gpu::MemoryLocation::DeviceLocal, "timed passes target"});
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact, /*timed_passes=*/1);
+  for (uint32_t passes : {600u, 3u, 700u}) {
+    rg::Graph graph;
+    const rg::ImportState written = rg::ImportState::of(rg::Usage::TransferDst);
+    rg::BufferHandle buffer = rg::vulkan::import(graph, "target", target, rg::ImportState::none(), written);
+    for (uint32_t p = 0; p < passes; ++p) {
+      struct Data {
+        rg::BufferHandle buffer;
+      };
+      buffer = graph.add_pass<Data>("fill " + std::to_string(p), rg::QueueType::Transfer,
+          [&](rg::PassBuilder& b, Data& d) { d.buffer = b.write(buffer, rg::Usage::TransferDst); },
+          [p](const Data& d, rg::PassContext& c) {
+            const gpu::BufferRange range = c.buffer(d.buffer);
+            vkCmdFillBuffer(c.cmd(), range, range.offset, 4, p);
+          })
+          .buffer;
+    }
+    ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+    const std::vector<rg::vulkan::PassTiming> timings = executor.read_timings();
+    ASSERT_EQ(timings.size(), passes);
+    EXPECT_EQ(timings.back().name, "fill " + std::to_string(passes - 1));
+  }
+}
+
 }  // namespace
 }  // namespace avsm

@@ -44,7 +44,7 @@ std::pair<double, double> time_k_and_2k(gpu::Context& ctx, const gpu::Pipeline& 
   std::vector<uint32_t> order = k_first ? std::vector<uint32_t>{k, 2 * k} : std::vector<uint32_t>{2 * k, k};
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     gpu::clear_with_rendering(cmd, target);  // like a real frame, where graphics work precedes compute
-    timer.begin_frame(cmd);
+    timer.begin_frame(cmd, uint32_t(order.size()));
     for (uint32_t iterations : order) {
       uint32_t scope = timer.begin_scope(cmd, "spin " + std::to_string(iterations));
       spin.bind(cmd);

@@ -49,8 +49,8 @@ uint64_t DeviceMemoryModel::buffer_image_granularity() const { return ctx_.info(
 
 // ------------------------------------------------------------ executor
 
-Executor::Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t max_passes)
-    : ctx_(ctx), memory_model_(ctx), timer_(ctx, max_passes, timestamps) {}
+Executor::Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t timed_passes)
+    : ctx_(ctx), memory_model_(ctx), timer_(ctx, timed_passes, timestamps) {}
 
 Executor::~Executor() = default;
 
@@ -229,7 +229,7 @@ void Executor::record(const Graph& graph, VkCommandBuffer cmd, const CompileOpti
     }
   }
 
-  timer_.begin_frame(cmd);
+  timer_.begin_frame(cmd, uint32_t(plan_.passes.size()));
   cpu_record_ms_.assign(plan_.passes.size(), 0.0);
   for (uint32_t p = 0; p < plan_.passes.size(); ++p) {
     const PlannedPass& pass = plan_.passes[p];

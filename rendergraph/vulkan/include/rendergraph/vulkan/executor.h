@@ -50,7 +50,9 @@ struct PassTiming {
 
 class Executor {
  public:
-  Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t max_passes = 512);
+  // `timed_passes`: how many passes the timer first has room for; it grows with the graphs
+  // recorded.
+  Executor(avsm::gpu::Context& ctx, avsm::gpu::TimestampMode timestamps, uint32_t timed_passes = 64);
   ~Executor();
 
   // Physical resources behind imported handles declared without one (rg::vulkan::import
