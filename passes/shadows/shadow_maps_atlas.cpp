@@ -1,6 +1,9 @@
 // ShadowMaps' memory: the maps' bytes against the budget, the one atlas buffer every map
 // is a region of, and the buffers of the capture lists that lookups read.
 #include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gpu/context.h"
 #include "gpu/device_limits.h"
@@ -9,6 +12,34 @@
 namespace avsm::passes {
 
 using gpu::format_mib;
+
+namespace {
+
+constexpr size_t kLightsNamed = 5;
+
+// The kLightsNamed largest of `lights` (each its size and how a message names it), largest
+// first, then how many more there are and, with `format_size`, their total: a message
+// about 200 lights stays a readable line.
+std::string largest_lights(std::vector<std::pair<uint64_t, std::string>> lights,
+                           std::string (*format_size)(uint64_t) = nullptr) {
+  std::stable_sort(lights.begin(), lights.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string text;
+  uint64_t rest = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (i < kLightsNamed)
+      text += (i ? ", " : "") + lights[i].second;
+    else
+      rest += lights[i].first;
+  }
+  if (lights.size() > kLightsNamed) {
+    const size_t more = lights.size() - kLightsNamed;
+    text += " and " + std::to_string(more) + " more light" + (more > 1 ? "s" : "");
+    if (format_size) text += " (" + format_size(rest) + ")";
+  }
+  return text;
+}
+
+}  // namespace
 
 uint64_t ShadowMaps::map_budget() const {
   const uint64_t range = ctx_.info().max_storage_buffer_range;
@@ -53,9 +84,12 @@ void ShadowMaps::fit_to_budget() {
   auto total = [&] { return atlas_bytes_needed(); };
   while (total() > budget) {
     if (!options_.fit_budget) {
-      std::string lights;
-      for (size_t i = 0; i < lights_.size(); ++i)
-        lights += (i ? ", " : "") + light_display_name(lights_[i].light, i) + " " + format_mib(light_bytes(lights_[i]));
+      std::vector<std::pair<uint64_t, std::string>> named;
+      for (size_t i = 0; i < lights_.size(); ++i) {
+        const uint64_t bytes = light_bytes(lights_[i]);
+        named.emplace_back(bytes, light_display_name(lights_[i].light, i) + " " + format_mib(bytes));
+      }
+      const std::string lights = largest_lights(std::move(named), format_mib);
       throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " +
                               format_mib(budget) + (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
                               "; lower their shadow.resolution or nodes, raise the budget (shadows.budget_mib) "
@@ -105,17 +139,17 @@ void ShadowMaps::create_atlas() {
 // What sizes the looked-up lists, for a message when they do not fit: the resolution of
 // every light whose lookups read its lists.
 std::string ShadowMaps::list_readers() const {
-  std::string lights;
+  std::vector<std::pair<uint64_t, std::string>> named;
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     const MapState& first = maps_[lights_[i].first_map];
     if (!first.lookups_read_lists) continue;
-    lights += (lights.empty() ? "" : ", ") + light_display_name(lights_[i].light, i) + " " +
-              std::to_string(first.map_state.layout.resolution) + "x" +
-              std::to_string(first.map_state.layout.resolution) +
-              (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : "");
+    const uint64_t side = first.map_state.layout.resolution;
+    named.emplace_back(side * side * lights_[i].map_count,
+                       light_display_name(lights_[i].light, i) + " " + std::to_string(side) + "x" + std::to_string(side) +
+                           (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : ""));
   }
   return "the shadow.resolution (--shadow-res) of the lights whose lookups read the exact lists (technique "
-         "uncompressed, --compare-to): " + lights;
+         "uncompressed, --compare-to): " + largest_lights(std::move(named));
 }
 
 // The lists that lookups read (the exact reference), copied each frame into two buffers

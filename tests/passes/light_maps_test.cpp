@@ -299,6 +299,30 @@ TEST_F(LightMapsTest, MapsOverTheBudgetAreAnErrorNamingTheLightsOrAreLowered) {
   EXPECT_GE(lowered, 2u);  // 3 x 512^2 -> fits only with most lowered to 256^2
 }
 
+// Over the budget with many lights, the message stays a line: the largest few lights by
+// name, largest first, and how many more there are with their bytes.
+TEST_F(LightMapsTest, MapsOverTheBudgetNameTheLargestLightsAndCountTheRest) {
+  Box box;
+  scene::Scene scene = box_scene({box});
+  for (int i = 0; i < 200; ++i)
+    scene.lights.push_back(make_light("spot" + std::to_string(i), scene::LightType::spot, i == 123 ? 1024 : 256));
+  passes::ShadowMaps maps(ctx(), shaders());
+  passes::ShadowOptions options;
+  options.map_budget_bytes = 64ull << 20;  // 199 AVSM-8 256^2 maps take 2 MiB each, the 1024^2 one 32 MiB
+  try {
+    maps.set_scene(scene, options);
+    FAIL() << "no error for maps over the budget";
+  } catch (const passes::ShadowBudgetError& e) {
+    const std::string message = e.what();
+    EXPECT_LT(message.size(), 600u) << message;
+    EXPECT_NE(message.find(": light 123 'spot123' 32.00 MiB, light 0 'spot0' 2.00 MiB, light 1 'spot1' 2.00 MiB"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find(" and 195 more lights (390.00 MiB); lower"), std::string::npos) << message;
+    EXPECT_EQ(message.find("spot199"), std::string::npos) << message;
+  }
+}
+
 // What one shader binding sees bounds what the shadows may take: a map budget above the
 // storage buffer range is held to it (ShadowBudgetError), and the exact lists that
 // uncompressed lights' lookups read, which no budget covers, are refused by the device
