@@ -72,14 +72,19 @@ ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>
   return report;
 }
 
-// Warns about every light whose capture overflowed. Returns true when one of them
-// has a bigger buffer for the next frame (re-rendering will then do better).
-bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
-  bool overflowed = false, grew = false;
+// What a completed frame lost of its shadowing (LightShadowStats::lost_shadowing), and
+// whether what it lacked grew for the next frame, so that rendering again does better.
+struct ShadowLoss {
+  bool lost = false, grew = false;
+};
+
+// Warns about every light whose frame lost shadowing.
+ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
+  ShadowLoss loss;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
     if (!light.lost_shadowing()) continue;
-    overflowed = true;
-    grew = grew || light.grew;
+    loss.lost = true;
+    loss.grew = loss.grew || light.grew;
     if (light.overflowed)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
@@ -89,9 +94,11 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
     if (light.dsm_pool && light.dsm_pool->overflowed)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s': the deep shadow map needed %llu pool nodes but had "
-                   "%llu; texels that did not fit were unshadowed; the pool grows for the next frame\n",
+                   "%llu; texels that did not fit were unshadowed; %s\n",
                    index + 1, light.light.c_str(), (unsigned long long)light.dsm_pool->requested_nodes,
-                   (unsigned long long)light.dsm_pool->capacity_nodes);
+                   (unsigned long long)light.dsm_pool->capacity_nodes,
+                   light.dsm_pool->held_by_budget ? "the map budget keeps the pool at its size (shadows.budget_mib)"
+                                                  : "the pool grows for the next frame");
     if (light.dsm_pool && light.dsm_pool->build_cut_short)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s': the deep shadow map build needed %u dispatches but "
@@ -99,8 +106,32 @@ bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint6
                    index + 1, light.light.c_str(), light.dsm_pool->needed_dispatches,
                    light.dsm_pool->build_dispatches, light.dsm_pool->needed_dispatches);
   }
-  if (overflowed) ++overflowed_frames;
-  return grew;
+  if (loss.lost) ++overflowed_frames;
+  return loss;
+}
+
+// Why the last frame still lost shadowing when nothing could grow any more: per light, what
+// did not fit or finish and the setting to change.
+std::string unfinished_maps_error(const std::vector<passes::LightShadowStats>& lights, uint32_t frames_again) {
+  std::string text = "the last frame's shadow maps stayed unfinished (rendered again " + std::to_string(frames_again) +
+                     (frames_again == 1 ? " time" : " times") + "), so no frame was written:";
+  for (const passes::LightShadowStats& light : lights) {
+    if (!light.lost_shadowing()) continue;
+    const std::string who = " light '" + light.light + "': ";
+    if (light.overflowed)
+      text += who + "its capture lists need " + std::to_string(light.capture_requested) + " segments and may hold " +
+              std::to_string(light.capture_capacity) + " (the device's storage buffer range); lower its " +
+              "shadow.resolution (--shadow-res) or build its map without lists (shadow.build fixed, --build fixed);";
+    if (light.dsm_pool && light.dsm_pool->overflowed)
+      text += who + "its deep shadow map needs " + std::to_string(light.dsm_pool->requested_nodes) +
+              " pool nodes and the map budget leaves room for " + std::to_string(light.dsm_pool->capacity_nodes) +
+              "; raise the budget (shadows.budget_mib) or the dsm error (--shadow-param error=...);";
+    if (light.dsm_pool && light.dsm_pool->build_cut_short)
+      text += who + "its deep shadow map build needs " + std::to_string(light.dsm_pool->needed_dispatches) +
+              " dispatches and the frame made " + std::to_string(light.dsm_pool->build_dispatches) + ";";
+  }
+  text.pop_back();  // the last ';'
+  return text;
 }
 
 // The lights whose maps the budget made smaller (shadows.fit_budget): the capture
@@ -176,9 +207,13 @@ class VolumeShadingRun {
     scene::VolumeShading shading = main_;
     shading.mode = mode;
     frame_.set_volume_shading(shading);
+    // The hidden frame is the reference's twin without smoke: its hair is lit per fragment too.
+    const std::optional<bool> hair_per_fragment = frame_.hair_lighting_per_fragment();
+    if (mode == scene::VolumeShading::Mode::hidden) frame_.set_hair_lighting_per_fragment(true);
     const FrameClock clock = render_timed_frame(ctx_, frame_, executor_, cmd, view);
     (log ? *log : log_).add_frame(clock, executor_.read_timings(), measured);
     if (keep) *keep = gpu::read_image(ctx_, frame_.hdr(), renderer::SceneRenderer::kOutputLayout);
+    frame_.set_hair_lighting_per_fragment(hair_per_fragment);
     frame_.set_volume_shading(main_);
   }
 
@@ -267,13 +302,14 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   uint64_t overflowed_frames = 0;
   renderer::FrameSlots slots(ctx, calibration.mode, options.frames_in_flight);
   FrameTimingLog timing_log;
-  constexpr uint32_t kMaxOverflowRetries = 4;
+  // Frames rendered again at most while a map is unfinished (each grows what it lacked).
+  constexpr uint32_t kMaxFramesAgain = 8;
 
   // What each slot's frame in flight is: its number and clock.
   std::vector<uint32_t> slot_frame(slots.count());
   std::vector<FrameClock> slot_clock(slots.count());
   std::vector<std::chrono::steady_clock::time_point> completed;  // per frame finished
-  bool last_grew = false;
+  ShadowLoss last_loss;
   // A frame's figures, when its fence signalled (frames finish in order).
   auto finished = [&](renderer::FrameSlots::Slot& slot) {
     FrameClock& clock = slot_clock[slot.index];
@@ -281,7 +317,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     completed.push_back(clock.completed);
     frame.finish_frame(slot.index);
     const uint32_t index = slot_frame[slot.index];
-    last_grew = report_overflow(frame, std::min(index, options.frames - 1), overflowed_frames);
+    last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
     const bool warm_up = index == 0 && options.frames > 1;
     const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), /*measured=*/!warm_up);
     if (options.progress)
@@ -317,14 +353,18 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                  completed.size(), loop_ms, slots.count(),
                  std::chrono::duration<double, std::milli>(completed.back() - completed.front()).count() /
                      double(completed.size() - 1));
-  // A frame whose capture overflowed lacks segments; its buffers grew for the frames
-  // after it. The last one is kept, so it is rendered again while it overflowed and the
-  // buffers could grow (a few times at most: growth has headroom).
-  for (uint32_t retry = 0; last_grew && retry < kMaxOverflowRetries; ++retry) {
-    if (options.progress) std::fprintf(stderr, "frame %u: capture buffers grown, rendering it again\n", options.frames);
-    submit_frame(options.frames + retry);
+  // A frame whose maps are unfinished (capture lists or a deep shadow map's pool too
+  // small, or its build cut short) is never written. What it lacked grew for the frames
+  // after it, so the last frame is rendered again until its maps are finished, while
+  // something still grows; if they never are, the capture fails naming the lights.
+  uint32_t frames_again = 0;
+  for (; last_loss.lost && last_loss.grew && frames_again < kMaxFramesAgain; ++frames_again) {
+    if (options.progress)
+      std::fprintf(stderr, "frame %u: shadow maps unfinished, buffers grown: rendering it again\n", options.frames);
+    submit_frame(options.frames + frames_again);
     slots.finish_all(finished);
   }
+  if (last_loss.lost) throw std::runtime_error(unfinished_maps_error(frame.shadows().frame_stats(), frames_again));
   const rg::vulkan::Executor& executor = slots.last_finished_executor();
 
   FrameOutputFiles files = write_frame_outputs(options.out_dir,

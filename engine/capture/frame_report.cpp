@@ -119,6 +119,7 @@ json to_json(const passes::LightShadowStats& s) {
     out["dsm_build_dispatches"] = s.dsm_pool->build_dispatches;
     out["dsm_build_needed_dispatches"] = s.dsm_pool->needed_dispatches;
     out["dsm_build_cut_short"] = s.dsm_pool->build_cut_short;
+    out["dsm_pool_held_by_budget"] = s.dsm_pool->held_by_budget;
   }
   if (s.fixed_build) {
     const passes::FixedBuildStats& f = *s.fixed_build;
@@ -159,6 +160,7 @@ passes::LightShadowStats light_stats_from_json(const json& in) {
     s.dsm_pool->needed_dispatches = value_of<uint32_t>(in, "dsm_build_needed_dispatches");
     s.dsm_pool->build_cut_short = value_of<bool>(in, "dsm_build_cut_short");
   }
+  if (in.contains("dsm_pool_held_by_budget")) s.dsm_pool->held_by_budget = value_of<bool>(in, "dsm_pool_held_by_budget");
   if (in.contains("fixed_build")) {
     const json& f = in.at("fixed_build");
     s.fixed_build = passes::FixedBuildStats{

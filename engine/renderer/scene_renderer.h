@@ -67,9 +67,11 @@ class SceneRenderer {
   void set_volume_shading(const scene::VolumeShading& shading);
   const scene::VolumeShading& volume_shading() const { return volume_shading_; }
   // Hair shading per fragment (the reference's) or per vertex (the fast path's); unset:
-  // as the volume shading mode says. Lets a test look at the fast path's smoke-hair
-  // compositing alone.
+  // per fragment in the reference volume shading only. Lets a test look at the fast path's
+  // smoke-hair compositing alone, and the volume comparison shade its hidden frame as the
+  // reference.
   void set_hair_lighting_per_fragment(std::optional<bool> per_fragment) { hair_per_fragment_ = per_fragment; }
+  std::optional<bool> hair_lighting_per_fragment() const { return hair_per_fragment_; }
   uint64_t density_atlas_bytes() const { return volumes_.atlas().bytes(); }
   // Cells in the last frame's lighting cache (0 in the reference path).
   uint64_t lighting_cache_cells() const { return volume_shading_.mode == scene::VolumeShading::Mode::fast ? cache_.cell_count() : 0; }

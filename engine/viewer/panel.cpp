@@ -380,7 +380,9 @@ void Panel::draw_memory(const PanelView& view) {
     if (light.dsm_pool)
       ImGui::Text("  pool nodes %llu of %llu%s", (unsigned long long)light.dsm_pool->requested_nodes,
                   (unsigned long long)light.dsm_pool->capacity_nodes,
-                  light.dsm_pool->overflowed ? " (overflowed: pool grows)" : "");
+                  !light.dsm_pool->overflowed     ? ""
+                  : light.dsm_pool->held_by_budget ? " (overflowed: the budget keeps its size)"
+                                                   : " (overflowed: pool grows)");
   }
 }
 

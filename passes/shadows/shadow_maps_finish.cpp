@@ -90,6 +90,7 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
     pool.build_dispatches = std::max(pool.build_dispatches, map.dsm_pool->build_dispatches);
     pool.needed_dispatches = std::max(pool.needed_dispatches, map.dsm_pool->needed_dispatches);
     pool.build_cut_short = pool.build_cut_short || map.dsm_pool->build_cut_short;
+    pool.held_by_budget = pool.held_by_budget || map.dsm_pool->held_by_budget;
     light.dsm_pool = pool;
   }
   if (map.fixed_build) {
@@ -115,14 +116,20 @@ void ShadowMaps::finish_frame(uint32_t slot) {
   std::vector<LightShadowStats> per_light(lights_.size());
   std::vector<TechniqueMapState> before;
   for (const MapState& map : maps_) before.push_back(map.map_state);
-  for (MapState& map : maps_) {
-    map.stats = finish_map(map, slot, remake);
-    add_map_stats(per_light[map.light], map.stats);
-  }
+  for (MapState& map : maps_) map.stats = finish_map(map, slot, remake);
   // Maps that grew (deep shadow map pools) stay within the budget: past it they keep
-  // their size, and the frames go on reporting what did not fit.
+  // their size, and the frames go on reporting what did not fit. Such a map did not
+  // grow, so rendering again does not help it (its build dispatches still may).
   if (atlas_bytes_needed() > map_budget())
-    for (size_t m = 0; m < maps_.size(); ++m) maps_[m].map_state = before[m];
+    for (size_t m = 0; m < maps_.size(); ++m) {
+      MapState& map = maps_[m];
+      if (map.map_state.pool_nodes == before[m].pool_nodes) continue;
+      map.map_state.pool_nodes = before[m].pool_nodes;
+      LightShadowStats& stats = map.stats;
+      stats.dsm_pool->held_by_budget = true;
+      stats.grew = stats.next_capture_capacity > stats.capture_capacity || stats.dsm_pool->build_cut_short;
+    }
+  for (const MapState& map : maps_) add_map_stats(per_light[map.light], map.stats);
   if (remake) {
     // For the next frame. The frames still in flight bind the buffers replaced here (a
     // grown technique map, the looked-up lists: the uncompressed technique and the exact

@@ -22,6 +22,7 @@ struct DsmPoolStats {
   bool overflowed = false;
   uint32_t build_dispatches = 0, needed_dispatches = 0;
   bool build_cut_short = false;
+  bool held_by_budget = false;  // overflowed, and the map budget keeps the pool from growing
   bool operator==(const DsmPoolStats&) const = default;
 };
 
