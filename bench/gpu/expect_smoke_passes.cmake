@@ -1,0 +1,31 @@
+# bench.GpuCheckSmoke: runs bench/gpu/check.sh --smoke into OUT, then checks that it passed
+# and that its summary names every step ok (or the real content as missing).
+# -DSCRIPT=check.sh -DBUILD_DIR=<build> -DOUT=<output folder> -DBUDGET=<seconds>
+cmake_minimum_required(VERSION 3.25)
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND bash ${SCRIPT} --smoke --build-dir ${BUILD_DIR} --out ${OUT} --budget ${BUDGET}
+                RESULT_VARIABLE result)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "bench/gpu/check.sh --smoke failed (exit ${result}); see ${OUT}/summary.txt and ${OUT}/logs")
+endif()
+foreach(file summary.txt summary.json device.json device.txt tests.log capture_default/timings.json
+             capture_default/frame.png techniques/table.txt)
+  if(NOT EXISTS ${OUT}/${file})
+    message(FATAL_ERROR "bench/gpu/check.sh --smoke did not write ${OUT}/${file}")
+  endif()
+endforeach()
+file(READ ${OUT}/summary.json summary)
+string(JSON ok GET "${summary}" ok)
+string(JSON steps LENGTH "${summary}" steps)
+if(NOT ok OR steps LESS 5)
+  message(FATAL_ERROR "summary.json: ok ${ok}, ${steps} steps")
+endif()
+math(EXPR last "${steps} - 1")
+foreach(i RANGE ${last})
+  string(JSON name GET "${summary}" steps ${i} step)
+  string(JSON status GET "${summary}" steps ${i} status)
+  if(NOT status STREQUAL "ok" AND NOT (name STREQUAL "capture-real" AND status STREQUAL "missing"))
+    message(FATAL_ERROR "summary.json: step ${name} is '${status}'")
+  endif()
+endforeach()
+message(STATUS "bench/gpu/check.sh --smoke: every step ok (${OUT}/summary.txt)")
