@@ -72,6 +72,35 @@ ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>
   return report;
 }
 
+// What the capture was made with (settings.json): `scene` as rendered (overrides applied),
+// `lights` the frame's figures (the resolutions the map budget lowered).
+SettingsReport settings_report(const CaptureOptions& options, const scene::Scene& scene,
+                               const scene::Camera& camera, const std::vector<passes::LightShadowStats>& lights,
+                               size_t probe_points) {
+  SettingsReport report;
+  report.scene = scene_label(options.scene);
+  report.camera = camera.name.empty() ? std::to_string(&camera - scene.cameras.data()) : camera.name;
+  report.width = options.width;
+  report.height = options.height;
+  report.frames = options.frames;
+  report.frames_in_flight = options.frames_in_flight;
+  report.validation = options.validation;
+  report.volume_shading = scene.volume_shading;
+  report.compare_volume_shading = options.compare_volume_shading;
+  report.exponential_interpolation = options.exponential_interpolation;
+  report.compare_to_uncompressed = options.compare_to_uncompressed;
+  report.probe_points = uint32_t(probe_points);
+  for (const TexelPlot& plot : options.plot_texels) report.plot_texels.push_back(plot.spec);
+  report.shadows = scene.shadows;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scene::Light& light = scene.lights[i];
+    LightSettings settings{light.name.empty() ? "light " + std::to_string(i) : light.name, light.type, light.shadow, 0};
+    if (i < lights.size() && lights[i].lowered_from != 0) settings.lowered_to = lights[i].resolution;
+    report.lights.push_back(std::move(settings));
+  }
+  return report;
+}
+
 // Warns about every light whose capture overflowed. Returns true when one of them
 // has a bigger buffer for the next frame (re-rendering will then do better).
 bool report_overflow(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
@@ -331,6 +360,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                                {ctx, frame, executor, scene, timing_log, overflowed_frames});
   FrameReport& report = files.report;
   CaptureOutputs out{files.png, files.exr, files.timings};
+  report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());
+  write_json(options.out_dir / "settings.json", to_json(*report.settings));
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());
     write_json(options.out_dir / "probes.json", to_json(*report.probes));
