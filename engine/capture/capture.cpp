@@ -45,33 +45,6 @@ const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& w
 }
 
 
-// A JSON array of [x, y, z] world positions.
-std::vector<glm::vec3> read_probe_points(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open the probe file");
-  nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded()) throw std::runtime_error(file.string() + ": not valid JSON");
-  if (!json.is_array()) throw std::runtime_error(file.string() + ": expected an array of [x, y, z] positions");
-  std::vector<glm::vec3> points;
-  for (size_t i = 0; i < json.size(); ++i) {
-    const nlohmann::json& p = json[i];
-    if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
-      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not [x, y, z] numbers");
-    points.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
-    if (!std::isfinite(points.back().x) || !std::isfinite(points.back().y) || !std::isfinite(points.back().z))
-      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not finite");
-  }
-  return points;
-}
-
-ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>& points,
-                         const std::vector<std::vector<float>>& results) {
-  ProbeReport report{points, {}};
-  for (size_t i = 0; i < scene.lights.size() && i < results.size(); ++i)
-    report.lights.push_back({scene.lights[i].name, scene.lights[i].shadow, results[i]});
-  return report;
-}
-
 // What the capture was made with (settings.json): `scene` as rendered (overrides applied),
 // `lights` the frame's figures (the resolutions the map budget lowered).
 SettingsReport settings_report(const CaptureOptions& options, const scene::Scene& scene,
@@ -98,6 +71,33 @@ SettingsReport settings_report(const CaptureOptions& options, const scene::Scene
     if (i < lights.size() && lights[i].lowered_from != 0) settings.lowered_to = lights[i].resolution;
     report.lights.push_back(std::move(settings));
   }
+  return report;
+}
+
+// A JSON array of [x, y, z] world positions.
+std::vector<glm::vec3> read_probe_points(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open the probe file");
+  nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) throw std::runtime_error(file.string() + ": not valid JSON");
+  if (!json.is_array()) throw std::runtime_error(file.string() + ": expected an array of [x, y, z] positions");
+  std::vector<glm::vec3> points;
+  for (size_t i = 0; i < json.size(); ++i) {
+    const nlohmann::json& p = json[i];
+    if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not [x, y, z] numbers");
+    points.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
+    if (!std::isfinite(points.back().x) || !std::isfinite(points.back().y) || !std::isfinite(points.back().z))
+      throw std::runtime_error(file.string() + ": entry " + std::to_string(i) + " is not finite");
+  }
+  return points;
+}
+
+ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>& points,
+                         const std::vector<std::vector<float>>& results) {
+  ProbeReport report{points, {}};
+  for (size_t i = 0; i < scene.lights.size() && i < results.size(); ++i)
+    report.lights.push_back({scene.lights[i].name, scene.lights[i].shadow, results[i]});
   return report;
 }
 
@@ -360,8 +360,6 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                                {ctx, frame, executor, scene, timing_log, overflowed_frames});
   FrameReport& report = files.report;
   CaptureOutputs out{files.png, files.exr, files.timings};
-  report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());
-  write_json(options.out_dir / "settings.json", to_json(*report.settings));
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());
     write_json(options.out_dir / "probes.json", to_json(*report.probes));
@@ -374,6 +372,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view, timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
+  report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());
+  write_json(options.out_dir / "settings.json", to_json(*report.settings));
   if (options.report) write_report(options.out_dir, report, options.out_dir / "report.html");
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
