@@ -45,6 +45,35 @@ const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& w
 }
 
 
+// What the capture was made with (settings.json): `scene` as rendered (overrides applied),
+// `lights` the frame's figures (the resolutions the map budget lowered).
+SettingsReport settings_report(const CaptureOptions& options, const scene::Scene& scene,
+                               const scene::Camera& camera, const std::vector<passes::LightShadowStats>& lights,
+                               size_t probe_points) {
+  SettingsReport report;
+  report.scene = scene_label(options.scene);
+  report.camera = camera.name.empty() ? std::to_string(&camera - scene.cameras.data()) : camera.name;
+  report.width = options.width;
+  report.height = options.height;
+  report.frames = options.frames;
+  report.frames_in_flight = options.frames_in_flight;
+  report.validation = options.validation;
+  report.volume_shading = scene.volume_shading;
+  report.compare_volume_shading = options.compare_volume_shading;
+  report.exponential_interpolation = options.exponential_interpolation;
+  report.compare_to_uncompressed = options.compare_to_uncompressed;
+  report.probe_points = uint32_t(probe_points);
+  for (const TexelPlot& plot : options.plot_texels) report.plot_texels.push_back(plot.spec);
+  report.shadows = scene.shadows;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scene::Light& light = scene.lights[i];
+    LightSettings settings{light.name.empty() ? "light " + std::to_string(i) : light.name, light.type, light.shadow, 0};
+    if (i < lights.size() && lights[i].lowered_from != 0) settings.lowered_to = lights[i].resolution;
+    report.lights.push_back(std::move(settings));
+  }
+  return report;
+}
+
 // A JSON array of [x, y, z] world positions.
 std::vector<glm::vec3> read_probe_points(const fs::path& file) {
   std::ifstream in(file);
@@ -383,6 +412,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view, timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
+  report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());
+  write_json(options.out_dir / "settings.json", to_json(*report.settings));
   if (options.report) write_report(options.out_dir, report, options.out_dir / "report.html");
 
   std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();

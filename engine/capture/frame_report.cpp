@@ -280,6 +280,71 @@ ProbeLight probe_light_from_json(const json& in) {
   return light;
 }
 
+// ---- settings.json ----
+
+scene::LightType light_type_from_json(const json& object) {
+  const std::string name = value_of<std::string>(object, "type");
+  for (scene::LightType type : {scene::LightType::directional, scene::LightType::spot, scene::LightType::point})
+    if (name == scene::to_string(type)) return type;
+  throw std::runtime_error("unknown light type '" + name + "'");
+}
+
+scene::ShadowKernel kernel_from_json(const json& object) {
+  const std::string name = value_of<std::string>(object, "kernel");
+  if (auto kernel = scene::shadow_kernel_from_string(name)) return *kernel;
+  throw std::runtime_error("unknown kernel '" + name + "'");
+}
+
+scene::ShadowFit fit_from_json(const json& object) {
+  const std::string name = value_of<std::string>(object, "fit");
+  if (auto fit = scene::shadow_fit_from_string(name)) return *fit;
+  throw std::runtime_error("unknown shadow fit '" + name + "'");
+}
+
+json to_json(const LightSettings& light) {
+  const scene::ShadowSettings& s = light.shadow;
+  return {{"light", light.light},
+          {"type", scene::to_string(light.type)},
+          {"technique", s.technique},
+          {"nodes", s.nodes},
+          {"resolution", s.resolution},
+          {"lowered_to", light.lowered_to},
+          {"filter", scene::to_string(s.filter)},
+          {"kernel", scene::to_string(s.kernel)},
+          {"kernel_radius", s.kernel_radius},
+          {"sort", s.sort},
+          {"build", scene::to_string(s.build)},
+          {"fit", scene::to_string(s.fit)},
+          {"distance", s.distance},
+          {"cascades", s.cascades},
+          {"cascade_blend", s.cascade_blend},
+          {"clusters", s.clusters},
+          {"parameters", s.parameters}};
+}
+
+LightSettings light_settings_from_json(const json& in) {
+  LightSettings light;
+  light.light = value_of<std::string>(in, "light");
+  light.type = light_type_from_json(in);
+  scene::ShadowSettings& s = light.shadow;
+  s.technique = technique_from_json(in);
+  s.nodes = value_of<int>(in, "nodes");
+  s.resolution = value_of<int>(in, "resolution");
+  light.lowered_to = value_of<uint32_t>(in, "lowered_to");
+  s.filter = filter_from_json(in);
+  s.kernel = kernel_from_json(in);
+  s.kernel_radius = value_of<int>(in, "kernel_radius");
+  s.sort = value_of<bool>(in, "sort");
+  s.build = build_from_json(in);
+  s.fit = fit_from_json(in);
+  s.distance = value_of<float>(in, "distance");
+  s.cascades = value_of<int>(in, "cascades");
+  s.cascade_blend = value_of<float>(in, "cascade_blend");
+  s.clusters = value_of<int>(in, "clusters");
+  s.parameters = value_of<std::map<std::string, double>>(in, "parameters");
+  return light;
+}
+
 // ---- the plan ----
 
 // As CompiledPlan::to_json's "desc": "1920x1080 R16G16B16A16_SFLOAT", "256x256x64 ... mips 9", "4096 bytes".
@@ -442,6 +507,65 @@ ProbeReport probe_report_from_json(const json& in) {
   return p;
 }
 
+std::string scene_label(const fs::path& scene_file) {
+  const fs::path file = fs::absolute(scene_file).lexically_normal();
+  const fs::path folder = file.parent_path().filename();
+  return (folder.empty() ? file.filename() : folder / file.filename()).generic_string();
+}
+
+json to_json(const SettingsReport& s) {
+  json lights = json::array();
+  for (const LightSettings& light : s.lights) lights.push_back(to_json(light));
+  return {{"scene", s.scene},
+          {"camera", s.camera},
+          {"width", s.width},
+          {"height", s.height},
+          {"frames", s.frames},
+          {"frames_in_flight", s.frames_in_flight},
+          {"validation", s.validation},
+          {"volume_shading",
+           {{"mode", scene::to_string(s.volume_shading.mode)},
+            {"resolution_divisor", s.volume_shading.resolution_divisor},
+            {"step_voxels", s.volume_shading.step_voxels}}},
+          {"compare_volume_shading", s.compare_volume_shading},
+          {"exponential_interpolation", s.exponential_interpolation},
+          {"compare_to_uncompressed", s.compare_to_uncompressed},
+          {"probe_points", s.probe_points},
+          {"plot_texels", s.plot_texels},
+          {"shadows",
+           {{"budget_mib", s.shadows.budget_mib}, {"fit_budget", s.shadows.fit_budget}, {"clusters", s.shadows.clusters}}},
+          {"lights", lights}};
+}
+
+SettingsReport settings_report_from_json(const json& in) {
+  SettingsReport s;
+  s.scene = value_of<std::string>(in, "scene");
+  s.camera = value_of<std::string>(in, "camera");
+  s.width = value_of<uint32_t>(in, "width");
+  s.height = value_of<uint32_t>(in, "height");
+  s.frames = value_of<uint32_t>(in, "frames");
+  s.frames_in_flight = value_of<uint32_t>(in, "frames_in_flight");
+  s.validation = value_of<bool>(in, "validation");
+  const json& volumes = member(in, "volume_shading");
+  const std::string mode = value_of<std::string>(volumes, "mode");
+  const auto parsed = scene::volume_shading_mode_from_string(mode);
+  if (!parsed) throw std::runtime_error("unknown volume shading '" + mode + "'");
+  s.volume_shading.mode = *parsed;
+  s.volume_shading.resolution_divisor = value_of<int>(volumes, "resolution_divisor");
+  s.volume_shading.step_voxels = value_of<float>(volumes, "step_voxels");
+  s.compare_volume_shading = value_of<bool>(in, "compare_volume_shading");
+  s.exponential_interpolation = value_of<bool>(in, "exponential_interpolation");
+  s.compare_to_uncompressed = value_of<bool>(in, "compare_to_uncompressed");
+  s.probe_points = value_of<uint32_t>(in, "probe_points");
+  s.plot_texels = value_of<std::vector<std::string>>(in, "plot_texels");
+  const json& shadows = member(in, "shadows");
+  s.shadows.budget_mib = value_of<double>(shadows, "budget_mib");
+  s.shadows.fit_budget = value_of<bool>(shadows, "fit_budget");
+  s.shadows.clusters = value_of<int>(shadows, "clusters");
+  s.lights = array_of<LightSettings>(in, "lights", light_settings_from_json);
+  return s;
+}
+
 FrameReport read_frame_report(const fs::path& out_dir) {
   FrameReport report;
   report.timings = read_report_file(out_dir / "timings.json", timing_report_from_json);
@@ -451,6 +575,8 @@ FrameReport read_frame_report(const fs::path& out_dir) {
     report.quality = read_report_file(out_dir / "quality.json", quality_report_from_json);
   if (fs::is_regular_file(out_dir / "probes.json", ec))
     report.probes = read_report_file(out_dir / "probes.json", probe_report_from_json);
+  if (fs::is_regular_file(out_dir / "settings.json", ec))
+    report.settings = read_report_file(out_dir / "settings.json", settings_report_from_json);
   return report;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // One typed report of a captured frame: what timings.json, memory.json,
-// quality.json and probes.json hold, what report.html shows (capture/report.h) and
+// settings.json, quality.json and probes.json hold, what report.html shows (capture/report.h) and
 // what the viewer's panel reads. Each file's keys are spelled once, in
 // frame_report.cpp: its to_json (the file's only writer) and its from_json (for a
 // tool that reads a capture folder back, read_frame_report()). nlohmann::json
@@ -18,6 +18,7 @@
 #include "capture/quality.h"
 #include "passes/shadows/shadow_stats.h"
 #include "scene/bounds.h"
+#include "scene/light.h"
 #include "scene/volume.h"
 
 namespace avsm::capture {
@@ -134,6 +135,44 @@ struct ProbeReport {
   std::vector<ProbeLight> lights;
 };
 
+// ---- settings.json (avsm-capture) ----
+
+// One light's shadow settings as the capture rendered it: the scene file's, with the
+// command line's overrides applied (scene::ShadowOverrides::apply(Light&)).
+struct LightSettings {
+  std::string light;  // the light's name; "light <index>" when it has none (as in memory.json)
+  scene::LightType type = scene::LightType::directional;
+  scene::ShadowSettings shadow;  // every field is written; shadow.resolution is the one asked for
+  // The resolution the map budget lowered shadow.resolution to (shadows.fit_budget); 0: not lowered.
+  uint32_t lowered_to = 0;
+};
+
+// What a capture was made with: the settings two captures must share for their figures to
+// compare (the regression gate lists those that differ, sweep/compare.h). The device is
+// not one of them (timings.json names it): a baseline may come from another machine.
+struct SettingsReport {
+  // The scene file as "<its folder's name>/<its name>" ("default/scene.json",
+  // "examples/alpha_casters.scene.json"), so that two checkouts or build folders compare
+  // equal: scene_label().
+  std::string scene;
+  std::string camera;  // the camera's name as picked; its index when it has no name
+  uint32_t width = 0, height = 0;
+  uint32_t frames = 0, frames_in_flight = 0;
+  bool validation = false;
+  scene::VolumeShading volume_shading;  // the scene's, with --volume-shading & co. applied
+  bool compare_volume_shading = false;
+  bool exponential_interpolation = false;
+  bool compare_to_uncompressed = false;  // --compare-to uncompressed (keeps the exact lists)
+  uint32_t probe_points = 0;             // --probe: the points' count
+  std::vector<std::string> plot_texels;  // --plot-texel, as given (keeps the exact lists)
+  scene::SceneShadows shadows;           // the scene file's "shadows" block (budget, clusters)
+  std::vector<LightSettings> lights;     // in the scene's order
+};
+
+// "<parent folder name>/<file name>" of `scene_file` made absolute (lexically, without
+// touching the disk): what SettingsReport::scene holds.
+std::string scene_label(const std::filesystem::path& scene_file);
+
 // ---- the whole frame ----
 
 struct FrameReport {
@@ -144,19 +183,24 @@ struct FrameReport {
   std::string plan_dot;  // CompiledPlan::to_dot()
   std::optional<QualityReport> quality;
   std::optional<ProbeReport> probes;
+  // settings.json: written by avsm-capture (not by the viewer's screenshots); absent in
+  // capture folders written before it existed.
+  std::optional<SettingsReport> settings;
 };
 
 nlohmann::json to_json(const TimingReport& timings);
 nlohmann::json to_json(const MemoryReport& memory);
 nlohmann::json to_json(const QualityReport& quality);
 nlohmann::json to_json(const ProbeReport& probes);
+nlohmann::json to_json(const SettingsReport& settings);
 // Throw std::runtime_error naming the first key that is missing or of the wrong type.
 TimingReport timing_report_from_json(const nlohmann::json& in);
 MemoryReport memory_report_from_json(const nlohmann::json& in);
 QualityReport quality_report_from_json(const nlohmann::json& in);
 ProbeReport probe_report_from_json(const nlohmann::json& in);
+SettingsReport settings_report_from_json(const nlohmann::json& in);
 
-// timings.json and memory.json from out_dir (required), quality.json and
+// timings.json and memory.json from out_dir (required), settings.json, quality.json and
 // probes.json when there; the plan summary and its dot text stay empty. Throws std::runtime_error
 // naming the file.
 FrameReport read_frame_report(const std::filesystem::path& out_dir);

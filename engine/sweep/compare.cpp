@@ -1,6 +1,7 @@
 #include "sweep/compare.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -158,6 +159,141 @@ Check quality_max_check(const capture::LightQuality& base, const capture::LightQ
           format("%+.5f", n.max - b.max), "", Verdict::listed, "reported, not judged (one texel can move it)"};
 }
 
+// ---- settings ----
+
+// One setting as the gate shows it: its key ("width", "volume_shading.mode", "nodes") and value.
+using Setting = std::pair<std::string, std::string>;
+
+// A capture's settings: the frame's, then each light's (by name).
+struct SettingList {
+  std::vector<Setting> frame;
+  std::vector<std::pair<std::string, std::vector<Setting>>> lights;
+};
+
+// The shortest text that reads back as the same number: settings that differ at all show
+// different values, and a float setting shows as written (0.1, not 0.100000001).
+template <class Number>
+std::string number_text(Number value) {
+  char text[64];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+  return error == std::errc() ? std::string(text, end) : format("%g", double(value));
+}
+std::string bool_text(bool value) { return value ? "true" : "false"; }
+
+SettingList settings_of(const capture::SettingsReport& s) {
+  std::string plots;
+  for (const std::string& plot : s.plot_texels) plots += (plots.empty() ? "" : " ") + plot;
+  SettingList list;
+  list.frame = {{"scene", s.scene},
+                {"camera", s.camera},
+                {"width", std::to_string(s.width)},
+                {"height", std::to_string(s.height)},
+                {"frames", std::to_string(s.frames)},
+                {"frames_in_flight", std::to_string(s.frames_in_flight)},
+                {"validation", bool_text(s.validation)},
+                {"volume_shading.mode", scene::to_string(s.volume_shading.mode)},
+                {"volume_shading.resolution_divisor", std::to_string(s.volume_shading.resolution_divisor)},
+                {"volume_shading.step_voxels", number_text(s.volume_shading.step_voxels)},
+                {"compare_volume_shading", bool_text(s.compare_volume_shading)},
+                {"exponential_interpolation", bool_text(s.exponential_interpolation)},
+                {"compare_to_uncompressed", bool_text(s.compare_to_uncompressed)},
+                {"probe_points", std::to_string(s.probe_points)},
+                {"plot_texels", plots.empty() ? "none" : plots},
+                {"shadows.budget_mib", number_text(s.shadows.budget_mib)},
+                {"shadows.fit_budget", bool_text(s.shadows.fit_budget)},
+                {"shadows.clusters", std::to_string(s.shadows.clusters)}};
+  for (const capture::LightSettings& light : s.lights) {
+    const scene::ShadowSettings& shadow = light.shadow;
+    std::vector<Setting> settings{{"type", std::string(scene::to_string(light.type))},
+                                  {"technique", shadow.technique},
+                                  {"nodes", std::to_string(shadow.nodes)},
+                                  {"resolution", std::to_string(shadow.resolution)},
+                                  {"lowered_to", std::to_string(light.lowered_to)},
+                                  {"filter", std::string(scene::to_string(shadow.filter))},
+                                  {"kernel", std::string(scene::to_string(shadow.kernel))},
+                                  {"kernel_radius", std::to_string(shadow.kernel_radius)},
+                                  {"sort", bool_text(shadow.sort)},
+                                  {"build", std::string(scene::to_string(shadow.build))},
+                                  {"fit", std::string(scene::to_string(shadow.fit))},
+                                  {"distance", number_text(shadow.distance)},
+                                  {"cascades", std::to_string(shadow.cascades)},
+                                  {"cascade_blend", number_text(shadow.cascade_blend)},
+                                  {"clusters", std::to_string(shadow.clusters)}};
+    for (const auto& [name, value] : shadow.parameters) settings.push_back({"parameters." + name, number_text(value)});
+    list.lights.push_back({light.light, std::move(settings)});
+  }
+  return list;
+}
+
+// What a capture folder without settings.json still records: the image size
+// (timings.json) and per light what memory.json holds of its settings.
+SettingList recorded_settings_of(const capture::FrameReport& report) {
+  SettingList list;
+  list.frame = {{"width", std::to_string(report.timings.width)}, {"height", std::to_string(report.timings.height)}};
+  for (const passes::LightShadowStats& light : report.memory.lights)
+    list.lights.push_back({light.light,
+                           {{"technique", light.technique},
+                            {"nodes", std::to_string(light.nodes)},
+                            {"resolution", std::to_string(light.resolution)},
+                            {"map_kind", light.map_kind},
+                            {"build", light.fixed_build ? "fixed" : "lists"}}});
+  return list;
+}
+
+const std::string kAbsent = "-";
+
+// Failed unless allowed, then listed: one setting that differs. `difference` says how
+// ("is 8 in BASE but 4 in NEW").
+Check setting_check(const std::string& key, const std::string& base, const std::string& now,
+                    const std::string& difference, const CompareOptions& options) {
+  Check check{"setting " + key, base, now, "", "equal", Verdict::fail, ""};
+  if (options.allow_different_settings) {
+    check.verdict = Verdict::listed;
+    check.message = "differs (allowed by --allow-different-settings)";
+  } else {
+    check.message = check.name + " " + difference +
+                    ": the figures compare different settings (--allow-different-settings compares them anyway)";
+  }
+  return check;
+}
+
+Check setting_check(const std::string& key, const std::string& base, const std::string& now,
+                    const CompareOptions& options) {
+  const std::string difference = base == kAbsent ? "is only in NEW (" + now + ")"
+                                 : now == kAbsent ? "is only in BASE (" + base + ")"
+                                                  : "is " + base + " in BASE but " + now + " in NEW";
+  return setting_check(key, base, now, difference, options);
+}
+
+const std::string* find_setting(const std::vector<Setting>& settings, const std::string& key) {
+  for (const Setting& setting : settings)
+    if (setting.first == key) return &setting.second;
+  return nullptr;
+}
+
+// A check per key whose value differs or that one side lacks; keys named `prefix` + key.
+void compare_setting_lists(const std::vector<Setting>& base, const std::vector<Setting>& now, const std::string& prefix,
+                           const CompareOptions& options, std::vector<Check>& checks) {
+  for (const auto& [key, value] : base) {
+    const std::string* other = find_setting(now, key);
+    if (!other || *other != value) checks.push_back(setting_check(prefix + key, value, other ? *other : kAbsent, options));
+  }
+  for (const auto& [key, value] : now)
+    if (!find_setting(base, key)) checks.push_back(setting_check(prefix + key, kAbsent, value, options));
+}
+
+const std::vector<Setting>* find_light_settings(const SettingList& list, const std::string& light) {
+  for (const auto& [name, settings] : list.lights)
+    if (name == light) return &settings;
+  return nullptr;
+}
+
+size_t setting_count(const SettingList& list) {
+  size_t count = list.frame.size();
+  for (const auto& light : list.lights) count += light.second.size();
+  return count;
+}
+
 // ---- folders ----
 
 enum class FolderKind { capture, sweep };
@@ -202,13 +338,14 @@ Check settings_changed(const JobRecord& base, const JobRecord& now) {
                 "differ: the figures compare different settings");
 }
 
-GateResult compare_sweeps(const fs::path& base, const fs::path& now, const Thresholds& limits) {
+GateResult compare_sweeps(const fs::path& base, const fs::path& now, const Thresholds& limits,
+                          const CompareOptions& options) {
   const SweepIndex b = read_index(base), n = read_index(now);
   GateResult result{base.string(), now.string(), {}};
   for (const JobRecord& job : b.jobs) {
     const JobRecord* other = n.find(job.id);
     if (other && job.status == JobStatus::done && other->status == JobStatus::done) {
-      result.suites.push_back(compare_captures(job.id, base / job.output, now / other->output, limits));
+      result.suites.push_back(compare_captures(job.id, base / job.output, now / other->output, limits, options));
       if (job.capture_args != other->capture_args)  // the manifest changed the job: say so first
         result.suites.back().checks.insert(result.suites.back().checks.begin(), settings_changed(job, *other));
     } else
@@ -288,6 +425,37 @@ std::vector<Check> compare_memory(const capture::MemoryReport& base, const captu
   return checks;
 }
 
+std::vector<Check> compare_settings(const capture::FrameReport& base, const capture::FrameReport& now,
+                                    const CompareOptions& options) {
+  std::vector<Check> checks;
+  const bool recorded = base.settings && now.settings;
+  if (!recorded) {
+    const std::string side = !base.settings && !now.settings ? "BASE and NEW" : !base.settings ? "BASE" : "NEW";
+    checks.push_back(listed("settings.json", base.settings ? "yes" : kAbsent, now.settings ? "yes" : kAbsent,
+                            "missing in " + side + " (captured before it was written): only the image size and each "
+                            "light's technique, nodes, resolution, map_kind and build (timings.json, memory.json) "
+                            "are compared"));
+  }
+  const SettingList b = recorded ? settings_of(*base.settings) : recorded_settings_of(base);
+  const SettingList n = recorded ? settings_of(*now.settings) : recorded_settings_of(now);
+  const size_t before = checks.size();
+  compare_setting_lists(b.frame, n.frame, "", options, checks);
+  for (const auto& [light, settings] : b.lights) {
+    const std::string prefix = "'light " + light + "'";
+    if (const std::vector<Setting>* other = find_light_settings(n, light))
+      compare_setting_lists(settings, *other, prefix + " ", options, checks);
+    else
+      checks.push_back(setting_check(prefix, "yes", kAbsent, "is only in BASE", options));
+  }
+  for (const auto& [light, settings] : n.lights)
+    if (!find_light_settings(b, light))
+      checks.push_back(setting_check("'light " + light + "'", kAbsent, "yes", "is only in NEW", options));
+  if (checks.size() == before)  // nothing differs: one check says how much was compared
+    checks.push_back({"settings", std::to_string(setting_count(b)) + " settings",
+                      std::to_string(setting_count(n)) + " settings", "", "equal", Verdict::pass, ""});
+  return checks;
+}
+
 std::vector<Check> compare_images(const gpu::ImageRGBA32F& base, const gpu::ImageRGBA32F& now,
                                   const ImageThresholds& limits) {
   const auto size = [](const gpu::ImageRGBA32F& image) {
@@ -316,10 +484,11 @@ std::vector<Check> compare_images(const gpu::ImageRGBA32F& base, const gpu::Imag
 }
 
 SuiteResult compare_captures(const std::string& name, const fs::path& base, const fs::path& now,
-                             const Thresholds& limits) {
+                             const Thresholds& limits, const CompareOptions& options) {
   const capture::FrameReport b = capture::read_frame_report(base), n = capture::read_frame_report(now);
-  SuiteResult suite{name, compare_images(io::read_exr(base / "frame.exr"), io::read_exr(now / "frame.exr"), limits.image)};
-  for (std::vector<Check> part : {compare_timings(b.timings, n.timings, limits.timing),
+  SuiteResult suite{name, compare_settings(b, n, options)};
+  for (std::vector<Check> part : {compare_images(io::read_exr(base / "frame.exr"), io::read_exr(now / "frame.exr"), limits.image),
+                                  compare_timings(b.timings, n.timings, limits.timing),
                                   compare_quality(b.quality, n.quality, limits.quality),
                                   compare_memory(b.memory, n.memory, limits.memory)})
     suite.checks.insert(suite.checks.end(), part.begin(), part.end());
@@ -327,13 +496,14 @@ SuiteResult compare_captures(const std::string& name, const fs::path& base, cons
 }
 
 
-GateResult compare_folders(const fs::path& base, const fs::path& now, const Thresholds& limits) {
+GateResult compare_folders(const fs::path& base, const fs::path& now, const Thresholds& limits,
+                           const CompareOptions& options) {
   const FolderKind kind = folder_kind(base, "BASE");
   if (folder_kind(now, "NEW") != kind)
     throw std::runtime_error("BASE " + base.string() + " is " + kind_name(kind) + " but NEW " + now.string() +
                              " is not: compare captures with captures, sweeps with sweeps");
-  if (kind == FolderKind::sweep) return compare_sweeps(base, now, limits);
-  return {base.string(), now.string(), {compare_captures("capture", base, now, limits)}};
+  if (kind == FolderKind::sweep) return compare_sweeps(base, now, limits, options);
+  return {base.string(), now.string(), {compare_captures("capture", base, now, limits, options)}};
 }
 
 }  // namespace avsm::sweep

@@ -16,8 +16,16 @@ namespace avsm::sweep {
 
 enum class Verdict {
   pass,
-  fail,    // a threshold crossed, or NEW lacks what BASE had (a failed job, a different image size)
+  fail,    // a threshold crossed, or NEW lacks what BASE had (a failed job, a different image size),
+           // or the two sides were captured with different settings
   listed,  // reported but not judged: a pass too small to time, a pass or light on one side only
+};
+
+// How the gate judges, apart from its thresholds (avsm-compare's flags).
+struct CompareOptions {
+  // --allow-different-settings: settings that differ between BASE and NEW are listed
+  // rather than failed (to measure on purpose what a change of settings costs).
+  bool allow_different_settings = false;
 };
 
 struct Check {
@@ -44,6 +52,15 @@ struct GateResult {
 
 // ---- the checks, one figure kind at a time (on reports already read) ----
 
+// The settings two captures were made with, key by key: one check per setting that differs
+// ("setting 'light sun' nodes", "setting width"), failed unless options allow it (then
+// listed); one passing "settings" check when none differs. When a side has no
+// settings.json (captured before it was written), only what both sides' timings.json and
+// memory.json record is compared (the image size; per light its technique, nodes, map
+// resolution, map kind and build), with a listed "settings.json" check saying which side lacks it.
+std::vector<Check> compare_settings(const capture::FrameReport& base, const capture::FrameReport& now,
+                                    const CompareOptions& options);
+
 std::vector<Check> compare_timings(const capture::TimingReport& base, const capture::TimingReport& now,
                                    const TimingThresholds& limits);
 // Per light of quality.json, matched by name; no checks when either side has no quality.json.
@@ -60,17 +77,18 @@ std::vector<Check> compare_images(const gpu::ImageRGBA32F& base, const gpu::Imag
 
 // ---- folders ----
 
-// Every check of two capture folders (avsm-capture --out): timings.json, memory.json,
-// quality.json (when both have one) and frame.exr. Throws std::runtime_error naming the
-// file that is missing or malformed.
+// Every check of two capture folders (avsm-capture --out): settings.json (first),
+// timings.json, memory.json, quality.json (when both have one) and frame.exr. Throws
+// std::runtime_error naming the file that is missing or malformed.
 SuiteResult compare_captures(const std::string& name, const std::filesystem::path& base,
-                             const std::filesystem::path& now, const Thresholds& limits);
+                             const std::filesystem::path& now, const Thresholds& limits,
+                             const CompareOptions& options = {});
 
 // Two capture folders, or two sweep folders (with index.json; jobs matched by id, each
 // done pair compared as captures). Throws std::runtime_error when a folder is neither,
 // or the two are not of the same kind, or a file is missing or malformed.
 GateResult compare_folders(const std::filesystem::path& base, const std::filesystem::path& now,
-                           const Thresholds& limits);
+                           const Thresholds& limits, const CompareOptions& options = {});
 
 // ---- output ----
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -91,6 +92,32 @@ ProbeReport sample_probes() {
   return {{{0.0f, 1.0f, 2.0f}, {0.25f, -0.5f, 3.0f}}, {light}};
 }
 
+// Every field away from its default, so a key that is not read back shows.
+SettingsReport sample_settings() {
+  SettingsReport s;
+  s.scene = "examples/alpha_casters.scene.json";
+  s.camera = "close_up";
+  s.width = 96;
+  s.height = 54;
+  s.frames = 3;
+  s.frames_in_flight = 1;
+  s.validation = true;
+  s.volume_shading = {scene::VolumeShading::Mode::reference, 4, 0.5f};
+  s.compare_volume_shading = true;
+  s.exponential_interpolation = true;
+  s.compare_to_uncompressed = true;
+  s.probe_points = 2;
+  s.plot_texels = {"0:16,16", "key_spot:10,20"};
+  s.shadows = {64.0, true, 3};
+  LightSettings sun{"sun_7", scene::LightType::directional, {}, 0};
+  sun.shadow = {"dsm", 12, 256, scene::ShadowFilter::trilinear, scene::ShadowKernel::gaussian, 3, false,
+                scene::ShadowBuild::fixed, scene::ShadowFit::scene, 40.0f, 3, 0.25f, 0, {{"error", 0.01}}};
+  LightSettings spot{"key_spot_42", scene::LightType::spot, {}, 128};
+  spot.shadow.clusters = 4;
+  s.lights = {sun, spot};
+  return s;
+}
+
 FrameReport sample_report() {
   FrameReport report{sample_timings(), sample_memory(), {}, "digraph plan {}\n", sample_quality(), sample_probes()};
   report.plan.passes = {{"light 0 capture opaque", rg::QueueType::Compute, 3}, {"opaque", rg::QueueType::Graphics, 1}};
@@ -158,6 +185,41 @@ TEST(FrameReport, ProbesRoundTrip) {
   EXPECT_EQ(probe_report_from_json(json).points, probes.points);
 }
 
+TEST(FrameReport, SettingsRoundTrip) {
+  const nlohmann::json json = to_json(sample_settings());
+  EXPECT_EQ(json["lights"][0]["technique"], "dsm");
+  EXPECT_EQ(json["lights"][0]["kernel"], "gaussian");
+  EXPECT_EQ(json["lights"][1]["type"], "spot");
+  EXPECT_EQ(json["lights"][1]["lowered_to"], 128);
+  EXPECT_EQ(json["volume_shading"]["mode"], "reference");
+  EXPECT_EQ(json["shadows"]["clusters"], 3);
+  const SettingsReport back = settings_report_from_json(json);
+  EXPECT_EQ(to_json(back), json);  // every key read back
+  EXPECT_EQ(back.lights.at(0).shadow.build, scene::ShadowBuild::fixed);
+  EXPECT_EQ(back.lights.at(0).shadow.parameters, (std::map<std::string, double>{{"error", 0.01}}));
+  EXPECT_EQ(back.lights.at(1).type, scene::LightType::spot);
+  EXPECT_EQ(back.plot_texels, sample_settings().plot_texels);
+
+  nlohmann::json broken = json;
+  broken["lights"][1]["type"] = "area";
+  try {
+    settings_report_from_json(broken);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "lights[1]: unknown light type 'area'");
+  }
+}
+
+// The scene as settings.json names it: its folder and file name, wherever the checkout is.
+TEST(FrameReport, SceneLabelIsTheFolderAndFileName) {
+  EXPECT_EQ(scene_label("/home/a/avsm/build/content/default/scene.json"), "default/scene.json");
+  EXPECT_EQ(scene_label("/ci/checkout/content/real_assets.scene.json"), "content/real_assets.scene.json");
+  EXPECT_EQ(scene_label("/ci/content/examples/../examples/alpha_casters.scene.json"),
+            "examples/alpha_casters.scene.json");
+  EXPECT_EQ(scene_label("alpha_casters.scene.json"),
+            fs::current_path().filename().string() + "/alpha_casters.scene.json");
+}
+
 TEST(FrameReport, ReadsACaptureFolderBack) {
   const fs::path dir = fresh_folder("folder");
   const FrameReport report = sample_report();
@@ -168,8 +230,14 @@ TEST(FrameReport, ReadsACaptureFolderBack) {
   EXPECT_EQ(back.timings, report.timings);
   EXPECT_EQ(back.memory.lights, report.memory.lights);
   EXPECT_FALSE(back.quality);  // no quality.json in the folder
+  EXPECT_FALSE(back.settings);  // nor settings.json (as in folders captured before it was written)
   ASSERT_TRUE(back.probes);
   EXPECT_EQ(back.probes->lights.at(0).transmittance, report.probes->lights.at(0).transmittance);
+
+  write_json(dir / "settings.json", to_json(sample_settings()));
+  const FrameReport with_settings = read_frame_report(dir);
+  ASSERT_TRUE(with_settings.settings);
+  EXPECT_EQ(to_json(*with_settings.settings), to_json(sample_settings()));
 }
 
 // Timings written before the device kind was recorded read as a GPU's.

@@ -3,7 +3,8 @@
 # the alpha casters scene needs nothing outside the project, and 96x54 with 2 frames
 # keeps each capture to seconds): an equal pair passes, a pair whose shadow maps have
 # half the resolution is flagged on the image, and a copy with planted regressions is
-# flagged on each. Every comparison writes JUnit, checked with xmllint.
+# flagged on each; two captures of different settings fail unless allowed. Every comparison
+# writes JUnit, checked with xmllint.
 add_executable(avsm_compare_tests compare_test.cpp)
 target_link_libraries(avsm_compare_tests PRIVATE avsm_sweep nlohmann_json::nlohmann_json GTest::gtest GTest::gtest_main)
 gtest_discover_tests(avsm_compare_tests DISCOVERY_TIMEOUT 60)
@@ -38,12 +39,36 @@ function(add_compare_test name new expect_exit expect)
   set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED "compare_captures;compare_planted")
 endfunction()
 add_compare_test(EqualSettingsPass Same 0 "image psnr +inf \\(equal\\);PASS: no threshold crossed")
+# The image alone: the resolution that differs is listed (--allow-different-settings), not failed.
 add_compare_test(HalfShadowResolutionFails HalfShadowResolution 1
-  "FAIL: [0-9]+ checks? crossed;capture: frame.exr differs from BASE: PSNR [0-9.]+ dB \\(limit 40 dB, image.min_psnr_db\\)")
+  "setting 'light sun' resolution +64 +32 +equal +- differs \\(allowed by --allow-different-settings\\);FAIL: 1 check crossed;capture: frame.exr differs from BASE: PSNR [0-9.]+ dB \\(limit 40 dB, image.min_psnr_db\\)"
+  --allow-different-settings)
 # lavapipe's times are judged here (timing.judge_cpu_devices): the planted copy has no noise.
 add_compare_test(PlantedRegressionsFail Planted 1
   "FAIL: 4 checks crossed;pass 'shadow quality' took x[0-9.]+ its BASE time;the frame took x[0-9.]+ its BASE GPU time;light 'sun': the mean shadow error against the exact reference rose;memory 'sun' map_bytes grew x4.00"
   --thresholds ${CMAKE_SOURCE_DIR}/tests/data/judge_cpu_timings.json)
+
+# Captures of different settings, the issue's AVSM-8 against AVSM-4 in kind: the default scene's
+# AVSM-4 and AVSM-16 captures (capture.QualityAvsm4 and capture.QualityAvsm16 in
+# tests/CMakeLists.txt, fixture capture_quality_nodes: 96x54, 32-texel maps, 1 frame, validation,
+# alike but for --nodes). The gate fails on each light's nodes setting; with
+# --allow-different-settings it lists them and judges the figures as usual, which pass
+# (16 nodes: less error, map bytes under memory.min_increase_bytes).
+set(NODES_CAPTURES ${CMAKE_BINARY_DIR}/tests)
+foreach(case "DifferentSettingsFail;1;setting 'light sun' nodes +4 +16 +equal +FAIL;FAIL: 2 checks crossed;capture: setting 'light sun' nodes is 4 in BASE but 16 in NEW: the figures compare different settings \\(--allow-different-settings compares them anyway\\);capture: setting 'light key_spot' nodes is 4 in BASE but 16 in NEW"
+             "DifferentSettingsAllowed;0;setting 'light sun' nodes +4 +16 +equal +- differs \\(allowed by --allow-different-settings\\);setting 'light key_spot' nodes +4 +16 +equal +- differs;PASS: no threshold crossed")
+  list(POP_FRONT case name expect_exit)
+  set(allow)
+  if(expect_exit EQUAL 0)
+    set(allow ";--allow-different-settings")
+  endif()
+  add_test(NAME compare.${name}
+    COMMAND ${CMAKE_COMMAND}
+            "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${NODES_CAPTURES}/capture_quality_avsm4;${NODES_CAPTURES}/capture_quality_avsm16;--junit;${COMPARE_OUT}/${name}.xml${allow}"
+            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${case}" -DJUNIT=${COMPARE_OUT}/${name}.xml -DSUITES=1
+            -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
+  set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED capture_quality_nodes)
+endforeach()
 
 # Two sweep folders: the local run's (sweep.LocalRun: 3 jobs done, 1 failed) against
 # itself passes; against a copy in which a done job failed, that job fails.

@@ -1,5 +1,6 @@
 // The regression gate (engine/sweep/compare.h) on synthetic reports: each check's
-// threshold logic, the thresholds file, sweep folders matched by id, and the outputs.
+// threshold logic, the settings of the two sides, the thresholds file, sweep folders
+// matched by id, and the outputs.
 // CPU only; the real captures are compared in tests/sweep/CMakeLists.txt.
 #include <gtest/gtest.h>
 
@@ -57,6 +58,36 @@ capture::QualityReport quality(double mean) {
   sun.light = "sun";
   sun.surface = {1000, mean * 1000, 0.25};
   return {96, 54, {sun}};
+}
+
+// Two lights at 96x54, as settings.json holds them; AVSM-`nodes` for the sun.
+capture::SettingsReport settings(int nodes = 8) {
+  capture::SettingsReport s;
+  s.scene = "default/scene.json";
+  s.camera = "main";
+  s.width = 96;
+  s.height = 54;
+  s.frames = 1;
+  s.frames_in_flight = 2;
+  s.validation = true;
+  capture::LightSettings sun{"sun", scene::LightType::directional, {}, 0};
+  sun.shadow.nodes = nodes;
+  sun.shadow.resolution = 32;
+  capture::LightSettings spot{"key_spot", scene::LightType::spot, {}, 0};
+  spot.shadow.technique = "osm";
+  spot.shadow.parameters = {{"slices", 32.0}};
+  s.lights = {sun, spot};
+  return s;
+}
+
+capture::FrameReport report(std::optional<capture::SettingsReport> settings, capture::MemoryReport m = memory()) {
+  capture::FrameReport r;
+  r.timings = timings();
+  r.timings.width = 96;
+  r.timings.height = 54;
+  r.memory = std::move(m);
+  r.settings = std::move(settings);
+  return r;
 }
 
 gpu::ImageRGBA32F image(float value, uint32_t width = 8, uint32_t height = 4) {
@@ -217,6 +248,128 @@ TEST(GateMemory, AGrowthAboveRatioAndFloorFails) {
   EXPECT_EQ(failures(compare_memory(memory(4 << 20), memory(1 << 20), {})), 0u);  // smaller is fine
 }
 
+// ---- settings ----
+
+TEST(GateSettings, TheSameSettingsPass) {
+  const std::vector<Check> checks = compare_settings(report(settings()), report(settings()), {});
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_EQ(checks[0].name, "settings");
+  EXPECT_EQ(checks[0].verdict, Verdict::pass);
+  EXPECT_EQ(checks[0].base, "49 settings");  // 18 of the frame, 15 of the sun, 16 of the spot (a parameter)
+}
+
+TEST(GateSettings, EachDifferenceFailsNamingTheSetting) {
+  const auto differences = [](const capture::SettingsReport& now) {
+    return compare_settings(report(settings()), report(now), {});
+  };
+  // AVSM-8 against AVSM-4, the defect that made this check: one failure, named.
+  const std::vector<Check> nodes = differences(settings(4));
+  ASSERT_EQ(nodes.size(), 1u);
+  EXPECT_EQ(nodes[0].name, "setting 'light sun' nodes");
+  EXPECT_EQ(nodes[0].base, "8");
+  EXPECT_EQ(nodes[0].now, "4");
+  EXPECT_EQ(nodes[0].verdict, Verdict::fail);
+  EXPECT_EQ(nodes[0].message,
+            "setting 'light sun' nodes is 8 in BASE but 4 in NEW: the figures compare different settings "
+            "(--allow-different-settings compares them anyway)");
+
+  capture::SettingsReport technique = settings();
+  technique.lights[0].shadow.technique = "dsm";
+  EXPECT_EQ(find(differences(technique), "setting 'light sun' technique")->now, "dsm");
+
+  capture::SettingsReport resolution = settings();
+  resolution.lights[1].shadow.resolution = 512;
+  resolution.lights[1].lowered_to = 256;  // and the budget lowered it
+  const std::vector<Check> lowered = differences(resolution);
+  EXPECT_EQ(failures(lowered), 2u);
+  EXPECT_EQ(find(lowered, "setting 'light key_spot' resolution")->base, "1024");
+  EXPECT_EQ(find(lowered, "setting 'light key_spot' lowered_to")->now, "256");
+
+  capture::SettingsReport size = settings();
+  size.width = 128;
+  size.height = 72;
+  const std::vector<Check> sized = differences(size);
+  EXPECT_EQ(failures(sized), 2u);
+  EXPECT_EQ(find(sized, "setting width")->now, "128");
+  EXPECT_EQ(find(sized, "setting height")->now, "72");
+
+  capture::SettingsReport scene = settings();
+  scene.scene = "content/real_assets.scene.json";
+  const std::vector<Check> scenes = differences(scene);
+  ASSERT_EQ(scenes.size(), 1u);
+  EXPECT_EQ(scenes[0].name, "setting scene");
+  EXPECT_EQ(scenes[0].verdict, Verdict::fail);
+
+  // Numbers differ at all or not at all, and show as written.
+  capture::SettingsReport blend = settings();
+  blend.lights[0].shadow.cascade_blend = std::nextafter(0.1f, 1.0f);
+  const std::vector<Check> blends = differences(blend);
+  ASSERT_EQ(blends.size(), 1u);
+  EXPECT_EQ(blends[0].name, "setting 'light sun' cascade_blend");
+  EXPECT_EQ(blends[0].base, "0.1");
+  EXPECT_EQ(blends[0].now, "0.10000001");
+
+  // A parameter set on one side only, the volume shading, a light on one side only.
+  capture::SettingsReport more = settings();
+  more.lights[1].shadow.parameters["depth_bias"] = 0.01;
+  more.volume_shading.mode = scene::VolumeShading::Mode::reference;
+  more.lights.push_back({"lamp", scene::LightType::point, {}, 0});
+  const std::vector<Check> added = differences(more);
+  EXPECT_EQ(failures(added), 3u);
+  EXPECT_EQ(find(added, "setting 'light key_spot' parameters.depth_bias")->base, "-");
+  EXPECT_EQ(find(added, "setting 'light key_spot' parameters.depth_bias")->message.substr(0, 68),
+            "setting 'light key_spot' parameters.depth_bias is only in NEW (0.01)");
+  EXPECT_EQ(find(added, "setting volume_shading.mode")->now, "reference");
+  EXPECT_EQ(find(added, "setting 'light lamp'")->message,
+            "setting 'light lamp' is only in NEW: the figures compare different settings "
+            "(--allow-different-settings compares them anyway)");
+}
+
+TEST(GateSettings, AllowedDifferencesAreListedNotFailed) {
+  capture::SettingsReport now = settings(4);
+  now.scene = "examples/alpha_casters.scene.json";
+  const std::vector<Check> checks = compare_settings(report(settings()), report(now), {.allow_different_settings = true});
+  ASSERT_EQ(checks.size(), 2u);
+  EXPECT_EQ(failures(checks), 0u);
+  for (const Check& check : checks) {
+    EXPECT_EQ(check.verdict, Verdict::listed);
+    EXPECT_EQ(check.message, "differs (allowed by --allow-different-settings)");
+  }
+  EXPECT_EQ(find(checks, "setting 'light sun' nodes")->now, "4");
+  EXPECT_EQ(find(checks, "setting scene")->now, "examples/alpha_casters.scene.json");
+}
+
+// Capture folders written before settings.json: what timings.json and memory.json record.
+TEST(GateSettings, WithoutSettingsJsonTheRecordedSettingsAreCompared) {
+  const std::vector<Check> equal = compare_settings(report(std::nullopt), report(settings()), {});
+  ASSERT_EQ(equal.size(), 2u);
+  EXPECT_EQ(equal[0].name, "settings.json");
+  EXPECT_EQ(equal[0].verdict, Verdict::listed);
+  EXPECT_EQ(equal[0].base, "-");
+  EXPECT_EQ(equal[0].now, "yes");
+  EXPECT_EQ(equal[0].message,
+            "missing in BASE (captured before it was written): only the image size and each light's technique, "
+            "nodes, resolution, map_kind and build (timings.json, memory.json) are compared");
+  EXPECT_EQ(equal[1].name, "settings");
+  EXPECT_EQ(equal[1].verdict, Verdict::pass);
+  EXPECT_EQ(equal[1].base, "7 settings");  // width, height; the sun's 5
+
+  capture::MemoryReport four = memory();
+  four.lights[0].nodes = 4;
+  four.lights[0].fixed_build = passes::FixedBuildStats{};
+  capture::FrameReport smaller = report(settings(), four);
+  smaller.timings.width = 48;
+  const std::vector<Check> checks = compare_settings(report(std::nullopt), smaller, {});
+  EXPECT_EQ(failures(checks), 3u);
+  EXPECT_EQ(find(checks, "setting 'light sun' nodes")->now, "4");
+  EXPECT_EQ(find(checks, "setting 'light sun' build")->now, "fixed");
+  EXPECT_EQ(find(checks, "setting width")->now, "48");
+  EXPECT_EQ(find(checks, "settings.json")->verdict, Verdict::listed);
+  EXPECT_EQ(find(compare_settings(report(settings()), report(std::nullopt), {}), "settings.json")->message.substr(0, 14),
+            "missing in NEW");
+  EXPECT_EQ(failures(compare_settings(report(std::nullopt), smaller, {.allow_different_settings = true})), 0u);
+}
+
 // ---- images ----
 
 TEST(GateImages, PsnrAndMeanAbsoluteErrorOnCompressedRgb) {
@@ -256,9 +409,11 @@ TEST(GateImages, DifferentSizesAreAClearFailure) {
 
 // ---- folders ----
 
-void write_capture(const fs::path& dir, double big_ms, float pixel, std::optional<double> mean_error = {}) {
+void write_capture(const fs::path& dir, double big_ms, float pixel, std::optional<double> mean_error = {},
+                   std::optional<capture::SettingsReport> settings = {}) {
   fs::create_directories(dir);
   capture::write_json(dir / "timings.json", capture::to_json(timings(big_ms)));
+  if (settings) capture::write_json(dir / "settings.json", capture::to_json(*settings));
   capture::write_json(dir / "memory.json", capture::to_json(memory()));
   if (mean_error) capture::write_json(dir / "quality.json", capture::to_json(quality(*mean_error)));
   io::write_exr(dir / "frame.exr", image(pixel));
@@ -274,15 +429,15 @@ JobRecord job(const std::string& id, JobStatus status, const std::string& error 
   return record;
 }
 
-// BASE: a, b, c, gone done. NEW: a equal, b darker, c failed, d only in NEW.
+// BASE: a, b, c, gone done. NEW: a equal, b darker and with 4 nodes, c failed, d only in NEW.
 std::pair<fs::path, fs::path> sweep_pair() {
   const fs::path base = fresh_folder("sweep_base"), now = fresh_folder("sweep_new");
-  for (const char* id : {"a", "b", "c", "gone"}) write_capture(base / id, 40, 0.5f, 0.01);
+  for (const char* id : {"a", "b", "c", "gone"}) write_capture(base / id, 40, 0.5f, 0.01, settings());
   write_index(base, {"/m.json", {job("a", JobStatus::done), job("b", JobStatus::done), job("c", JobStatus::done),
                                  job("gone", JobStatus::done)}});
-  write_capture(now / "a", 40, 0.5f, 0.01);
-  write_capture(now / "b", 40, 0.25f, 0.01);
-  write_capture(now / "d", 40, 0.5f);
+  write_capture(now / "a", 40, 0.5f, 0.01, settings());
+  write_capture(now / "b", 40, 0.25f, 0.01, settings(4));
+  write_capture(now / "d", 40, 0.5f, {}, settings());
   JobRecord b = job("b", JobStatus::done);
   b.capture_args = {"--nodes", "4"};
   write_index(now, {"/m.json", {job("a", JobStatus::done), b,
@@ -297,17 +452,27 @@ TEST(GateFolders, SweepsAreComparedJobByJob) {
   ASSERT_EQ(result.suites.size(), 5u);
   EXPECT_EQ(result.suites[0].name, "a");
   EXPECT_EQ(result.suites[0].failures(), 0u);
+  EXPECT_EQ(result.suites[0].checks.at(0).name, "settings");  // settings first
   EXPECT_EQ(result.suites[1].name, "b");
-  EXPECT_EQ(result.suites[1].failures(), 2u);  // PSNR and mean absolute error
+  EXPECT_EQ(result.suites[1].failures(), 3u);  // the nodes setting, PSNR and mean absolute error
   EXPECT_EQ(result.suites[1].checks.at(0).message, "differ: the figures compare different settings");
+  EXPECT_EQ(result.suites[1].checks.at(0).verdict, Verdict::listed);
   EXPECT_EQ(result.suites[1].checks.at(0).now, "--nodes 4");
+  EXPECT_EQ(result.suites[1].checks.at(1).name, "setting 'light sun' nodes");
+  EXPECT_EQ(result.suites[1].checks.at(1).verdict, Verdict::fail);
   EXPECT_EQ(result.suites[2].name, "c");
   EXPECT_EQ(result.suites[2].checks.at(0).message,
             "job 'c' was done in BASE but is failed in NEW: avsm-capture: error: <out of memory> & more");
   EXPECT_EQ(result.suites[3].checks.at(0).message, "only in BASE");
   EXPECT_EQ(result.suites[4].name, "d");
   EXPECT_EQ(result.suites[4].checks.at(0).message, "only in NEW");
-  EXPECT_EQ(result.failures(), 3u);
+  EXPECT_EQ(result.failures(), 4u);
+
+  // Allowed: the job's settings are listed, its image still fails.
+  const GateResult allowed = compare_folders(base, now, {}, {.allow_different_settings = true});
+  EXPECT_EQ(allowed.suites[1].failures(), 2u);
+  EXPECT_EQ(find(allowed.suites[1].checks, "setting 'light sun' nodes")->verdict, Verdict::listed);
+  EXPECT_EQ(allowed.failures(), 3u);
 }
 
 TEST(GateFolders, CapturePairsAndBadInputs) {
@@ -320,6 +485,17 @@ TEST(GateFolders, CapturePairsAndBadInputs) {
   EXPECT_EQ(equal.failures(), 0u);
   EXPECT_TRUE(find(equal.suites[0].checks, "quality 'sun' mean_abs_error"));
   EXPECT_TRUE(find(equal.suites[0].checks, "memory 'sun' capture_bytes"));
+  EXPECT_EQ(find(equal.suites[0].checks, "settings.json")->message.substr(0, 23), "missing in BASE and NEW");
+
+  // settings.json read back from the folders: AVSM-8 against AVSM-4 fails on the setting alone.
+  capture::write_json(base / "settings.json", capture::to_json(settings(8)));
+  capture::write_json(now / "settings.json", capture::to_json(settings(4)));
+  const GateResult nodes = compare_folders(base, now, {});
+  EXPECT_EQ(nodes.failures(), 1u);
+  EXPECT_EQ(nodes.suites[0].checks.at(0).name, "setting 'light sun' nodes");
+  EXPECT_EQ(compare_folders(base, now, {}, {.allow_different_settings = true}).failures(), 0u);
+  capture::write_json(now / "settings.json", capture::to_json(settings(8)));
+  EXPECT_EQ(compare_folders(base, now, {}).failures(), 0u);
 
   const auto error_of = [](const fs::path& b, const fs::path& n) {
     try {
@@ -355,8 +531,8 @@ TEST(GateOutput, JunitHasASuitePerJobACasePerCheckAndEscapes) {
   for (const SuiteResult& suite : result.suites) checks += suite.checks.size();
   EXPECT_EQ(occurrences(xml, "<testsuite "), 5u);
   EXPECT_EQ(occurrences(xml, "<testcase "), checks);
-  EXPECT_EQ(occurrences(xml, "<failure "), 3u);
-  EXPECT_NE(xml.find("<testsuites name=\"avsm-compare\" tests=\"" + std::to_string(checks) + "\" failures=\"3\""),
+  EXPECT_EQ(occurrences(xml, "<failure "), 4u);
+  EXPECT_NE(xml.find("<testsuites name=\"avsm-compare\" tests=\"" + std::to_string(checks) + "\" failures=\"4\""),
             std::string::npos);
   EXPECT_NE(xml.find("message=\"job &#39;c&#39; was done in BASE but is failed in NEW: avsm-capture: error: "
                      "&lt;out of memory&gt; &amp; more\""),
@@ -377,8 +553,10 @@ TEST(GateOutput, SummaryTableAndVerdict) {
   const auto [base, now] = sweep_pair();
   const std::string text = summary_text(compare_folders(base, now, {}));
   EXPECT_NE(text.find("b: "), std::string::npos);
-  EXPECT_NE(text.find("FAIL: 3 checks crossed a threshold"), std::string::npos);
+  EXPECT_NE(text.find("FAIL: 4 checks crossed a threshold"), std::string::npos);
   EXPECT_NE(text.find("  b: frame.exr differs from BASE: PSNR "), std::string::npos);
+  EXPECT_NE(text.find("  b: setting 'light sun' nodes is 8 in BASE but 4 in NEW: the figures compare different settings"),
+            std::string::npos);
   EXPECT_NE(summary_text({"x", "y", {}}).find("PASS: no threshold crossed"), std::string::npos);
 }
 
