@@ -98,14 +98,14 @@ class Workspace:
         self.source_root = work / "src"
         shutil.copytree(shaders, self.source_root / "shaders")
         # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
-        shutil.copytree(shaders.parent / "passes" / "techniques", self.source_root / "passes" / "techniques")
+        shutil.copytree(shaders.parent / "passes" / "shadows" / "techniques", self.source_root / "passes" / "shadows" / "techniques")
         shutil.copytree(scene_dir, work / "scene")
         self.scene_file = work / "scene" / "scene.json"
         self.scene = json.loads(self.scene_file.read_text())
         for light in self.scene["lights"]:
             light["shadow"]["resolution"] = shadow_res
         self.scene_file.write_text(json.dumps(self.scene, indent=1))
-        self.tonemap = self.source_root / "shaders" / "passes" / "tonemap.comp"
+        self.tonemap = self.source_root / "shaders" / "passes" / "camera" / "tonemap.comp"
         self.gltf = work / "scene" / "stage.gltf"
         self.hair = work / "scene" / "curtain.hair"
         thin_hair(self.hair, hair_every)

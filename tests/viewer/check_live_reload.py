@@ -81,10 +81,10 @@ def main():
     source_root = work / "src"
     shutil.copytree(shaders, source_root / "shaders")
     # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
-    shutil.copytree(shaders.parent / "passes" / "techniques", source_root / "passes" / "techniques")
+    shutil.copytree(shaders.parent / "passes" / "shadows" / "techniques", source_root / "passes" / "shadows" / "techniques")
     shutil.copytree(scene_dir, work / "scene")
     scene_file = work / "scene" / "scene.json"
-    tonemap = source_root / "shaders" / "passes" / "tonemap.comp"
+    tonemap = source_root / "shaders" / "passes" / "camera" / "tonemap.comp"
     hair_file = work / "scene" / "curtain.hair"
     good_tonemap, good_scene, good_hair = tonemap.read_text(), scene_file.read_text(), hair_file.read_bytes()
 
