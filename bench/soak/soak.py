@@ -347,7 +347,9 @@ def main():
         sys.exit(1)
     failures = report(args, *results)
     # Thousands of edits later, the scene as loaded looks as it did after the first cycle.
-    width, height = (int(n) for n in args.size.split("x"))
+    # frame.png is the view's size: the window's less the panel's column (engine/viewer/view_layout.h).
+    layout = json.loads((args.work / "first_cycle" / "layout.json").read_text())
+    width, height = layout["view"]["width"], layout["view"]["height"]
     last = check_image(args.work / "last_frame" / "frame.png", width, height)
     check_against_capture(last, args.work / "first_cycle" / "frame.png", width, height, name=f"frame {CYCLE}")
     for failure in failures:
