@@ -98,14 +98,14 @@ class Workspace:
         self.source_root = work / "src"
         shutil.copytree(shaders, self.source_root / "shaders")
         # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
-        shutil.copytree(shaders.parent / "passes" / "techniques", self.source_root / "passes" / "techniques")
+        shutil.copytree(shaders.parent / "passes" / "shadows" / "techniques", self.source_root / "passes" / "shadows" / "techniques")
         shutil.copytree(scene_dir, work / "scene")
         self.scene_file = work / "scene" / "scene.json"
         self.scene = json.loads(self.scene_file.read_text())
         for light in self.scene["lights"]:
             light["shadow"]["resolution"] = shadow_res
         self.scene_file.write_text(json.dumps(self.scene, indent=1))
-        self.tonemap = self.source_root / "shaders" / "passes" / "tonemap.comp"
+        self.tonemap = self.source_root / "shaders" / "passes" / "camera" / "tonemap.comp"
         self.gltf = work / "scene" / "stage.gltf"
         self.hair = work / "scene" / "curtain.hair"
         thin_hair(self.hair, hair_every)
@@ -347,7 +347,9 @@ def main():
         sys.exit(1)
     failures = report(args, *results)
     # Thousands of edits later, the scene as loaded looks as it did after the first cycle.
-    width, height = (int(n) for n in args.size.split("x"))
+    # frame.png is the view's size: the window's less the panel's column (engine/viewer/view_layout.h).
+    layout = json.loads((args.work / "first_cycle" / "layout.json").read_text())
+    width, height = layout["view"]["width"], layout["view"]["height"]
     last = check_image(args.work / "last_frame" / "frame.png", width, height)
     check_against_capture(last, args.work / "first_cycle" / "frame.png", width, height, name=f"frame {CYCLE}")
     for failure in failures:

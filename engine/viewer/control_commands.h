@@ -3,9 +3,11 @@
 // tests and tools that have no input devices (under Xvfb nobody clicks). After each
 // command the viewer prints one JSON line on stdout. Commands:
 //   frame                    poll the watched files, render a scene frame, present; the
-//                            reply also counts the validation messages so far
-//   inspect X,Y              click pixel (X, Y) (x right, y down): plot its texel curves
-//   screenshot DIR           write one avsm-capture frame's outputs and window.png
+//                            reply also counts the validation messages so far and gives
+//                            the view's size ("view": [W, H], the frame's)
+//   inspect X,Y              click pixel (X, Y) of the view (x right, y down; a pixel of
+//                            the frame, not the window): plot its texel curves
+//   screenshot DIR           write one avsm-capture frame's outputs, window.png and layout.json
 //   light I FIELD VALUE      set a panel field of light I: technique (avsm, ...), nodes,
 //                            resolution, filter (point, ...), sort (on/off), build (lists,
 //                            fixed), fit (view, scene), cascades (1-4), clusters (0-8, 0 and

@@ -211,12 +211,20 @@ Panel::Panel(const std::string& scene_file) : scene_file_(scene_file) {
   std::snprintf(scene_path_, sizeof(scene_path_), "%s", scene_file.c_str());
 }
 
-PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings) {
+PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const ViewLayout& layout) {
   PanelRequests requests;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(std::min(420.0f, display.x * 0.42f), display.y - 12), ImGuiCond_FirstUseEver);
-  ImGui::Begin("AVSM viewer");
+  // Docked: the layout's column, every frame. ImGui's size 0 means "fit the contents",
+  // and its windows are at least WindowMinSize (32x32): in a window under 80 pixels wide
+  // the column is narrower than that, and the panel keeps to it all the same.
+  const glm::vec2 position = layout.panel_position(), size = glm::max(layout.panel_size(), glm::vec2(1.0f));
+  ImGui::SetNextWindowPos(ImVec2(position.x, position.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(size.x, size.y), ImGuiCond_Always);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
+  ImGui::Begin("AVSM viewer", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PopStyleVar(2);
   draw_status(view, requests);
   if (ImGui::CollapsingHeader("Texel inspection", ImGuiTreeNodeFlags_DefaultOpen)) draw_inspection(view, requests);
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_lights(view, settings, requests);
@@ -399,7 +407,7 @@ void Panel::draw_plan(const PanelView& view) {
 void Panel::draw_inspection(const PanelView& view, PanelRequests& requests) {
   const TexelInspector& inspector = view.inspector;
   if (!inspector.active()) {
-    ImGui::TextDisabled("click the image (or a light map) to plot a texel's transmittance curve");
+    ImGui::TextDisabled("click the view (or a light map) to plot a texel's transmittance curve");
     return;
   }
   if (ImGui::SmallButton("clear")) requests.clear_inspection = true;

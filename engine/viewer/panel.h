@@ -6,7 +6,9 @@
 // albedo, hair opacity and width, exposure; the last frame's per-pass GPU timings,
 // memory figures and frame-graph plan; reload errors; the light maps and the
 // inspected texel's transmittance curves. It edits ViewerSettings and returns what
-// else the user asked for; the viewer app acts on it.
+// else the user asked for; the viewer app acts on it. It is docked: a column at the
+// window's left edge, full height, that the user cannot move, resize or collapse; the
+// 3D view takes the rest of the window (viewer/view_layout.h).
 #include <imgui.h>
 #include <rendergraph/plan.h>
 #include <rendergraph/vulkan/executor.h>
@@ -20,6 +22,7 @@
 #include "viewer/camera_controller.h"
 #include "viewer/scene_overrides.h"
 #include "viewer/texel_inspector.h"
+#include "viewer/view_layout.h"
 
 namespace avsm::viewer {
 
@@ -69,7 +72,9 @@ struct PanelRequests {
 class Panel {
  public:
   explicit Panel(const std::string& scene_file);
-  PanelRequests draw(const PanelView& view, ViewerSettings& settings);
+  // Draws the panel into `layout`'s panel column (placed there every frame, so a
+  // window resize keeps it docked).
+  PanelRequests draw(const PanelView& view, ViewerSettings& settings, const ViewLayout& layout);
 
  private:
   void draw_status(const PanelView& view, PanelRequests& requests);

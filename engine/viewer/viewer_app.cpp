@@ -8,8 +8,10 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -30,6 +32,7 @@
 #include "viewer/panel.h"
 #include "viewer/swapchain.h"
 #include "viewer/texel_inspector.h"
+#include "viewer/view_layout.h"
 #include "viewer/window.h"
 
 namespace avsm::viewer {
@@ -108,7 +111,9 @@ class ViewerApp {
   rg::TextureHandle add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data, uint32_t slot);
   void add_window_readback(rg::Graph& graph, rg::TextureHandle target, uint32_t image);
   void write_screenshot(const fs::path& dir, const std::vector<uint8_t>& window_rgba);
+  void write_layout(const fs::path& path) const;
 
+  // `pixel`: in the view's image (x right, y down from its top-left pixel).
   void inspect_pixel(glm::vec2 pixel);
   void refresh_inspection();
   void ensure_reference();
@@ -121,6 +126,9 @@ class ViewerApp {
   gpu::Context ctx_;
   Surface surface_;
   Swapchain swapchain_;
+  // The panel's column and the 3D view beside it (view_layout.h), for the swapchain's
+  // extent; the scene renders at the view's size.
+  ViewLayout layout_;
   gpu::ShaderLibrary builtin_shaders_;  // prebuilt SPIR-V: timestamp calibration and the panel
   gpu::TimestampCalibration calibration_;
   ImGuiWindowInput imgui_input_;
@@ -157,11 +165,13 @@ class ViewerApp {
   bool shaders_reloaded_ = false, scene_reloaded_ = false;
 };
 
-live::LiveOptions live_options(const ViewerOptions& options, VkExtent2D size, const passes::ShadowOptions& shadows) {
+// The scene renders at the view's size; a minimised window's empty view renders at 1x1
+// until the window has a size again.
+live::LiveOptions live_options(const ViewerOptions& options, const PixelRect& view, const passes::ShadowOptions& shadows) {
   live::LiveOptions live;
   live.scene_file = options.scene;
-  live.width = size.width;
-  live.height = size.height;
+  live.width = std::max(view.width, 1u);
+  live.height = std::max(view.height, 1u);
   live.shadow_options = shadows;
   return live;
 }
@@ -172,13 +182,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
       ctx_(context_desc(options, window_)),
       surface_(ctx_.instance(), window_),
       swapchain_(ctx_, surface_.handle(), window_.framebuffer_size(), options.frames_in_flight),
+      layout_(layout_for({swapchain_.extent().width, swapchain_.extent().height}, window_.framebuffer_scale())),
       calibration_(gpu::calibrate_timestamps(ctx_, builtin_shaders_)),
       imgui_input_(window_),
       imgui_renderer_(ctx_, builtin_shaders_, swapchain_.format()),
       settings_{.overrides = {.volume_shading = options.volume_shading},
                 .shadow_options = {.keep_reference = options.inspect_pixel.has_value()}},
       live_(std::make_unique<live::LiveRenderer>(
-          ctx_, live_options(options, swapchain_.extent(), settings_.shadow_options))),
+          ctx_, live_options(options, layout_.view, settings_.shadow_options))),
       scene_slots_(ctx_, calibration_.mode, options.frames_in_flight),
       window_slots_(ctx_, calibration_.mode, options.frames_in_flight),
       scene_clocks_(options.frames_in_flight),
@@ -196,8 +207,9 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer.enable_light_images();
   });
   live_->set_before_change([this] { finish_scene_frames(); });
-  std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, scene %s, %u frames in flight\n", ctx_.info().name.c_str(),
-               ctx_.info().driver_info.c_str(), swapchain_.extent().width, swapchain_.extent().height,
+  std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, view %ux%u beside a %u px panel, scene %s, %u frames in flight\n",
+               ctx_.info().name.c_str(), ctx_.info().driver_info.c_str(), swapchain_.extent().width,
+               swapchain_.extent().height, layout_.view.width, layout_.view.height, layout_.panel.width,
                options.scene.c_str(), options.frames_in_flight);
   if (options.inspect_pixel) inspect_pixel(*options.inspect_pixel);
 }
@@ -225,10 +237,10 @@ void ViewerApp::iterate(bool render) {
   imgui_input_.new_frame();
   handle_input();
   apply(panel_.draw({*live_, scene_slots_.last_finished_executor().plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_},
-                    settings_));
+                    settings_, layout_));
   ImGui::Render();
   // Edits waiting for the next poll would make this frame stale: render after it.
-  if ((scene_dirty_ || render) && !edits_pending_ && swapchain_.extent().width > 0) render_scene_frame();
+  if ((scene_dirty_ || render) && !edits_pending_ && !layout_.view.empty()) render_scene_frame();
   present(*ImGui::GetDrawData());
 }
 
@@ -262,6 +274,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       iterate(/*render=*/true);
       reply["frame"] = frames_submitted_;
       reply["rendered"] = frames_submitted_ > before;
+      reply["view"] = {layout_.view.width, layout_.view.height};  // the frame's size; `inspect` takes its pixels
       reply["ms"] = frame_stats_.wall_ms;
       reply["changed"] = reloaded_files_;
       reply["shaders_reloaded"] = shaders_reloaded_;
@@ -331,10 +344,15 @@ int ViewerApp::finish() {
 void ViewerApp::follow_window_size() {
   const VkExtent2D size = window_.framebuffer_size();
   const VkExtent2D current = swapchain_.extent();
-  if (size.width == current.width && size.height == current.height) return;
-  swapchain_.recreate(size);
-  if (swapchain_.extent().width == 0 || swapchain_.extent().height == 0) return;  // minimised
-  live_->set_size(swapchain_.extent().width, swapchain_.extent().height);
+  if (size.width != current.width || size.height != current.height) swapchain_.recreate(size);
+  // The window's size or its scale (moved to another screen) may have changed: the panel
+  // follows both, the view (and so the renderer) only the size.
+  const ViewLayout layout = layout_for({swapchain_.extent().width, swapchain_.extent().height}, window_.framebuffer_scale());
+  const bool view_resized = layout.view.width != layout_.view.width || layout.view.height != layout_.view.height;
+  layout_ = layout;
+  if (!view_resized || layout_.view.empty()) return;  // minimised: the renderer keeps its size
+  if (live_->renderer().width() == layout_.view.width && live_->renderer().height() == layout_.view.height) return;
+  live_->set_size(layout_.view.width, layout_.view.height);
   ldr_valid_ = false;
   scene_dirty_ = true;
 }
@@ -378,17 +396,23 @@ void ViewerApp::handle_input() {
   CameraInput input;
   input.seconds = std::chrono::duration<float>(now - last_iteration_).count();
   last_iteration_ = now;
-  input.viewport_height = float(swapchain_.extent().height);
+  input.viewport_height = float(layout_.view.height);
+  // The mouse works the camera only over the view: the panel (and ImGui's popups over
+  // the view) keep it, and a drag counts where its press was, wherever it goes after.
   if (!io.WantCaptureMouse) {
-    input.mouse_delta = glm::vec2(io.MouseDelta.x, io.MouseDelta.y) *
-                        glm::vec2(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y);
-    input.rotate = ImGui::IsMouseDown(ImGuiMouseButton_Left);
-    input.pan_or_look = ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::IsMouseDown(ImGuiMouseButton_Middle);
-    input.scroll = io.MouseWheel;
-    // A click (not a drag) on the image inspects the texel under it.
-    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < kClickSlopSquared)
-      inspect_pixel(glm::vec2(io.MouseClickedPos[0].x * io.DisplayFramebufferScale.x,
-                              io.MouseClickedPos[0].y * io.DisplayFramebufferScale.y));
+    auto position = [](const ImVec2& p) { return glm::vec2(p.x, p.y); };
+    auto held_from_view = [&](ImGuiMouseButton button) {
+      return ImGui::IsMouseDown(button) && layout_.in_view(position(io.MouseClickedPos[button]));
+    };
+    input.mouse_delta = position(io.MouseDelta) * layout_.scale;
+    input.rotate = held_from_view(ImGuiMouseButton_Left);
+    input.pan_or_look = held_from_view(ImGuiMouseButton_Right) || held_from_view(ImGuiMouseButton_Middle);
+    if (layout_.in_view(position(io.MousePos))) input.scroll = io.MouseWheel;
+    // A click (not a drag) on the view inspects the texel under it.
+    const glm::vec2 clicked = position(io.MouseClickedPos[ImGuiMouseButton_Left]);
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < kClickSlopSquared &&
+        layout_.in_view(clicked))
+      inspect_pixel(layout_.view_pixel(clicked));
   }
   if (!io.WantCaptureKeyboard) {
     // ImGui 1.86 indexes keys by the backend's (GLFW's) key codes.
@@ -441,8 +465,12 @@ void ViewerApp::apply(const PanelRequests& requests) {
 }
 
 void ViewerApp::inspect_pixel(glm::vec2 pixel) {
-  const VkExtent2D size = swapchain_.extent();
-  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= float(size.width) || pixel.y >= float(size.height)) return;
+  const renderer::SceneRenderer& renderer = live_->renderer();
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= float(renderer.width()) || pixel.y >= float(renderer.height())) {
+    set_status("pixel (" + std::to_string(int(pixel.x)) + ", " + std::to_string(int(pixel.y)) + ") is outside the " +
+               std::to_string(renderer.width()) + "x" + std::to_string(renderer.height()) + " view");
+    return;
+  }
   if (!inspector_.inspect_pixel(live_->scene(), current_view(), pixel)) {
     set_status("nothing under pixel (" + std::to_string(int(pixel.x)) + ", " + std::to_string(int(pixel.y)) + ")");
     return;
@@ -585,9 +613,9 @@ void ViewerApp::present(const ImDrawData& draw_data) {
   if (!presented) swapchain_.recreate(window_.framebuffer_size());
 }
 
-// The frame into the swapchain image, as a small frame graph of its own: the scene
-// (blitted) or a grey clear, then the panel, then (for a screenshot) a copy into the
-// readback buffer. The graph plans every layout transition, from the acquired image
+// The frame into the swapchain image, as a small frame graph of its own: a grey clear,
+// the scene blitted into the view's rectangle (once a frame of the view's size exists),
+// then the panel in its column, then (for a screenshot) a copy into the readback buffer. The graph plans every layout transition, from the acquired image
 // (contents undefined; the submit waits for it at Swapchain::kAcquireWaitStages) to
 // PRESENT_SRC_KHR, and the readback buffer's host-read state.
 void ViewerApp::record_window(renderer::FrameSlots::Slot& slot, uint32_t image, const ImDrawData& draw_data,
@@ -597,14 +625,16 @@ void ViewerApp::record_window(renderer::FrameSlots::Slot& slot, uint32_t image, 
   const rg::ImportState acquired{Swapchain::kAcquireWaitStages, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
   rg::TextureHandle target =
       rg::vulkan::import(graph, "swapchain image", swapchain_image, acquired, rg::ImportState::of(rg::Usage::Present));
-  target = ldr_valid_ ? add_scene_blit(graph, target) : add_grey_clear(graph, target);
+  target = add_grey_clear(graph, target);
+  if (ldr_valid_) target = add_scene_blit(graph, target);
   target = add_panel(graph, target, draw_data, slot.index);
   if (read_back) add_window_readback(graph, target, image);
   slot.executor->record(graph, slot.cmd);
 }
 
-// The tonemapped image holds display values: copied, not converted. Same size except
-// right after a resize, when it is stretched until the next frame.
+// The tonemapped image holds display values: copied, not converted, into the view's
+// rectangle, pixel for pixel (the renderer renders at the view's size; were it ever
+// larger, the excess is cut off, never scaled).
 rg::TextureHandle ViewerApp::add_scene_blit(rg::Graph& graph, rg::TextureHandle target) {
   const gpu::Image& ldr = live_->renderer().ldr();
   // The state the scene graph leaves it in (its final state), which it keeps.
@@ -616,19 +646,24 @@ rg::TextureHandle ViewerApp::add_scene_blit(rg::Graph& graph, rg::TextureHandle 
         b.read(source, rg::Usage::TransferSrc);
         target = b.write(target, rg::Usage::TransferDst);
       },
-      [source, target](rg::PassContext& c) {
+      [source, target, view = layout_.view](rg::PassContext& c) {
         const rg::TextureDesc &from = c.desc(source), &to = c.desc(target);
+        const int32_t width = int32_t(std::min({from.width, view.width, to.width - std::min(view.x, to.width)}));
+        const int32_t height = int32_t(std::min({from.height, view.height, to.height - std::min(view.y, to.height)}));
+        if (width <= 0 || height <= 0) return;
         VkImageBlit region{};
         region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.srcOffsets[1] = {int32_t(from.width), int32_t(from.height), 1};
-        region.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
+        region.srcOffsets[1] = {width, height, 1};
+        region.dstOffsets[0] = {int32_t(view.x), int32_t(view.y), 0};
+        region.dstOffsets[1] = {int32_t(view.x) + width, int32_t(view.y) + height, 1};
         vkCmdBlitImage(c.cmd(), c.image(source), c.layout(source), c.image(target), c.layout(target), 1, &region,
                        VK_FILTER_NEAREST);
       });
   return target;
 }
 
-// Before the first scene frame of the current size.
+// The whole window: the panel's column under the panel, and the view until the first
+// scene frame of its size.
 rg::TextureHandle ViewerApp::add_grey_clear(rg::Graph& graph, rg::TextureHandle target) {
   graph.add_pass("clear window", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b) { target = b.write(target, rg::Usage::TransferDst); },
@@ -640,7 +675,7 @@ rg::TextureHandle ViewerApp::add_grey_clear(rg::Graph& graph, rg::TextureHandle 
   return target;
 }
 
-// The panel draws over the scene (load op LOAD). The textures it samples (font, light
+// The panel draws into its column (load op LOAD; the scene is beside it). The textures it samples (font, light
 // maps) are not graph resources: they stay in SHADER_READ_ONLY_OPTIMAL, and whoever
 // last wrote them left them visible to fragment shaders.
 rg::TextureHandle ViewerApp::add_panel(rg::Graph& graph, rg::TextureHandle target, const ImDrawData& draw_data,
@@ -670,12 +705,25 @@ void ViewerApp::write_screenshot(const fs::path& dir, const std::vector<uint8_t>
     const renderer::SceneRenderer& renderer = live_->renderer();
     capture::write_frame_outputs(dir, {ctx_, renderer, scene_slots_.last_finished_executor(), live_->scene(), timing_log_, overflowed_frames_});
     if (!window_rgba.empty()) write_rgba_png(dir / "window.png", window_rgba, swapchain_.extent());
+    write_layout(dir / "layout.json");
     if (inspector_.has_values()) inspector_.write_json(dir / "inspect.json");
     set_status("saved " + dir.string());
   } catch (const std::exception& e) {
     set_status(std::string("screenshot failed: ") + e.what());
     if (options_.frames > 0) failed_ = true;  // a scripted run must not pass without its files
   }
+}
+
+// layout.json: where the panel and the view (frame.png) lie in window.png.
+void ViewerApp::write_layout(const fs::path& path) const {
+  auto rect = [](const PixelRect& r) {
+    return nlohmann::json{{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
+  };
+  const nlohmann::json json{{"window", {layout_.framebuffer.x, layout_.framebuffer.y}},
+                            {"scale", {layout_.scale.x, layout_.scale.y}},
+                            {"panel", rect(layout_.panel)},
+                            {"view", rect(layout_.view)}};
+  std::ofstream(path) << json.dump(1) << "\n";
 }
 
 }  // namespace

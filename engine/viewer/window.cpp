@@ -60,6 +60,14 @@ VkExtent2D Window::framebuffer_size() const {
   return {uint32_t(std::max(width, 0)), uint32_t(std::max(height, 0))};
 }
 
+glm::vec2 Window::framebuffer_scale() const {
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_, &width, &height);
+  const VkExtent2D framebuffer = framebuffer_size();
+  if (width <= 0 || height <= 0 || framebuffer.width == 0 || framebuffer.height == 0) return glm::vec2(1.0f);
+  return glm::vec2(float(framebuffer.width) / float(width), float(framebuffer.height) / float(height));
+}
+
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 void Window::request_close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }

@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's window (GLFW, no client API: Vulkan draws into it) and its Vulkan
 // surface. GLFW is started here and stopped with the window; only one exists at a time.
+#include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -31,6 +32,9 @@ class Window {
   // What the Vulkan instance must enable to present to this window.
   std::vector<std::string> required_instance_extensions() const;
   VkExtent2D framebuffer_size() const;
+  // Framebuffer pixels per screen coordinate (ImGui's DisplayFramebufferScale; 2 on a
+  // HiDPI screen); 1 while the window has no size.
+  glm::vec2 framebuffer_scale() const;
   bool should_close() const;
   void request_close();
   void set_title(const std::string& title);

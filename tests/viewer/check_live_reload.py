@@ -69,6 +69,14 @@ class Viewer:
         return answer
 
 
+def plume_pixel(view_width, view_height):
+    """A view pixel on the default scene's smoke plume: the one the 320x180 test clicks
+    (46,66 of its 192x180 view), moved with the view's size (the vertical field of view
+    is fixed, the image centred)."""
+    scale = view_height / 180
+    return f"{round(view_width / 2 - 50 * scale)},{round(66 * scale)}"
+
+
 def mean_brightness(png):
     _, _, rows = read_png(png)
     return sum(sum(row) for row in rows) / (len(rows) * len(rows[0]))
@@ -81,17 +89,17 @@ def main():
     source_root = work / "src"
     shutil.copytree(shaders, source_root / "shaders")
     # The shadow techniques' lookups, which the shaders include (passes/shadows/techniques/<name>/<name>.glsl).
-    shutil.copytree(shaders.parent / "passes" / "techniques", source_root / "passes" / "techniques")
+    shutil.copytree(shaders.parent / "passes" / "shadows" / "techniques", source_root / "passes" / "shadows" / "techniques")
     shutil.copytree(scene_dir, work / "scene")
     scene_file = work / "scene" / "scene.json"
-    tonemap = source_root / "shaders" / "passes" / "tonemap.comp"
+    tonemap = source_root / "shaders" / "passes" / "camera" / "tonemap.comp"
     hair_file = work / "scene" / "curtain.hair"
     good_tonemap, good_scene, good_hair = tonemap.read_text(), scene_file.read_text(), hair_file.read_bytes()
 
     env = dict(os.environ, AVSM_SOURCE_DIR=str(source_root), XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", "/tmp"))
     viewer = Viewer([xvfb_run, "-a", str(viewer_exe), "--control", "--validation", "--size", f"{WIDTH}x{HEIGHT}",
                      "--scene", str(scene_file)], env)
-    viewer.frame()
+    view_width, view_height = viewer.frame()["view"]  # the view beside the panel: the frame's size
     viewer.send(f"screenshot {work / 'before'}")
 
     # 1-2: shaders.
@@ -129,7 +137,7 @@ def main():
     viewer.frame(expect=["scene_reloaded"])
 
     # 7: texel inspection.
-    answer = viewer.send(f"inspect {WIDTH * 110 // 320},{HEIGHT * 66 // 180}")
+    answer = viewer.send(f"inspect {plume_pixel(view_width, view_height)}")
     if answer["inspect"] is None:
         fail("nothing under the smoke pixel")
     viewer.frame()

@@ -1,14 +1,20 @@
 #!/usr/bin/env python3
 """Checks a scripted avsm-viewer run (tests/viewer/CMakeLists.txt).
 
-  check_viewer_outputs.py SHOT_DIR WIDTH HEIGHT [--capture CAPTURE_DIR] [--inspect]
+  check_viewer_outputs.py SHOT_DIR WIDTH HEIGHT [--view VW VH] [--capture CAPTURE_DIR] [--inspect]
 
-SHOT_DIR is the viewer's --screenshot folder. Checks:
-  - frame.png and window.png are WIDTHxHEIGHT and not uniform, and every file
-    avsm-capture writes for a frame is there;
-  - window.png is the frame with the panel drawn over it: right of the panel it
-    equals frame.png exactly (the blit copies display values), and the panel area
-    differs from the frame;
+SHOT_DIR is the viewer's --screenshot folder, WIDTH x HEIGHT the window's size. The
+panel is docked in a column at the left and the 3D view takes the rest of the window
+(engine/viewer/view_layout.h). Checks:
+  - window.png is WIDTHxHEIGHT, frame.png (the scene, rendered at the view's size) is
+    not uniform, and every file avsm-capture writes for a frame is there;
+  - the view does not lie under the panel: frame.png fits beside the panel (narrower
+    than the window, as tall), and window.png's rectangle at the right edge of that
+    size equals frame.png exactly, pixel for pixel (the blit copies display values,
+    unscaled, and nothing is drawn over them); the column left of it shows the panel;
+  - layout.json (the viewer's layout) says the same: panel and view do not overlap and
+    cover the window, and the view is frame.png's rectangle; with --view, the view is
+    VW x VH (the size the capture below was made at);
   - with --capture: frame.png matches avsm-capture's frame.png of the same camera
     and size (per channel |difference| <= 2 of 255 on 99.9% of pixels: both render
     the same scene with the same passes; only float reordering may differ);
@@ -76,29 +82,66 @@ def read_png(path):
     return width, height, rows  # rows hold RGB only
 
 
-def check_image(path, width, height):
+def read_image(path):
+    """(width, height, rows) of an 8-bit PNG; fails when it is (nearly) uniform."""
     w, h, rows = read_png(path)
-    if (w, h) != (width, height):
-        fail(f"{path}: {w}x{h}, expected {width}x{height}")
     if len(set(rows[y][x * 3:x * 3 + 3] for y in range(0, h, 3) for x in range(0, w, 3))) < 16:
         fail(f"{path}: (nearly) uniform: fewer than 16 distinct colours")
+    return w, h, rows
+
+
+def check_image(path, width, height):
+    w, h, rows = read_image(path)
+    if (w, h) != (width, height):
+        fail(f"{path}: {w}x{h}, expected {width}x{height}")
     return rows
 
 
-def check_window(frame, window, width):
-    # The panel sits at the top left; find the first column from which the window
-    # equals the frame on every row: that must leave a real part of the image.
-    equal_from = width
-    for x in range(width - 1, -1, -1):
-        if any(frame[y][x * 3:x * 3 + 3] != window[y][x * 3:x * 3 + 3] for y in range(len(frame))):
-            break
-        equal_from = x
-    if equal_from > width * 0.7:
-        fail(f"window.png equals frame.png only right of column {equal_from} of {width}: the blit lost the frame")
-    panel_differs = sum(frame[y][:equal_from * 3] != window[y][:equal_from * 3] for y in range(len(frame)))
-    if equal_from == 0 or panel_differs < len(frame) // 2:
-        fail("window.png shows no panel over the frame")
-    print(f"window.png: frame exact right of column {equal_from}, panel over {panel_differs} rows")
+def check_window(frame_size, frame, window, width, height):
+    """The view, frame.png's size at the window's right edge, shows the frame unobstructed;
+    the panel's column is left of it. Returns the view rectangle (x, y, w, h)."""
+    fw, fh = frame_size
+    if fw > width or fh != height:
+        fail(f"frame.png is {fw}x{fh} in a {width}x{height} window: the view must be as tall as the window")
+    view = (width - fw, 0, fw, fh)
+    covered = [(x, y) for y in range(fh) for x in range(fw)
+               if window[y][(view[0] + x) * 3:(view[0] + x) * 3 + 3] != frame[y][x * 3:x * 3 + 3]]
+    if covered:
+        x, y = covered[0]
+        fail(f"window.png differs from frame.png at {len(covered)} of {fw * fh} pixels of the view "
+             f"({view[2]}x{view[3]} at x {view[0]}), first at view pixel ({x}, {y}): something covers the scene "
+             "or the blit scaled it")
+    if fw == width:
+        fail(f"frame.png is as wide as the window ({width}): no column is left beside the view for the panel")
+    panel_colours = set(window[y][x * 3:x * 3 + 3] for y in range(height) for x in range(view[0]))
+    if len(panel_colours) < 8:
+        fail(f"window.png: the column left of the view (x < {view[0]}) shows no panel ({len(panel_colours)} colours)")
+    print(f"window.png: the view ({fw}x{fh} at x {view[0]}) equals frame.png exactly; "
+          f"the panel's column ({view[0]} px) beside it")
+    return view
+
+
+def check_layout(path, view, width, height, expected_view=None):
+    """layout.json: the viewer's own account of the panel and the view."""
+    if not Path(path).is_file():
+        fail(f"missing {path}: the viewer did not write its layout")
+    layout = json.loads(Path(path).read_text())
+    rect = lambda r: (r["x"], r["y"], r["width"], r["height"])  # noqa: E731
+    panel, reported = rect(layout["panel"]), rect(layout["view"])
+    if tuple(layout["window"]) != (width, height):
+        fail(f"{path}: window {layout['window']}, expected {width}x{height}")
+    if reported != view:
+        fail(f"{path}: view {reported}, but frame.png sits at {view} in window.png")
+    px, py, pw, ph = panel
+    vx, vy, vw, vh = reported
+    if px + pw > vx and vx + vw > px and py + ph > vy and vy + vh > py:
+        fail(f"{path}: panel {panel} and view {reported} overlap")
+    if (px, py, ph, vy, vh) != (0, 0, height, 0, height) or pw != vx or vx + vw != width:
+        fail(f"{path}: panel {panel} and view {reported} do not cover the {width}x{height} window side by side")
+    if expected_view and (vw, vh) != expected_view:
+        fail(f"{path}: the view is {vw}x{vh}, expected {expected_view[0]}x{expected_view[1]} "
+             "(the layout rule changed? see engine/viewer/view_layout.h and tests/viewer/CMakeLists.txt)")
+    print(f"layout.json: panel {pw}x{ph} at the left, view {vw}x{vh} beside it")
 
 
 def check_against_capture(frame, capture_png, width, height, name="avsm-capture"):
@@ -153,11 +196,16 @@ def main():
     for name in FRAME_FILES + ["window.png"]:
         if not (shot / name).is_file() or (shot / name).stat().st_size == 0:
             fail(f"missing or empty {shot / name}")
-    frame = check_image(shot / "frame.png", width, height)
+    fw, fh, frame = read_image(shot / "frame.png")
     window = check_image(shot / "window.png", width, height)
-    check_window(frame, window, width)
+    view = check_window((fw, fh), frame, window, width, height)
+    expected_view = None
+    if "--view" in args:
+        at = args.index("--view")
+        expected_view = (int(args[at + 1]), int(args[at + 2]))
+    check_layout(shot / "layout.json", view, width, height, expected_view)
     if "--capture" in args:
-        check_against_capture(frame, Path(args[args.index("--capture") + 1]) / "frame.png", width, height)
+        check_against_capture(frame, Path(args[args.index("--capture") + 1]) / "frame.png", fw, fh)
     if "--inspect" in args:
         check_inspection(shot / "inspect.json")
     print("check_viewer_outputs: OK")

@@ -1,8 +1,9 @@
 // The viewer's CPU-side logic, without a window: camera control, picking, the
-// light texel a point falls in, scene overrides, the --control commands and the
-// panel's map summary.
+// light texel a point falls in, scene overrides, the --control commands, the
+// panel's map summary and the window's layout (panel column and 3D view).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,8 +15,14 @@
 #include "viewer/scene_overrides.h"
 #include "viewer/scene_picking.h"
 #include "viewer/texel_inspector.h"
+#include "viewer/view_layout.h"
 
 namespace avsm::viewer {
+
+void PrintTo(const PixelRect& r, std::ostream* out) {
+  *out << r.width << "x" << r.height << " at (" << r.x << ", " << r.y << ")";
+}
+
 namespace {
 
 scene::Camera start_camera() {
@@ -241,6 +248,106 @@ TEST(Panel, MapSummaryNamesKindCountAndBudgetLowering) {
   passes::LightShadowStats cascades;
   cascades.maps = 3, cascades.map_kind = "cascades", cascades.resolution = 512, cascades.lowered_from = 2048;
   EXPECT_EQ(map_summary(cascades), "cascades: 3 maps, 512^2 (lowered from 2048 to fit the map budget)");
+}
+
+// The panel's column and the view side by side: no overlap, no gap, the whole window.
+void expect_docked(const ViewLayout& layout, glm::uvec2 window) {
+  const PixelRect &panel = layout.panel, &view = layout.view;
+  EXPECT_EQ(panel.x, 0u);
+  EXPECT_EQ(panel.y, 0u);
+  EXPECT_EQ(panel.height, window.y);
+  EXPECT_EQ(view.x, panel.x + panel.width) << "the view starts where the panel ends";
+  EXPECT_EQ(view.y, 0u);
+  EXPECT_EQ(view.height, window.y);
+  EXPECT_EQ(view.x + view.width, window.x) << "the view reaches the right edge";
+  // Every pixel is in exactly one of them.
+  for (uint32_t x = 0; x < window.x; x += std::max(window.x / 97, 1u))
+    for (uint32_t y = 0; y < window.y; y += std::max(window.y / 53, 1u)) {
+      const glm::vec2 pixel(x, y);
+      EXPECT_NE(panel.contains(pixel), view.contains(pixel)) << x << ", " << y;
+    }
+}
+
+TEST(ViewLayout, PanelIsDockedLeftAndTheViewKeepsTheRest) {
+  for (const glm::uvec2 window : {glm::uvec2(1280, 720), glm::uvec2(960, 540), glm::uvec2(1920, 1080),
+                                  glm::uvec2(320, 180), glm::uvec2(160, 90), glm::uvec2(96, 54), glm::uvec2(7, 3)}) {
+    SCOPED_TRACE(testing::Message() << window.x << "x" << window.y);
+    const ViewLayout layout = layout_for(window);
+    expect_docked(layout, window);
+    EXPECT_FALSE(layout.view.empty());
+  }
+}
+
+TEST(ViewLayout, PanelIs420WideOrAtMost40PercentOfTheWindow) {
+  EXPECT_EQ(layout_for({1280, 720}).panel.width, 420u);
+  EXPECT_EQ(layout_for({1280, 720}).view, (PixelRect{420, 0, 860, 720}));
+  EXPECT_EQ(layout_for({1920, 1080}).panel.width, 420u);
+  EXPECT_EQ(layout_for({1050, 600}).panel.width, 420u);  // exactly 40%
+  // Narrower windows: the panel narrows, the view keeps 60% of the width and all the height.
+  EXPECT_EQ(layout_for({960, 540}).view, (PixelRect{384, 0, 576, 540}));
+  // The size the tests run the viewer at (tests/viewer/CMakeLists.txt captures at the view's size).
+  EXPECT_EQ(layout_for({320, 180}).view, (PixelRect{128, 0, 192, 180}));
+  EXPECT_EQ(layout_for({160, 90}).view, (PixelRect{64, 0, 96, 90}));
+  EXPECT_EQ(layout_for({1, 1}).view, (PixelRect{0, 0, 1, 1}));  // no room for a panel: all view
+  for (uint32_t width = 1; width <= 2000; width += 13) {
+    const ViewLayout layout = layout_for({width, 100});
+    EXPECT_GE(layout.view.width * 100, width * 60) << width;
+    EXPECT_LE(layout.panel.width, 420u) << width;
+  }
+}
+
+TEST(ViewLayout, MinimisedWindowHasNothingToShow) {
+  const ViewLayout layout = layout_for({0, 0});
+  EXPECT_TRUE(layout.view.empty());
+  EXPECT_TRUE(layout.panel.empty());
+  EXPECT_FALSE(layout.in_view({0.0f, 0.0f}));
+}
+
+TEST(ViewLayout, HiDpiPanelIs420WindowUnits) {
+  // A 1280x720 window on a 2x screen: a 2560x1440 framebuffer.
+  const ViewLayout layout = layout_for({2560, 1440}, {2.0f, 2.0f});
+  expect_docked(layout, {2560, 1440});
+  EXPECT_EQ(layout.panel.width, 840u);
+  EXPECT_EQ(layout.panel_position(), glm::vec2(0.0f));
+  EXPECT_EQ(layout.panel_size(), glm::vec2(420.0f, 720.0f));  // ImGui's units
+  EXPECT_EQ(layout.view, (PixelRect{840, 0, 1720, 1440}));
+}
+
+TEST(ViewLayout, WindowPositionsBecomeViewPixels) {
+  const ViewLayout layout = layout_for({960, 540});  // view: 576x540 at x 384
+  EXPECT_EQ(layout.view_pixel({384.0f, 0.0f}), glm::vec2(0.0f, 0.0f));
+  EXPECT_EQ(layout.view_pixel({384.7f, 10.2f}), glm::vec2(0.0f, 10.0f));  // the pixel the cursor is over
+  EXPECT_EQ(layout.view_pixel({959.0f, 539.0f}), glm::vec2(575.0f, 539.0f));
+  EXPECT_TRUE(layout.in_view({384.0f, 0.0f}));
+  EXPECT_TRUE(layout.in_view({959.9f, 539.9f}));
+  EXPECT_FALSE(layout.in_view({383.9f, 100.0f})) << "over the panel";
+  EXPECT_FALSE(layout.in_view({960.0f, 100.0f})) << "right of the window";
+  EXPECT_FALSE(layout.in_view({500.0f, -1.0f})) << "above the window";
+  EXPECT_FALSE(layout.in_view({-3.4e38f, -3.4e38f})) << "ImGui's 'no mouse'";
+  // HiDPI: window units times the scale, then relative to the view.
+  const ViewLayout hidpi = layout_for({2560, 1440}, {2.0f, 2.0f});  // view at x 840 pixels = 420 units
+  EXPECT_EQ(hidpi.view_pixel({420.0f, 0.0f}), glm::vec2(0.0f, 0.0f));
+  EXPECT_EQ(hidpi.view_pixel({420.5f, 0.5f}), glm::vec2(1.0f, 1.0f));
+  EXPECT_EQ(hidpi.view_pixel({1279.9f, 719.9f}), glm::vec2(1719.0f, 1439.0f));
+  EXPECT_FALSE(hidpi.in_view({419.9f, 10.0f}));
+}
+
+// A click on the view picks through the view pixel under it, with the view's own
+// aspect: the quad's centre, in front of the camera, is under the view's centre.
+TEST(ViewLayout, ClickOnTheViewsCentrePicksTheSceneInFrontOfTheCamera) {
+  const scene::Scene scene = quad_scene();
+  const ViewLayout layout = layout_for({960, 540});
+  const passes::View view = passes::make_view(scene.cameras[0], layout.view.width, layout.view.height);
+  const glm::vec2 centre = glm::vec2(layout.view.x, layout.view.y) + glm::vec2(layout.view.width, layout.view.height) * 0.5f;
+  const glm::vec2 pixel = layout.view_pixel(centre);
+  EXPECT_EQ(pixel, glm::vec2(288.0f, 270.0f));
+  const std::optional<PickedPoint> hit = pick_point(scene, view, pixel);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->world.x, 0.0f, 0.01f);
+  EXPECT_NEAR(hit->world.y, 1.0f, 0.01f);
+  // The same click read as a window pixel (the panel's width off) would miss the quad's middle.
+  const std::optional<PickedPoint> unshifted = pick_point(scene, view, centre);
+  EXPECT_FALSE(unshifted && std::abs(unshifted->world.x) < 0.1f);
 }
 
 }  // namespace

@@ -14,7 +14,8 @@ namespace {
 const char* kUsage =
     "usage: avsm-viewer [options]\n"
     "  --scene FILE       scene JSON (default: the generated default scene)\n"
-    "  --size WxH         window size (default 1280x720)\n"
+    "  --size WxH         window size (default 1280x720); the panel is docked at the left,\n"
+    "                     min(420, 40% of the width) wide, and the scene renders beside it\n"
     "  --device NAME      Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation       Vulkan validation + synchronization validation; any message\n"
     "                     makes the exit status 1\n"
@@ -25,15 +26,17 @@ const char* kUsage =
     "scripted runs (tests, CI):\n"
     "  --frames N         render N scene frames, then exit\n"
     "  --screenshot DIR   after the last frame, write what avsm-capture writes for one\n"
-    "                     frame (frame.png, frame.exr, timings.json, ...) and window.png\n"
-    "  --inspect X,Y      click pixel (X, Y) first (x right, y down); writes inspect.json\n"
+    "                     frame (frame.png, frame.exr, timings.json, ...: the view), window.png\n"
+    "                     (the whole window) and layout.json (where the panel and view lie)\n"
+    "  --inspect X,Y      click pixel (X, Y) of the view first (x right, y down, a pixel of\n"
+    "                     frame.png, not of the window); writes inspect.json\n"
     "                     (each light's curve through that point, technique and exact)\n"
     "                     into the --screenshot folder (else --out)\n"
     "  --control          take commands on stdin, one per line, and answer each with a\n"
     "                     JSON line on stdout: frame | inspect X,Y | screenshot DIR |\n"
     "                     light I FIELD VALUE | exposure V | quit (engine/viewer/control_commands.h)\n"
-    "keys: left drag orbit, right drag pan (fly: look), wheel zoom, WASDQE fly,\n"
-    "      click inspect a texel, F12/P screenshot, Esc quit\n"
+    "keys (over the view): left drag orbit, right drag pan (fly: look), wheel zoom,\n"
+    "      WASDQE fly, click inspect a texel, F12/P screenshot, Esc quit\n"
     "  --help             this text\n";
 
 [[noreturn]] void usage_error(const std::string& message) {
