@@ -352,8 +352,8 @@ class Check:
         return tests
 
     def run_gtests(self, step, cap, log, jobs, workers):
-        """Each test in its own process, as ctest runs them (some tests count what their
-        process made before them), `workers` at a time; the timing tests alone at the end
+        """Each test in its own process (ctest runs one per suite; one per test isolates
+        more), `workers` at a time; the timing tests alone at the end
         (RUN_SERIAL in tests/CMakeLists.txt). jobs: (binary, tests or None for all of them)."""
         work = os.path.join(self.logs, "gtest")
         shutil.rmtree(work, ignore_errors=True)

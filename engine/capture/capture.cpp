@@ -165,17 +165,29 @@ std::string unfinished_maps_error(const std::vector<passes::LightShadowStats>& l
 
 // The lights whose maps the budget made smaller (shadows.fit_budget): the capture
 // says which, so that a farm run's figures are not mistaken for the asked resolution.
+// One line however many lights: per change of resolution, its first few lights and a
+// count of the rest (memory.json's lowered_from has every light).
 void report_lowered_resolutions(const renderer::SceneRenderer& frame, const scene::Scene& scene) {
+  constexpr size_t kNamed = 4;
   const passes::ShadowMaps& shadows = frame.shadows();
+  std::map<std::pair<int, uint32_t>, std::vector<std::string>> lowered;  // (asked, got) -> light names
   for (uint32_t i = 0; i < shadows.light_count() && i < scene.lights.size(); ++i) {
     const int asked = scene.lights[i].shadow.resolution;
     const uint32_t got = shadows.map_layout(i).resolution;
-    if (got < uint32_t(asked))
-      std::fprintf(stderr,
-                   "avsm-capture: warning: light '%s': shadow resolution lowered from %d to %u to fit the map budget "
-                   "(shadows.budget_mib)\n",
-                   scene.lights[i].name.c_str(), asked, got);
+    if (got < uint32_t(asked)) lowered[{asked, got}].push_back(scene.lights[i].name);
   }
+  if (lowered.empty()) return;
+  std::string text;
+  for (const auto& [change, names] : lowered) {
+    text += text.empty() ? "" : "; ";
+    text += names.size() == 1 ? "light" : std::to_string(names.size()) + " lights";
+    for (size_t n = 0; n < names.size() && n < kNamed; ++n) text += (n ? ", '" : " '") + names[n] + "'";
+    if (names.size() > kNamed) text += " and " + std::to_string(names.size() - kNamed) + " more";
+    text += " from " + std::to_string(change.first) + " to " + std::to_string(change.second);
+  }
+  std::fprintf(stderr,
+               "avsm-capture: warning: shadow resolution lowered to fit the map budget (shadows.budget_mib): %s\n",
+               text.c_str());
 }
 
 // The fixed build keeps one blocker per light texel, so a blended (alphaMode BLEND)

@@ -12,10 +12,11 @@ namespace {
 using PipelineSharingTest = GpuTest;
 
 TEST_F(PipelineSharingTest, EqualRequestsShareAndDifferentOnesDoNot) {
+  // Names of this test's own: earlier tests in the process leave their pipelines cached.
   const std::vector<uint32_t> fill = shaders().load("shaders/tests/fill.comp");
   const uint64_t before = gpu::Pipeline::created_count();
-  gpu::Pipeline first = gpu::Pipeline::compute(ctx(), fill, "fill");
-  gpu::Pipeline second = gpu::Pipeline::compute(ctx(), fill, "fill");
+  gpu::Pipeline first = gpu::Pipeline::compute(ctx(), fill, "fill (sharing)");
+  gpu::Pipeline second = gpu::Pipeline::compute(ctx(), fill, "fill (sharing)");
   EXPECT_EQ(gpu::Pipeline::created_count(), before + 1);
   EXPECT_EQ(first.handle(), second.handle());
   EXPECT_EQ(first.layout(), second.layout());
@@ -23,10 +24,10 @@ TEST_F(PipelineSharingTest, EqualRequestsShareAndDifferentOnesDoNot) {
   EXPECT_EQ(second.bindings().size(), first.bindings().size());
 
   // Another name (debug labels differ) or other code: a pipeline of its own.
-  gpu::Pipeline renamed = gpu::Pipeline::compute(ctx(), fill, "fill again");
+  gpu::Pipeline renamed = gpu::Pipeline::compute(ctx(), fill, "fill (sharing) again");
   EXPECT_NE(renamed.handle(), first.handle());
   std::vector<uint32_t> other_code = shaders().load("shaders/tests/graph_fill.comp");
-  gpu::Pipeline other = gpu::Pipeline::compute(ctx(), other_code, "fill");
+  gpu::Pipeline other = gpu::Pipeline::compute(ctx(), other_code, "fill (sharing)");
   EXPECT_NE(other.handle(), first.handle());
   EXPECT_EQ(gpu::Pipeline::created_count(), before + 3);
 }
