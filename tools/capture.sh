@@ -4,7 +4,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+# Ninja for a new build folder; one configured before keeps its generator.
+generator=""
+[ -f build/CMakeCache.txt ] || generator="-GNinja"
+cmake -S . -B build $generator -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j"$(nproc)"
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 build/tools/avsm-capture --out out/capture "$@"

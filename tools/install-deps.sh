@@ -3,7 +3,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  cmake g++ make pkg-config git
+  cmake ninja-build g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools glslang-dev spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev

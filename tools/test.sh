@@ -15,8 +15,14 @@ cd "$(dirname "$0")/.."
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 jobs="$(nproc)"
 
+# Ninja for a new build folder (it schedules the whole tree's compiles across the cores);
+# a folder configured before keeps the generator it was made with.
+generator() {
+  [ -f "$1/CMakeCache.txt" ] || echo "-GNinja"
+}
+
 run_suite() {
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+  cmake -S . -B build $(generator build) -DCMAKE_BUILD_TYPE=Release > /dev/null
   cmake --build build -j"$jobs"
   ctest --test-dir build --output-on-failure -j"$jobs" "$@"
 }
@@ -33,7 +39,7 @@ run_sanitized_subset() {
   # -O0: half the compile time of -O1 (measured on engine/scene/gltf.cpp: 10.6 against
   # 21.9 CPU seconds), and these tests spend their time in the driver, not in our code.
   # Line tables only: file:line in the reports, for little compile time.
-  cmake -S . -B build-asan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  cmake -S . -B build-asan $(generator build-asan) -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG="-O0 -gline-tables-only" -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" \
     -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers" \

@@ -16,6 +16,7 @@
 #include "passes/shadows/shadow_pass_list_builder.h"
 
 namespace avsm {
+namespace pass_list_test {  // one per file: test targets are unity builds
 namespace {
 
 struct Declaration {
@@ -119,4 +120,5 @@ TEST(ShadowPassList, AddToGraphDeclaresWhatTheListSays) {
 }
 
 }  // namespace
+}  // namespace pass_list_test
 }  // namespace avsm

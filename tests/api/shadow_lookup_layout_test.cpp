@@ -13,6 +13,7 @@
 #include "gpu/spirv_reflect.h"
 
 namespace avsm {
+namespace shadow_lookup_layout_test {  // one per file: test targets are unity builds
 namespace {
 
 // A compute shader that looks light 0 up, with `defines` before the include.
@@ -133,4 +134,5 @@ TEST(ShadowLookupLayout, BuffersKeepEachRangesOffsetAndSize) {
 }
 
 }  // namespace
+}  // namespace shadow_lookup_layout_test
 }  // namespace avsm

@@ -20,6 +20,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace shadows_api_test {  // one per file: test targets are unity builds
 namespace {
 
 using ShadowsApiTest = testing::GpuTest;
@@ -313,4 +314,5 @@ TEST_F(ShadowsApiTest, RecordChecksItsFrameThenRecordsIntoTheHostsCommandBuffer)
 }
 
 }  // namespace
+}  // namespace shadows_api_test
 }  // namespace avsm

@@ -29,6 +29,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace shadows_frames_in_flight_test {  // one per file: test targets are unity builds
 namespace {
 
 using ShadowsFramesInFlightTest = testing::GpuTest;
@@ -285,4 +286,5 @@ TEST_F(ShadowsFramesInFlightTest, GrowthWhileAFrameIsInFlightKeepsItsBuffers) {
 }
 
 }  // namespace
+}  // namespace shadows_frames_in_flight_test
 }  // namespace avsm

@@ -13,6 +13,7 @@
 #include "shared/volume.h"
 
 namespace avsm {
+namespace shadows_preconditions_test {  // one per file: test targets are unity builds
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -270,4 +271,5 @@ TEST(ShadowsPreconditions, ClusterObjectsMustLieWithinTheCasters) {
 }
 
 }  // namespace
+}  // namespace shadows_preconditions_test
 }  // namespace avsm

@@ -9,6 +9,7 @@
 #include <vector>
 
 namespace avsm {
+namespace avsm_core_test {  // one per file: test targets are unity builds
 namespace {
 
 using core::AvsmCurve;
@@ -144,4 +145,5 @@ TEST(AvsmCore, MoreNodesMeanLessError) {
 }
 
 }  // namespace
+}  // namespace avsm_core_test
 }  // namespace avsm

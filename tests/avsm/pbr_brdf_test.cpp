@@ -8,6 +8,7 @@
 #include "passes/camera/surfaces/pbr_brdf.h"
 
 namespace avsm {
+namespace pbr_brdf_test {  // one per file: test targets are unity builds
 namespace {
 
 constexpr double kPi = 3.14159265358979;
@@ -104,4 +105,5 @@ TEST(PbrBrdf, SkyDiffuseIsTheBaseColourTimesOcclusion) {
 }
 
 }  // namespace
+}  // namespace pbr_brdf_test
 }  // namespace avsm

@@ -13,6 +13,7 @@
 #include "passes/shadows/techniques/opacity_maps.h"
 
 namespace avsm {
+namespace techniques_test {  // one per file: test targets are unity builds
 namespace {
 
 using core::AvsmCurve;
@@ -258,4 +259,5 @@ TEST(FourierOpacityMaps, RingingOnASharpStepStaysWithinItsBound) {
 }
 
 }  // namespace
+}  // namespace techniques_test
 }  // namespace avsm

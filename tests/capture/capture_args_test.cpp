@@ -8,6 +8,7 @@
 #include "capture/capture_args.h"
 
 namespace avsm::capture {
+namespace capture_args_test {  // one per file: test targets are unity builds
 namespace {
 
 std::string usage_error_of(const std::vector<std::string>& args) {
@@ -98,4 +99,5 @@ TEST(CaptureArgs, BadFlagsNameThemselves) {
 }
 
 }  // namespace
+}  // namespace capture_args_test
 }  // namespace avsm::capture

@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 
 namespace avsm::capture {
+namespace frame_report_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -283,4 +284,5 @@ TEST(FrameReport, HtmlShowsTheStructure) {
 }
 
 }  // namespace
+}  // namespace frame_report_test
 }  // namespace avsm::capture

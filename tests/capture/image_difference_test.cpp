@@ -11,6 +11,7 @@
 #include "io/image_io.h"
 
 namespace avsm::capture {
+namespace image_difference_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -51,4 +52,5 @@ TEST(ImageDifference, ExrFilesOfDifferentSizesAreRefusedNamingBoth) {
 }
 
 }  // namespace
+}  // namespace image_difference_test
 }  // namespace avsm::capture

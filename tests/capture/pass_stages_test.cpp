@@ -9,6 +9,7 @@
 #include <vector>
 
 namespace avsm::capture {
+namespace pass_stages_test {  // one per file: test targets are unity builds
 namespace {
 
 TEST(PassStages, EveryPassNameOfTheEngineHasItsStage) {
@@ -79,4 +80,5 @@ TEST(PassStages, StageTimesSumTheirPassesMedians) {
 }
 
 }  // namespace
+}  // namespace pass_stages_test
 }  // namespace avsm::capture

@@ -7,6 +7,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace compute_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::FillPush;
@@ -41,4 +42,5 @@ TEST_F(GpuTest, BindingTheWrongKindOfResourceIsAClearError) {
 }
 
 }  // namespace
+}  // namespace compute_test
 }  // namespace avsm

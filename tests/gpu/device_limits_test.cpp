@@ -17,6 +17,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace device_limits_test {  // one per file: test targets are unity builds
 namespace {
 
 using ::testing::HasSubstr;
@@ -142,4 +143,5 @@ TEST_F(GpuTest, MemoryOverTheHeapOrAllocationLimitIsRefusedByName) {
 }
 
 }  // namespace
+}  // namespace device_limits_test
 }  // namespace avsm

@@ -8,6 +8,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace device_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -86,4 +87,5 @@ TEST_F(GpuTest, PlacedImageUsesTheDriversRequirements) {
 }
 
 }  // namespace
+}  // namespace device_test
 }  // namespace avsm

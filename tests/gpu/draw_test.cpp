@@ -11,6 +11,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace draw_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -73,4 +74,5 @@ TEST_F(GpuTest, OffscreenDrawProducesExpectedPixels) {
 }
 
 }  // namespace
+}  // namespace draw_test
 }  // namespace avsm

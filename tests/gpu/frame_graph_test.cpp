@@ -15,6 +15,7 @@
 #include "tests/graph_to_image.h"
 
 namespace avsm {
+namespace frame_graph_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -251,4 +252,5 @@ TEST_F(GpuTest, FrameGraphTimesEveryPassOfALargeGraph) {
 }
 
 }  // namespace
+}  // namespace frame_graph_test
 }  // namespace avsm

@@ -13,6 +13,7 @@
 #include "tests/misaligned.h"
 
 namespace avsm {
+namespace interface_check_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -80,4 +81,5 @@ TEST_F(GpuTest, BindingsAreCheckedByName) {
 }
 
 }  // namespace
+}  // namespace interface_check_test
 }  // namespace avsm

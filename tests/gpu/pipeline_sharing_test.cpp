@@ -7,6 +7,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm::testing {
+namespace pipeline_sharing_test {  // one per file: test targets are unity builds
 namespace {
 
 using PipelineSharingTest = GpuTest;
@@ -89,4 +90,5 @@ TEST_F(PipelineSharingTest, UnusedPipelinesAreKeptUpToTheLimitOldestGoFirst) {
 }
 
 }  // namespace
+}  // namespace pipeline_sharing_test
 }  // namespace avsm::testing

@@ -8,6 +8,7 @@
 #include "gpu/spirv_reflect.h"
 
 namespace avsm {
+namespace shader_compiler_test {  // one per file: test targets are unity builds
 namespace {
 
 namespace fs = std::filesystem;
@@ -119,4 +120,5 @@ TEST(SpirvReflect, RejectsGarbage) {
 }
 
 }  // namespace
+}  // namespace shader_compiler_test
 }  // namespace avsm

@@ -12,6 +12,7 @@
 #include "shared/gpu/spin.h"
 
 namespace avsm {
+namespace timing_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -100,4 +101,5 @@ TEST_F(GpuTest, PassesOfKnownCostAreTimedInRatio) {
 }
 
 }  // namespace
+}  // namespace timing_test
 }  // namespace avsm

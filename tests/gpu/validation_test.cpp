@@ -6,6 +6,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace validation_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::FillPush;
@@ -68,4 +69,5 @@ TEST_F(GpuTest, ApiMisuseIsCaughtByCoreValidation) {
 }
 
 }  // namespace
+}  // namespace validation_test
 }  // namespace avsm

@@ -10,6 +10,7 @@
 #include "live/file_watcher.h"
 
 namespace avsm::live {
+namespace file_watcher_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
@@ -133,4 +134,5 @@ TEST_F(FileWatcherTest, WatchKeepsTheStateOfFilesWatchedAlready) {
 }
 
 }  // namespace
+}  // namespace file_watcher_test
 }  // namespace avsm::live

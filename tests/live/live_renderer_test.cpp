@@ -26,6 +26,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm::live {
+namespace live_renderer_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -467,4 +468,5 @@ TEST_F(EditorSaveTest, EditorsWaysOfSavingKeepTheLastGoodContentThenLoadTheFinal
 }
 
 }  // namespace
+}  // namespace live_renderer_test
 }  // namespace avsm::live

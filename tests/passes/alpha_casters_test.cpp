@@ -18,6 +18,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace alpha_casters_test {  // one per file: test targets are unity builds
 namespace {
 
 using AlphaCastersTest = testing::GpuTest;
@@ -155,4 +156,5 @@ TEST_F(AlphaCastersTest, MaskedHolesLetLightThroughAndBlendedCastersAreTransluce
 }
 
 }  // namespace
+}  // namespace alpha_casters_test
 }  // namespace avsm

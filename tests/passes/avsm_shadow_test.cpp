@@ -13,8 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <openvdb/io/File.h>
-#include <openvdb/openvdb.h>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
@@ -50,6 +48,7 @@
 #include "support/test_volumes.h"
 
 namespace avsm {
+namespace avsm_shadow_test {  // one per file: test targets are unity builds
 namespace {
 
 // The GPU fixture (validation + synchronization validation; any message fails the
@@ -666,8 +665,7 @@ TEST_F(AvsmShadowTest, AvsmDefaultSceneMatchesTheCoreAtEveryTexel) {
 
 // ---- 5. The uncompressed lookup against Beer-Lambert through a constant box ----
 
-using testing::constant_box_grid;
-using testing::load_grid;
+using testing::load_box_volume;
 
 // 32^3 voxels of density 1, voxel 0.1: voxel centres span [0, 3.1] per axis; the
 // trilinear density is 1 there and ramps to 0 over one voxel on each side.
@@ -707,7 +705,7 @@ void expect_box_probes_match_beer_lambert(gpu::Context& ctx, const gpu::ShaderLi
   scene::Scene scene;
   scene.file = "constant box scene (built in the test)";
   scene.volumes.push_back(
-      load_grid(constant_box_grid(openvdb::Coord(0), openvdb::Coord(kBoxVoxels - 1), 1.0f, kBoxVoxelSize), options));
+      load_box_volume({{glm::ivec3(0), glm::ivec3(kBoxVoxels - 1), 1.0f}}, kBoxVoxelSize, options));
   scene.volumes.back().name = "box";
   scene.bounds.extend(scene.volumes.back().world_bounds);
   const glm::vec3 centre = scene.bounds.center();
@@ -1446,4 +1444,5 @@ TEST_F(AvsmShadowTest, FixedBuildMatchesCpuReferenceOnRandomCasters) {
   }
 }
 }  // namespace
+}  // namespace avsm_shadow_test
 }  // namespace avsm

@@ -23,6 +23,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace deep_shadow_test {  // one per file: test targets are unity builds
 namespace {
 
 using DeepShadowTest = testing::GpuTest;
@@ -153,4 +154,5 @@ TEST_F(DeepShadowTest, BuildMatchesCppReferenceAndTheExactCurveOnTheDefaultScene
 }
 
 }  // namespace
+}  // namespace deep_shadow_test
 }  // namespace avsm

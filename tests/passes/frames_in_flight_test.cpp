@@ -24,6 +24,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace frames_in_flight_test {  // one per file: test targets are unity builds
 namespace {
 
 using FramesInFlightTest = testing::GpuTest;
@@ -171,4 +172,5 @@ TEST_F(FramesInFlightTest, TwoFramesInFlightRenderTheSameFramesAsOne) {
 }
 
 }  // namespace
+}  // namespace frames_in_flight_test
 }  // namespace avsm

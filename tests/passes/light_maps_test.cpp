@@ -25,6 +25,7 @@
 #include "support/test_volumes.h"
 
 namespace avsm {
+namespace light_maps_test {  // one per file: test targets are unity builds
 namespace {
 
 using LightMapsTest = testing::GpuTest;
@@ -73,8 +74,7 @@ scene::Scene box_scene(const std::vector<Box>& boxes) {
     options.extinction_scale = kSigma;
     options.transform = glm::translate(glm::mat4(1.0f), boxes[i].origin);
     const int n = boxes[i].voxels - 1;
-    scene.volumes.push_back(testing::load_grid(
-        testing::constant_box_grid(openvdb::Coord(0), openvdb::Coord(n), 1.0f, kVoxel), options));
+    scene.volumes.push_back(testing::load_box_volume({{glm::ivec3(0), glm::ivec3(n), 1.0f}}, kVoxel, options));
     scene.volumes.back().name = "box " + std::to_string(i);
     scene.bounds.extend(scene.volumes.back().world_bounds);
   }
@@ -566,4 +566,5 @@ TEST_F(LightMapsTest, ClustersFitAMapToEachGroupOfCasters) {
 }
 
 }  // namespace
+}  // namespace light_maps_test
 }  // namespace avsm

@@ -25,6 +25,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace opaque_shading_test {  // one per file: test targets are unity builds
 namespace {
 
 using OpaqueShadingTest = testing::GpuTest;
@@ -278,4 +279,5 @@ TEST_F(OpaqueShadingTest, TexturedPlaneSeenFromBelowShadesTheSideWeSee) {
 }
 
 }  // namespace
+}  // namespace opaque_shading_test
 }  // namespace avsm

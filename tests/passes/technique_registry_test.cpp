@@ -12,9 +12,10 @@
 #include "passes/shadows/techniques/techniques.h"
 
 namespace avsm {
+namespace technique_registry_test {  // one per file: test targets are unity builds
 namespace {
 
-using testing::HasSubstr;
+using ::testing::HasSubstr;
 
 std::string check_error(const scene::ShadowSettings& settings) {
   try {
@@ -101,4 +102,5 @@ TEST(TechniqueRegistry, TheGeneratedGlslDispatchFollowsTheRegistry) {
 }
 
 }  // namespace
+}  // namespace technique_registry_test
 }  // namespace avsm

@@ -9,6 +9,7 @@
 #include "scene/camera.h"
 
 namespace avsm::passes {
+namespace volume_lighting_cache_test {  // one per file: test targets are unity builds
 namespace {
 
 // A 64 x 32 x 16 voxel support of 0.01-unit voxels, its corner at the world origin.
@@ -72,4 +73,5 @@ TEST(VolumeLightingCachePlan, VolumesStackAlongZAndCoarsenToFitTheImageLimit) {
 }
 
 }  // namespace
+}  // namespace volume_lighting_cache_test
 }  // namespace avsm::passes

@@ -4,8 +4,6 @@
 // in-scattering against its closed form, several volumes, and majorant skipping.
 #include <gtest/gtest.h>
 
-#include <openvdb/io/File.h>
-#include <openvdb/openvdb.h>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
 
@@ -33,6 +31,7 @@
 #include "passes/frame/frame_inputs.h"
 
 namespace avsm {
+namespace volume_pass_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::GpuTest;
@@ -56,8 +55,7 @@ std::filesystem::path shared_content(const std::string& relative) {
 
 // ---- Volumes ----
 
-using testing::constant_box_grid;
-using testing::load_grid;
+using testing::load_box_volume;
 
 // 32^3 voxels of density 1, voxel 0.1: world [0, 3.1]^3, density support [-0.1, 3.2]^3.
 constexpr int kBoxVoxels = 32;
@@ -70,7 +68,7 @@ scene::Volume constant_box(float extinction_scale, glm::vec3 albedo = glm::vec3(
   options.transform = glm::mat4(1.0f);
   options.transform[3] = glm::vec4(offset, 1.0f);
   scene::Volume volume =
-      load_grid(constant_box_grid(openvdb::Coord(0), openvdb::Coord(kBoxVoxels - 1), 1.0f, kBoxVoxelSize), options);
+      load_box_volume({{glm::ivec3(0), glm::ivec3(kBoxVoxels - 1), 1.0f}}, kBoxVoxelSize, options);
   volume.name = "box";
   return volume;
 }
@@ -320,7 +318,7 @@ TEST_F(GpuTest, VolumeTransmittanceMatchesCpuFromInsideARotatedBox) {
   options.transform = glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))) *
                       glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 0.7f, 1.3f));
   const scene::Volume box =
-      load_grid(constant_box_grid(openvdb::Coord(0), openvdb::Coord(kBoxVoxels - 1), 1.0f, kBoxVoxelSize), options);
+      load_box_volume({{glm::ivec3(0), glm::ivec3(kBoxVoxels - 1), 1.0f}}, kBoxVoxelSize, options);
   passes::VolumePass pass(ctx(), shaders());
   pass.set_volumes({box});
   scene::Camera camera;
@@ -477,12 +475,11 @@ TEST_F(GpuTest, VolumeMajorantSkippingChangesNothing) {
   ASSERT_TRUE(std::filesystem::exists(shared_content("smoke1/smoke.vdb")))
       << "missing test data " << shared_content("smoke1/smoke.vdb");
   // Two boxes in one grid with empty bricks between them, and the real smoke.
-  auto grid = constant_box_grid(openvdb::Coord(0), openvdb::Coord(15), 1.0f, 0.1f);
-  grid->fill(openvdb::CoordBBox(openvdb::Coord(48, 40, 8), openvdb::Coord(63, 63, 23)), 0.5f, true);
   scene::VolumeOptions options;
   options.extinction_scale = 0.6f;
   options.albedo = glm::vec3(0.7f);
-  scene::Volume boxes = load_grid(grid, options);
+  scene::Volume boxes = load_box_volume(
+      {{glm::ivec3(0), glm::ivec3(15), 1.0f}, {glm::ivec3(48, 40, 8), glm::ivec3(63, 63, 23), 0.5f}}, 0.1f, options);
   boxes.name = "two boxes";
   const scene::Volume smoke = smoke_volume(0.2f);
   ASSERT_GT(empty_brick_count(boxes), size_t(0));
@@ -595,4 +592,5 @@ TEST_F(GpuTest, VolumePassRejectsABrokenVolumeClearly) {
 }
 
 }  // namespace
+}  // namespace volume_pass_test
 }  // namespace avsm

@@ -16,6 +16,7 @@
 #include "support/gpu_test.h"
 
 namespace avsm {
+namespace volume_shading_test {  // one per file: test targets are unity builds
 namespace {
 
 using Mode = scene::VolumeShading::Mode;
@@ -109,4 +110,5 @@ TEST_F(VolumeShadingTest, HairInFrontOfSmokeIsNotDarkenedBySmokeBehindIt) {
 }
 
 }  // namespace
+}  // namespace volume_shading_test
 }  // namespace avsm

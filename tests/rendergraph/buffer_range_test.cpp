@@ -8,6 +8,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace buffer_range_test {  // one per file: test targets are unity builds
 namespace {
 
 using rg::BufferRange;
@@ -235,4 +236,5 @@ TEST(BufferRanges, VerifierCatchesAWholeReadMissingARange) {
 }
 
 }  // namespace
+}  // namespace buffer_range_test
 }  // namespace rg_test

@@ -9,6 +9,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace errors_test {  // one per file: test targets are unity builds
 namespace {
 
 using rg::PassBuilder;
@@ -240,4 +241,5 @@ TEST(Errors, MemoryModelWithoutAMemoryType) {
 }
 
 }  // namespace
+}  // namespace errors_test
 }  // namespace rg_test

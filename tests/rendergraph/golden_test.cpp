@@ -8,6 +8,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace golden_test {  // one per file: test targets are unity builds
 namespace {
 
 ::testing::AssertionResult valid(const rg::Graph& graph, const rg::CompiledPlan& plan, const rg::MemoryModel& memory) {
@@ -53,4 +54,5 @@ TEST(GoldenPlan, MultiLightSerialNoAliasing) {
 }
 
 }  // namespace
+}  // namespace golden_test
 }  // namespace rg_test

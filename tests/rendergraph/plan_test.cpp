@@ -9,6 +9,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace plan_test {  // one per file: test targets are unity builds
 namespace {
 
 using rg::PassBuilder;
@@ -239,4 +240,5 @@ TEST(Plan, DotDumpShowsPassesResourcesEdgesAndCulling) {
 }
 
 }  // namespace
+}  // namespace plan_test
 }  // namespace rg_test

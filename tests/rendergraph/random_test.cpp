@@ -11,6 +11,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace random_test {  // one per file: test targets are unity builds
 namespace {
 
 using rg::QueueType;
@@ -239,4 +240,5 @@ TEST(RandomGraphs, CompilationIsDeterministic) {
 }
 
 }  // namespace
+}  // namespace random_test
 }  // namespace rg_test

@@ -9,6 +9,7 @@
 #include "test_graphs.h"
 
 namespace rg_test {
+namespace verifier_test {  // one per file: test targets are unity builds
 namespace {
 
 struct Broken {
@@ -180,4 +181,5 @@ TEST(Verifier, ReaderScheduledBeforeItsProducer) {
 }
 
 }  // namespace
+}  // namespace verifier_test
 }  // namespace rg_test

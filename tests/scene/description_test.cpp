@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace avsm::scene {
+namespace description_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::load_error_of;
@@ -277,4 +278,5 @@ TEST(SceneDescription, EveryExampleSceneParses) {
 }
 
 }  // namespace
+}  // namespace description_test
 }  // namespace avsm::scene

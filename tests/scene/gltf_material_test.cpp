@@ -13,6 +13,7 @@
 #include <cstring>
 
 namespace avsm::scene {
+namespace gltf_material_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::TempDir;
@@ -247,4 +248,5 @@ TEST(GltfMaterial, KhronosClearCoatTestLoadsItsTexturesAndGetsTangents) {
 }
 
 }  // namespace
+}  // namespace gltf_material_test
 }  // namespace avsm::scene

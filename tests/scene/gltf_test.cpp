@@ -13,6 +13,7 @@
 #include <numeric>
 
 namespace avsm::scene {
+namespace gltf_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::TempDir;
@@ -351,4 +352,5 @@ TEST(GltfErrors, InstancingBeyondTheVertexBudget) {
 }
 
 }  // namespace
+}  // namespace gltf_test
 }  // namespace avsm::scene

@@ -8,6 +8,7 @@
 #include <limits>
 
 namespace avsm::scene {
+namespace hair_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::TempDir;
@@ -433,4 +434,5 @@ TEST_F(HairErrors, MissingFileAndDirectory) {
 }
 
 }  // namespace
+}  // namespace hair_test
 }  // namespace avsm::scene

@@ -8,6 +8,7 @@
 #include <limits>
 
 namespace avsm::scene {
+namespace scene_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::TempDir;
@@ -238,4 +239,5 @@ TEST(SceneErrors, AssetErrorsNameTheAssetAndTheSceneEntry) {
 }
 
 }  // namespace
+}  // namespace scene_test
 }  // namespace avsm::scene

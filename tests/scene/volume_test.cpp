@@ -16,6 +16,7 @@
 #include <limits>
 
 namespace avsm::scene {
+namespace volume_test {  // one per file: test targets are unity builds
 namespace {
 
 using testing::TempDir;
@@ -261,4 +262,5 @@ TEST(VolumeErrors, BadOptions) {
 }
 
 }  // namespace
+}  // namespace volume_test
 }  // namespace avsm::scene

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -9,17 +10,15 @@
 
 namespace avsm::testing {
 
-openvdb::FloatGrid::Ptr constant_box_grid(const openvdb::Coord& lo, const openvdb::Coord& hi, float density,
-                                          float voxel_size) {
+scene::Volume load_box_volume(const std::vector<VoxelBox>& boxes, float voxel_size,
+                              const scene::VolumeOptions& options) {
   openvdb::initialize();
   auto grid = openvdb::FloatGrid::create(0.0f);
   grid->setName("density");
   grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
-  grid->fill(openvdb::CoordBBox(lo, hi), density, true);
-  return grid;
-}
-
-scene::Volume load_grid(openvdb::FloatGrid::Ptr grid, const scene::VolumeOptions& options) {
+  for (const VoxelBox& box : boxes)
+    grid->fill(openvdb::CoordBBox(openvdb::Coord(box.lo.x, box.lo.y, box.lo.z), openvdb::Coord(box.hi.x, box.hi.y, box.hi.z)),
+               box.density, true);
   // One file per test and process, so parallel test runs do not collide.
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path file = std::filesystem::temp_directory_path() /

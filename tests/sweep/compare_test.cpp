@@ -17,6 +17,7 @@
 #include "sweep/sweep_index.h"
 
 namespace avsm::sweep {
+namespace compare_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -561,4 +562,5 @@ TEST(GateOutput, SummaryTableAndVerdict) {
 }
 
 }  // namespace
+}  // namespace compare_test
 }  // namespace avsm::sweep

@@ -11,6 +11,7 @@
 #include "sweep/manifest.h"
 
 namespace avsm::sweep {
+namespace manifest_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -171,4 +172,5 @@ TEST_F(ManifestTest, ReadsTheFileAndNamesIt) {
 }
 
 }  // namespace
+}  // namespace manifest_test
 }  // namespace avsm::sweep

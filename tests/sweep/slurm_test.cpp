@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 namespace avsm::sweep {
+namespace slurm_test {  // one per file: test targets are unity builds
 namespace {
 
 TEST(SlurmArraySpec, RunsOfConsecutiveTasksBecomeRanges) {
@@ -103,4 +104,5 @@ TEST(SlurmStates, FinishedStatesAreNotActive) {
 }
 
 }  // namespace
+}  // namespace slurm_test
 }  // namespace avsm::sweep

@@ -10,6 +10,7 @@
 #include "sweep/sweep_index.h"
 
 namespace avsm::sweep {
+namespace sweep_index_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -133,4 +134,5 @@ TEST(SweepIndex, JobIds) {
 }
 
 }  // namespace
+}  // namespace sweep_index_test
 }  // namespace avsm::sweep

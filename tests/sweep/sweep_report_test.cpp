@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 
 namespace avsm::sweep {
+namespace sweep_report_test {  // one per file: test targets are unity builds
 namespace {
 namespace fs = std::filesystem;
 
@@ -157,4 +158,5 @@ TEST_F(SweepReport, AnUnreadableIndexIsNamed) {
 }
 
 }  // namespace
+}  // namespace sweep_report_test
 }  // namespace avsm::sweep
