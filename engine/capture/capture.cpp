@@ -158,6 +158,11 @@ std::string unfinished_maps_error(const std::vector<passes::LightShadowStats>& l
     if (light.dsm_pool && light.dsm_pool->build_cut_short)
       text += who + "its deep shadow map build needs " + std::to_string(light.dsm_pool->needed_dispatches) +
               " dispatches and the frame made " + std::to_string(light.dsm_pool->build_dispatches) + ";";
+    if (light.pages && light.pages->pending > 0)
+      text += who + "its receivers asked for " + std::to_string(light.pages->pending) +
+              " pages it did not hold (its pool holds " + std::to_string(light.pages->slots) + " pages; " +
+              std::to_string(light.pages->unserved) + " did not fit); raise shadow.page_pool_mib or " +
+              "shadow.page_lod_bias;";
   }
   text.pop_back();  // the last ';'
   return text;
@@ -172,6 +177,7 @@ void report_lowered_resolutions(const renderer::SceneRenderer& frame, const scen
   const passes::ShadowMaps& shadows = frame.shadows();
   std::map<std::pair<int, uint32_t>, std::vector<std::string>> lowered;  // (asked, got) -> light names
   for (uint32_t i = 0; i < shadows.light_count() && i < scene.lights.size(); ++i) {
+    if (scene.lights[i].shadow.layout == scene::ShadowLayout::paged) continue;  // never lowered: its pool is fixed
     const int asked = scene.lights[i].shadow.resolution;
     const uint32_t got = shadows.map_layout(i).resolution;
     if (got < uint32_t(asked)) lowered[{asked, got}].push_back(scene.lights[i].name);
@@ -312,6 +318,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   shadow_options.exponential_interpolation = options.exponential_interpolation;
   // The quality figures and texel curves compare against each light's exact lists.
   shadow_options.keep_reference = options.compare_to_uncompressed || !plots.empty();
+  shadow_options.unlimited_page_builds = true;  // a capture writes converged paged maps only
   std::unique_ptr<renderer::SceneRenderer> renderer_storage;
   try {
     renderer_storage = std::make_unique<renderer::SceneRenderer>(ctx, shaders, scene, options.width, options.height,
@@ -401,7 +408,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   uint32_t frames_again = 0;
   for (; last_loss.lost && last_loss.grew && frames_again < kMaxFramesAgain; ++frames_again) {
     if (options.progress)
-      std::fprintf(stderr, "frame %u: shadow maps unfinished, buffers grown: rendering it again\n", options.frames);
+      std::fprintf(stderr, "frame %u: shadow maps unfinished, buffers grown or pages asked for: rendering it again\n",
+                   options.frames);
     submit_frame(options.frames + frames_again);
     slots.finish_all(finished);
   }

@@ -46,6 +46,11 @@ const char* kUsage =
     "  --kernel K       none | box | gaussian: soft surface shadows over curves at texel centres\n"
     "  --kernel-radius R  the kernel's radius in texels, 1 to 4 (box: 2R + 1 wide; gaussian: sigma R / 2)\n"
     "  --shadow-res R   transmittance map texels per side (of each map: cube face, cascade, cluster)\n"
+    "  --shadow-layout dense|paged  dense maps rebuilt every frame, or paged virtual maps whose\n"
+    "                   pages the camera's receivers ask for, built once into a fixed pool\n"
+    "  --virtual-res R  paged: the virtual map's texels per side, a power of two, 256 to 16384\n"
+    "  --page-size P    paged: texels per page side, 32, 64 or 128\n"
+    "  --page-pool-mib M  paged: each light's page pool\n"
     "  --cascades N     directional lights (only): maps split along the camera's view, 1 to 4\n"
     "  --clusters N     directional and spot lights (not point): casters grouped by their\n"
     "                   light-space bounds, at most N maps (up to 8) of the shadow resolution\n"
@@ -194,6 +199,20 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.shadow.kernel = parse_choice(arg, value(), scene::shadow_kernel_from_string, "none, box or gaussian");
   } else if (arg == "--kernel-radius") {
     options.shadow.kernel_radius = parse_in_range(arg, value(), 1, 4);
+  } else if (arg == "--shadow-layout") {
+    options.shadow.layout = parse_choice(arg, value(), scene::shadow_layout_from_string, "dense or paged");
+  } else if (arg == "--virtual-res") {
+    const uint32_t r = parse_count(arg, value());
+    if (r < 256 || r > 16384 || (r & (r - 1)) != 0) usage_error("--virtual-res expects a power of two, 256 to 16384");
+    options.shadow.virtual_resolution = int(r);
+  } else if (arg == "--page-size") {
+    const uint32_t p = parse_count(arg, value());
+    if (p != 32 && p != 64 && p != 128) usage_error("--page-size expects 32, 64 or 128");
+    options.shadow.page_size = int(p);
+  } else if (arg == "--page-pool-mib") {
+    const uint32_t m = parse_count(arg, value());
+    if (m > 4096) usage_error("--page-pool-mib expects at most 4096");
+    options.shadow.page_pool_mib = double(m);
   } else if (arg == "--shadow-res") {
     const uint32_t r = parse_count(arg, value());
     if (r > 16384) usage_error("--shadow-res expects at most 16384");
@@ -287,6 +306,10 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   if (shadow.kernel) with_value(true, "--kernel", std::string(scene::to_string(*shadow.kernel)));
   if (shadow.kernel_radius) with_value(true, "--kernel-radius", std::to_string(*shadow.kernel_radius));
   if (shadow.resolution) with_value(true, "--shadow-res", std::to_string(*shadow.resolution));
+  if (shadow.layout) with_value(true, "--shadow-layout", std::string(scene::to_string(*shadow.layout)));
+  if (shadow.virtual_resolution) with_value(true, "--virtual-res", std::to_string(*shadow.virtual_resolution));
+  if (shadow.page_size) with_value(true, "--page-size", std::to_string(*shadow.page_size));
+  if (shadow.page_pool_mib) with_value(true, "--page-pool-mib", std::to_string(int(*shadow.page_pool_mib)));
   if (shadow.cascades) with_value(true, "--cascades", std::to_string(*shadow.cascades));
   if (shadow.clusters) with_value(true, "--clusters", std::to_string(*shadow.clusters));
   for (const auto& [name, value] : shadow.parameters) with_value(true, "--shadow-param", name + "=" + exact_text(value));

@@ -131,6 +131,12 @@ json to_json(const passes::LightShadowStats& s) {
                           {"tiles_walked_whole", f.tiles_walked},
                           {"transient_bytes", f.transient_bytes()}};
   }
+  if (s.pages) {
+    const passes::PageStats& p = *s.pages;
+    out["pages"] = {{"pool_slots", p.slots},       {"requested", p.requested}, {"resident", p.resident},
+                    {"built", p.built},            {"invalidated", p.invalidated}, {"evicted", p.evicted},
+                    {"pending", p.pending},        {"unserved", p.unserved},   {"lod_bias", p.lod_bias}};
+  }
   return out;
 }
 
@@ -167,6 +173,14 @@ passes::LightShadowStats light_stats_from_json(const json& in) {
         value_of<uint64_t>(f, "inserted_segments"),          value_of<uint64_t>(f, "light_depth_bytes"),
         value_of<uint64_t>(f, "hair_bin_bytes"),             value_of<uint64_t>(f, "hair_bin_capacity_entries"),
         value_of<uint64_t>(f, "hair_bin_requested_entries"), value_of<uint64_t>(f, "tiles_walked_whole")};
+  }
+  if (in.contains("pages")) {
+    const json& p = in.at("pages");
+    s.pages = passes::PageStats{value_of<uint32_t>(p, "pool_slots"), value_of<uint32_t>(p, "requested"),
+                                value_of<uint32_t>(p, "resident"),   value_of<uint32_t>(p, "built"),
+                                value_of<uint32_t>(p, "invalidated"), value_of<uint32_t>(p, "evicted"),
+                                value_of<uint32_t>(p, "pending"),    value_of<uint32_t>(p, "unserved"),
+                                value_of<float>(p, "lod_bias")};
   }
   return s;
 }
@@ -319,6 +333,11 @@ json to_json(const LightSettings& light) {
           {"cascades", s.cascades},
           {"cascade_blend", s.cascade_blend},
           {"clusters", s.clusters},
+          {"layout", scene::to_string(s.layout)},
+          {"virtual_resolution", s.virtual_resolution},
+          {"page_size", s.page_size},
+          {"page_pool_mib", s.page_pool_mib},
+          {"page_lod_bias", s.page_lod_bias},
           {"parameters", s.parameters}};
 }
 
@@ -341,6 +360,16 @@ LightSettings light_settings_from_json(const json& in) {
   s.cascades = value_of<int>(in, "cascades");
   s.cascade_blend = value_of<float>(in, "cascade_blend");
   s.clusters = value_of<int>(in, "clusters");
+  if (in.contains("layout")) {  // reports from before paged maps: dense
+    const std::string layout = value_of<std::string>(in, "layout");
+    const auto parsed = scene::shadow_layout_from_string(layout);
+    if (!parsed) throw std::runtime_error("unknown shadow layout '" + layout + "'");
+    s.layout = *parsed;
+    s.virtual_resolution = value_of<int>(in, "virtual_resolution");
+    s.page_size = value_of<int>(in, "page_size");
+    s.page_pool_mib = value_of<double>(in, "page_pool_mib");
+    s.page_lod_bias = value_of<float>(in, "page_lod_bias");
+  }
   s.parameters = value_of<std::map<std::string, double>>(in, "parameters");
   return light;
 }

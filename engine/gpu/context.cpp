@@ -244,6 +244,8 @@ void Context::read_device_info() {
   info_.max_storage_buffer_range = limits.maxStorageBufferRange;
   info_.min_storage_buffer_offset_alignment = limits.minStorageBufferOffsetAlignment;
   info_.max_image_dimension_2d = limits.maxImageDimension2D;
+  info_.max_viewport_dimension = std::min(limits.maxViewportDimensions[0], limits.maxViewportDimensions[1]);
+  info_.viewport_bounds_min = limits.viewportBoundsRange[0];
   info_.max_image_dimension_3d = limits.maxImageDimension3D;
   info_.max_image_array_layers = limits.maxImageArrayLayers;
   info_.max_memory_allocation_size = maintenance3.maxMemoryAllocationSize;

@@ -101,6 +101,8 @@ struct DeviceInfo {
   uint32_t max_image_dimension_2d = 4096;  // texels per side of a 2D image
   uint32_t max_image_dimension_3d = 256;   // texels per side of a 3D image
   uint32_t max_image_array_layers = 256;
+  uint32_t max_viewport_dimension = 4096;  // the smaller of maxViewportDimensions
+  float viewport_bounds_min = -8192.0f;    // viewportBoundsRange[0]
   VkDeviceSize max_buffer_size = ~VkDeviceSize{0};             // Vulkan 1.3 (maintenance4)
   VkDeviceSize max_memory_allocation_size = ~VkDeviceSize{0};  // Vulkan 1.1 (maintenance3)
   bool memory_budget = false;  // VK_EXT_memory_budget: what is left of each heap can be asked

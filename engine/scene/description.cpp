@@ -301,6 +301,21 @@ ShadowOverrides read_shadow_overrides(ObjectReader& object) {
   shadow.fit = optional_choice<ShadowFit>(object, "fit", {{"view", ShadowFit::view}, {"scene", ShadowFit::scene}});
   shadow.cascades = whole_number("cascades", [](int n) { return n >= 1 && n <= 4; }, "1 to 4");
   shadow.clusters = whole_number("clusters", [](int n) { return n >= 0 && n <= 8; }, "0 (off) to 8 maps");
+  shadow.layout = optional_choice<ShadowLayout>(object, "layout", {{"dense", ShadowLayout::dense}, {"paged", ShadowLayout::paged}});
+  shadow.virtual_resolution = whole_number(
+      "virtual_resolution", [](int r) { return r >= 256 && r <= 16384 && (r & (r - 1)) == 0; }, "a power of two, 256 to 16384 texels");
+  shadow.page_size = whole_number("page_size", [](int p) { return p == 32 || p == 64 || p == 128; }, "32, 64 or 128 texels");
+  if (object.optional("page_pool_mib")) {
+    shadow.page_pool_mib = object.number("page_pool_mib");
+    object.check(*shadow.page_pool_mib > 0.0 && *shadow.page_pool_mib <= 4096.0, "page_pool_mib",
+                 "must be more than 0 and at most 4096 MiB");
+  }
+  if (object.optional("page_lod_bias")) {
+    shadow.page_lod_bias = float(object.number("page_lod_bias"));
+    object.check(*shadow.page_lod_bias >= -4.0f && *shadow.page_lod_bias <= 8.0f, "page_lod_bias", "must be -4 to 8 levels");
+  }
+  shadow.page_builds_per_frame =
+      whole_number("page_builds_per_frame", [](int n) { return n >= 0 && n <= 65536; }, "0 (no limit) to 65536 pages");
   if (const json* parameters = object.optional("parameters")) {
     const std::string parameters_path = object.path_of("parameters");
     object.reader().expect(parameters->is_object(), parameters_path,

@@ -60,6 +60,12 @@ std::optional<ShadowFit> shadow_fit_from_string(std::string_view text) {
   if (text == "scene") return ShadowFit::scene;
   return std::nullopt;
 }
+std::string_view to_string(ShadowLayout layout) { return layout == ShadowLayout::dense ? "dense" : "paged"; }
+std::optional<ShadowLayout> shadow_layout_from_string(std::string_view text) {
+  if (text == "dense") return ShadowLayout::dense;
+  if (text == "paged") return ShadowLayout::paged;
+  return std::nullopt;
+}
 std::optional<ShadowFilter> shadow_filter_from_string(std::string_view text) {
   return value_of<ShadowFilter>(kFilters, text);
 }
@@ -76,6 +82,12 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (fit) settings.fit = *fit;
   if (cascades) settings.cascades = *cascades;
   if (clusters) settings.clusters = *clusters;
+  if (layout) settings.layout = *layout;
+  if (virtual_resolution) settings.virtual_resolution = *virtual_resolution;
+  if (page_size) settings.page_size = *page_size;
+  if (page_pool_mib) settings.page_pool_mib = *page_pool_mib;
+  if (page_lod_bias) settings.page_lod_bias = *page_lod_bias;
+  if (page_builds_per_frame) settings.page_builds_per_frame = *page_builds_per_frame;
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;
 }
 

@@ -29,6 +29,12 @@ enum class ShadowBuild { lists, fixed };
 // `scene`: everything that casts or receives, whatever the camera sees.
 enum class ShadowFit { view, scene };
 
+// How a light's map is laid out. `dense`: resolution^2 texels (and mips), rebuilt every
+// frame. `paged`: a virtual map of virtual_resolution^2 texels with mip levels, cut into
+// pages of page_size^2 texels, of which only those the camera's receivers ask for are
+// built, into a fixed pool, and kept across frames (passes/shadows/pages/).
+enum class ShadowLayout { dense, paged };
+
 struct ShadowSettings {
   // A shadow technique by name: avsm (adaptive volumetric shadow maps, Salvi et al.
   // 2010), uncompressed (the exact reference) or another of passes/shadows/techniques/. The
@@ -52,6 +58,12 @@ struct ShadowSettings {
   // declares with its defaults and ranges and checks; the scene file only checks
   // that they are finite numbers.
   std::map<std::string, double> parameters;
+  ShadowLayout layout = ShadowLayout::dense;
+  int virtual_resolution = 16384;  // paged: level-0 texels per side, a power of two, 256 to 16384
+  int page_size = 64;              // paged: texels per page side: 32, 64 or 128
+  double page_pool_mib = 32.0;     // paged: the light's page pool (a point light's six faces share it)
+  float page_lod_bias = 0.0f;      // paged: levels added to every receiver's request (> 0: coarser)
+  int page_builds_per_frame = 0;   // paged: most pages built in one frame (0: no limit); captures ignore it
 
   double parameter(const std::string& name, double fallback) const {
     const auto found = parameters.find(name);
@@ -75,6 +87,12 @@ struct ShadowOverrides {
   std::optional<ShadowFit> fit;
   std::optional<int> cascades;
   std::optional<int> clusters;
+  std::optional<ShadowLayout> layout;
+  std::optional<int> virtual_resolution;
+  std::optional<int> page_size;
+  std::optional<double> page_pool_mib;
+  std::optional<float> page_lod_bias;
+  std::optional<int> page_builds_per_frame;
   std::map<std::string, double> parameters;  // set on top of the light's own
 
   bool operator==(const ShadowOverrides&) const = default;
@@ -118,5 +136,7 @@ std::string_view to_string(ShadowFit fit);
 std::string_view to_string(ShadowKernel kernel);
 std::optional<ShadowKernel> shadow_kernel_from_string(std::string_view text);
 std::optional<ShadowFit> shadow_fit_from_string(std::string_view text);
+std::string_view to_string(ShadowLayout layout);
+std::optional<ShadowLayout> shadow_layout_from_string(std::string_view text);
 
 }  // namespace avsm::scene

@@ -218,7 +218,13 @@ SettingList settings_of(const capture::SettingsReport& s) {
                                   {"distance", number_text(shadow.distance)},
                                   {"cascades", std::to_string(shadow.cascades)},
                                   {"cascade_blend", number_text(shadow.cascade_blend)},
-                                  {"clusters", std::to_string(shadow.clusters)}};
+                                  {"clusters", std::to_string(shadow.clusters)},
+                                  {"layout", std::string(scene::to_string(shadow.layout))}};
+    if (shadow.layout == scene::ShadowLayout::paged)
+      settings.insert(settings.end(), {{"virtual_resolution", std::to_string(shadow.virtual_resolution)},
+                                       {"page_size", std::to_string(shadow.page_size)},
+                                       {"page_pool_mib", number_text(shadow.page_pool_mib)},
+                                       {"page_lod_bias", number_text(shadow.page_lod_bias)}});
     for (const auto& [name, value] : shadow.parameters) settings.push_back({"parameters." + name, number_text(value)});
     list.lights.push_back({light.light, std::move(settings)});
   }

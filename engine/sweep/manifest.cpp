@@ -55,6 +55,12 @@ struct SettingsPart {
     take(top.fit, base.fit);
     take(top.cascades, base.cascades);
     take(top.clusters, base.clusters);
+    take(top.layout, base.layout);
+    take(top.virtual_resolution, base.virtual_resolution);
+    take(top.page_size, base.page_size);
+    take(top.page_pool_mib, base.page_pool_mib);
+    take(top.page_lod_bias, base.page_lod_bias);
+    take(top.page_builds_per_frame, base.page_builds_per_frame);
     for (const auto& [name, value] : top.parameters) base.parameters[name] = value;
   }
 };

@@ -81,6 +81,12 @@ json to_json(const scene::ShadowOverrides& shadow) {
   if (shadow.fit) out["fit"] = scene::to_string(*shadow.fit);
   if (shadow.cascades) out["cascades"] = *shadow.cascades;
   if (shadow.clusters) out["clusters"] = *shadow.clusters;
+  if (shadow.layout) out["layout"] = scene::to_string(*shadow.layout);
+  if (shadow.virtual_resolution) out["virtual_resolution"] = *shadow.virtual_resolution;
+  if (shadow.page_size) out["page_size"] = *shadow.page_size;
+  if (shadow.page_pool_mib) out["page_pool_mib"] = *shadow.page_pool_mib;
+  if (shadow.page_lod_bias) out["page_lod_bias"] = *shadow.page_lod_bias;
+  if (shadow.page_builds_per_frame) out["page_builds_per_frame"] = *shadow.page_builds_per_frame;
   if (!shadow.parameters.empty()) out["parameters"] = shadow.parameters;
   return out;
 }
@@ -99,6 +105,12 @@ scene::ShadowOverrides shadow_overrides_from_json(const json& in) {
   if (in.contains("fit")) shadow.fit = choice_of(in, "fit", scene::shadow_fit_from_string);
   if (in.contains("cascades")) shadow.cascades = value_of<int>(in, "cascades");
   if (in.contains("clusters")) shadow.clusters = value_of<int>(in, "clusters");
+  if (in.contains("layout")) shadow.layout = choice_of(in, "layout", scene::shadow_layout_from_string);
+  if (in.contains("virtual_resolution")) shadow.virtual_resolution = value_of<int>(in, "virtual_resolution");
+  if (in.contains("page_size")) shadow.page_size = value_of<int>(in, "page_size");
+  if (in.contains("page_pool_mib")) shadow.page_pool_mib = value_of<double>(in, "page_pool_mib");
+  if (in.contains("page_lod_bias")) shadow.page_lod_bias = value_of<float>(in, "page_lod_bias");
+  if (in.contains("page_builds_per_frame")) shadow.page_builds_per_frame = value_of<int>(in, "page_builds_per_frame");
   if (in.contains("parameters")) shadow.parameters = value_of<std::map<std::string, double>>(in, "parameters");
   return shadow;
 }

@@ -147,6 +147,17 @@ LightView finish_view(LightView v, uint32_t resolution) {
 
 }  // namespace
 
+LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size) {
+  LightView v = virtual_view;
+  const float scale = float(1u << level);
+  v.texel_size_base *= scale;
+  v.texel_size_per_depth *= scale;
+  v.raster_resolution = std::max(virtual_view.resolution >> level, 1u);
+  v.raster_origin = page * page_size;
+  v.resolution = page_size;
+  return v;
+}
+
 LightView make_light_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution) {
   const scene::Bounds box = usable_bounds(casters);
   if (light.type == scene::LightType::point) return make_point_face_view(light, 0, casters, resolution);

@@ -30,11 +30,21 @@ struct LightView {
   // World size of one level-0 texel at depth d: texel_size_base + texel_size_per_depth * d.
   float texel_size_base = 0.0f;
   float texel_size_per_depth = 0.0f;
-  uint32_t resolution = 1;
+  uint32_t resolution = 1;  // the map's texels per side
+  // The raster the map is a window of (a paged map's page of a virtual level): the map's
+  // texel (x, y) is the raster's texel raster_origin + (x, y), so a window captures
+  // exactly the texels the whole raster would. 0: the map is its own raster.
+  uint32_t raster_resolution = 0;
+  glm::uvec2 raster_origin{0u};
 
+  uint32_t raster() const { return raster_resolution != 0 ? raster_resolution : resolution; }
   float depth(const glm::vec3& p) const { return glm::dot(glm::vec3(depth_plane), p) + depth_plane.w; }
   float texel_size(float d) const { return texel_size_base + texel_size_per_depth * d; }
 };
+
+// Page `page` (in pages) of level `level` of a paged map whose level 0 is
+// `virtual_view` (its resolution the virtual one): a window of page_size texels.
+LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size);
 
 // The camera's view between two distances along its axis: what a directional light's
 // map is fitted to (ShadowFit::view), one slice per cascade.

@@ -23,6 +23,17 @@ void ShadowInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context)
       .buffer("ShadowListNodes", or_unused(list_nodes));
 }
 
+rg::BufferHandle ShadowInputs::declare_page_requests(rg::PassBuilder& builder) const {
+  return page_requests.valid() ? builder.write(page_requests, rg::Usage::StorageReadWrite) : rg::BufferHandle{};
+}
+
+void ShadowInputs::bind_page_requests(gpu::Bindings& bindings, const rg::PassContext& context,
+                                      rg::BufferHandle requests) const {
+  // Without paged maps no record asks (page_requests_offset is kNoPageRequests): any
+  // buffer will do.
+  bindings.buffer("ShadowPageRequests", requests.valid() ? context.buffer(requests) : gpu::BufferRange(unused_buffer));
+}
+
 UnshadowedInputs::UnshadowedInputs(gpu::Context& ctx) : ctx_(ctx) { reserve(64); }
 
 void UnshadowedInputs::reserve(uint32_t lights) {

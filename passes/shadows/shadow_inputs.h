@@ -40,6 +40,9 @@ struct ShadowInputs {
   std::vector<rg::BufferHandle> lists;  // the looked-up lists: regions of `list_heads`, `list_nodes`
   gpu::BufferRange atlas, list_heads, list_nodes;
   VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists
+  // Paged maps' request bits (shaders/shared/pages.h), cleared by the frame: the one pass
+  // whose receivers ask for pages (the opaque pass) writes them; invalid without paged maps.
+  rg::BufferHandle page_requests;
   // The frame slot the graph records into (passes/frame/frames_in_flight.h): passes with a
   // buffer per frame in flight (readbacks) write this slot's.
   uint32_t frame_slot = 0;
@@ -49,6 +52,11 @@ struct ShadowInputs {
   // In the pass's execute step: the records, the atlas, the list heads and nodes, by
   // their shader names.
   void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
+  // For a pass whose lookups ask for pages (AVSM_SHADOW_PAGE_REQUESTS_BINDING): declares
+  // its writes to the request bits (returns the new version, invalid without paged maps)
+  // and binds them, or a stand-in where the frame has no paged map.
+  rg::BufferHandle declare_page_requests(rg::PassBuilder& builder) const;
+  void bind_page_requests(gpu::Bindings& bindings, const rg::PassContext& context, rg::BufferHandle requests) const;
 };
 
 // Stand-ins bound where a light has no map or lists, and the parameter block of

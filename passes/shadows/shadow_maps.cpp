@@ -45,7 +45,24 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
 
 void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
                             const ShadowOptions& options, const std::vector<CasterObject>& objects) {
-  for (size_t i = 0; i < lights.size(); ++i) check_light_settings(lights[i], i);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    check_light_settings(lights[i], i);
+    // A page is rasterized with its level's whole raster as the viewport, moved so the
+    // page lands on the framebuffer (passes/shadows/capture/capture_lists.h).
+    const int virtual_resolution = lights[i].shadow.virtual_resolution;
+    const gpu::DeviceInfo& device = ctx_.info();
+    if (lights[i].shadow.layout == scene::ShadowLayout::paged &&
+        (uint32_t(virtual_resolution) > device.max_viewport_dimension ||
+         -float(virtual_resolution) < device.viewport_bounds_min))
+      throw std::invalid_argument(light_display_name(lights[i], i) + ": a virtual map of " +
+                                  std::to_string(virtual_resolution) + " texels is wider than this device's viewports (" +
+                                  std::to_string(device.max_viewport_dimension) +
+                                  "); lower shadow.virtual_resolution (--virtual-res)");
+    if (options.keep_reference && lights[i].shadow.layout == scene::ShadowLayout::paged)
+      throw std::invalid_argument(light_display_name(lights[i], i) +
+                                  ": the exact reference (--compare-to, texel plots, the viewer's pixel inspection) "
+                                  "reads dense capture lists; set shadow.layout to \"dense\" for it");
+  }
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
                                 " samples per segment; use 1 to 255");
@@ -81,6 +98,7 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
   }
   create_atlas();
   create_list_buffers();
+  create_page_requests();
   // Views fitted to the camera as the last frame saw it, so that light_views() matches the
   // next frame's maps when nothing moves (the viewer inspects texels between frames).
   if (last_camera_) update_views(*last_camera_);
@@ -98,6 +116,7 @@ void ShadowMaps::set_frames_in_flight(uint32_t count) {
   retired_ = {};
   parameters_.set_frames(ctx_, count);
   for (MapState& map : maps_) create_frame_buffers(map);
+  create_page_requests();
 }
 
 // The counters a frame's passes write for finish_frame(), and what it declared, per slot.
@@ -109,7 +128,11 @@ void ShadowMaps::create_frame_buffers(MapState& map) const {
     map.fixed_counter.set_frames(ctx_, frames_in_flight());
     map.fixed_counter.create(ctx_, {16, usage, gpu::MemoryLocation::HostReadback, map.prefix + " fixed build counter"});
   }
-  map.declared.assign(frames_in_flight(), DeclaredMap{});
+  if (map.pages) {
+    map.page_counters.set_frames(ctx_, frames_in_flight());
+  }
+  map.declared.clear();
+  map.declared.resize(frames_in_flight());
 }
 
 // A light's maps: one, six cube faces, a map per cascade or per caster cluster.
@@ -149,6 +172,7 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   for (MapState& map : maps) {
     map.record = light.views == shared::kViewsSingle ? index : record_count_++;
     map.map_state = initial_map_state(light);
+    if (is_paged(light)) create_page_state(map);
     create_frame_buffers(map);
     map.lookups_read_lists = light.technique->reads_capture_lists() || options_.keep_reference;
     maps_.push_back(std::move(map));

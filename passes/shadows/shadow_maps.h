@@ -38,6 +38,7 @@
 #include "passes/shadows/capture/capture_sort_pass.h"
 #include "passes/frame/frames_in_flight.h"
 #include "passes/shadows/light_view.h"
+#include "passes/shadows/pages/page_table.h"
 #include "passes/shadows/shadow_casters.h"
 #include "passes/shadows/shadow_clusters.h"
 #include "passes/shadows/shadow_inputs.h"
@@ -128,6 +129,11 @@ class ShadowMaps {
   }
   const ShadowTechnique& technique(uint32_t light) const { return *lights_.at(light).technique; }
   uint32_t light_count() const { return uint32_t(lights_.size()); }
+  // Light `light`'s maps are paged (shadow.layout "paged"): light_views() gives the
+  // virtual map, map_layout() one page build's.
+  bool is_paged(uint32_t light) const { return is_paged(lights_.at(light)); }
+  // Its pages' figures as the last finished frame left them (summed over a point light's faces).
+  const PageTable* page_table(uint32_t map) const { return maps_.at(map).pages.get(); }
   bool has_reference() const { return options_.keep_reference; }
   // Bytes of the one buffer every map lives in.
   uint64_t atlas_bytes() const { return atlas_ ? atlas_.size() : 0; }
@@ -148,6 +154,12 @@ class ShadowMaps {
     TechniqueMapState map_state;
     bool captured_lists = false;
     uint32_t hair_segments = 0;  // sizes the fixed build's bins
+    std::vector<PageBuild> page_builds;  // paged maps: the pages it built
+    PageStats pages;                     // and the pool as it left it
+    std::vector<uint32_t> page_table;    // the table its lookups read
+    // The regions its graph imported, which must outlive its execution (held by pointer:
+    // the graph keeps their addresses).
+    std::vector<std::unique_ptr<gpu::Buffer>> page_buffers;
   };
   // One map: a light's only one, a cube face, a cascade or a cluster's.
   struct MapState {
@@ -167,8 +179,16 @@ class ShadowMaps {
     uint64_t list_heads_offset = 0, list_nodes_offset = 0;  // bytes in list_heads_, list_nodes_
     gpu::Buffer list_heads, list_nodes;                     // regions of them
     std::vector<DeclaredMap> declared;  // per frame slot: its last frame's
-    uint64_t capacity = 0;
+    uint64_t capacity = 0;        // capture segments of the map (paged: of each page build)
     LightShadowStats stats;       // the last frame's
+    // Paged maps (shadow.layout "paged"): the virtual map's pages, its page table (a
+    // region of the atlas at atlas_offset), where the pool starts in the atlas, where its
+    // request bits start (in words), and per frame slot the counters of its page builds.
+    std::unique_ptr<PageTable> pages;
+    gpu::Buffer page_table;
+    uint64_t page_pool_offset = 0;
+    uint32_t page_requests_offset = shared::kNoPageRequests;
+    FrameBuffers page_counters;
   };
   // Maps start on this many bytes in the atlas: above every device's storage buffer offset
   // alignment (the mips pass binds windows of a map at aligned offsets).
@@ -199,8 +219,22 @@ class ShadowMaps {
   // shadow_maps_graph.cpp: the frame's passes.
   CaptureLists add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
                                  uint32_t slot) const;
+  CaptureLists add_capture_lists(rg::Graph& graph, const std::string& prefix, const LightView& view, bool sort,
+                                 uint64_t capacity, rg::BufferHandle counter, const ShadowCasters& casters) const;
   void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
   ShadowCasters casters_of(const MapState& map, const ShadowCasters& all) const;
+  // shadow_maps_pages.cpp: paged maps (shadow.layout "paged").
+  static bool is_paged(const LightState& light) { return light.light.shadow.layout == scene::ShadowLayout::paged; }
+  uint32_t page_slots(const MapState& map) const;  // the pool's pages: the light's pool bytes over its maps
+  uint64_t page_table_bytes(const MapState& map) const;
+  uint64_t page_counter_stride() const;
+  uint64_t paged_atlas_bytes(const MapState& map) const;
+  void create_page_state(MapState& map) const;
+  void create_page_requests();
+  rg::BufferHandle add_page_requests_clear(rg::Graph& graph, uint32_t slot) const;
+  void add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
+                       ShadowInputs& inputs);
+  void finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats);
   // shadow_maps_finish.cpp: a completed frame's figures.
   FixedBuildStats fixed_build_stats(const MapState& map, uint32_t slot) const;
   LightShadowStats finish_map(MapState& map, uint32_t slot, bool& remake);
@@ -223,6 +257,8 @@ class ShadowMaps {
   gpu::Buffer atlas_;              // every map, at MapState::atlas_offset
   gpu::Buffer list_heads_, list_nodes_;  // copies of the lists lookups read
   FrameBuffers parameters_;  // GpuShadow per record (and per exact reference), written in the frame
+  FrameBuffers page_requests_;  // the paged maps' request bits, per frame slot (read back)
+  uint32_t page_request_words_ = 0;
   RetiredBuffers retired_;   // what finish_frame() replaced while frames in flight use it
   UnshadowedInputs unshadowed_;
 };

@@ -48,12 +48,14 @@ uint64_t ShadowMaps::map_budget() const {
 
 // A map's state before its first frame, at its light's (possibly lowered) resolution.
 TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
-  const uint32_t resolution = uint32_t(light.light.shadow.resolution);
+  // A paged map's builds are dense maps of a page each, of one level.
+  const bool paged = is_paged(light);
+  const uint32_t resolution = uint32_t(paged ? light.light.shadow.page_size : light.light.shadow.resolution);
   TechniqueMapState state;
   state.layout.resolution = resolution;
   state.layout.nodes = uint32_t(light.light.shadow.nodes);
   // Techniques without mips look trilinear up as bilinear.
-  state.layout.levels = light.technique->mip_levels(light.light.shadow, resolution);
+  state.layout.levels = paged ? 1 : light.technique->mip_levels(light.light.shadow, resolution);
   light.technique->prepare(state);
   return state;
 }
@@ -62,6 +64,7 @@ TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
 uint64_t ShadowMaps::atlas_bytes(const MapState& map) const {
   const LightState& light = lights_[map.light];
   if (!light.technique->has_map()) return 0;
+  if (is_paged(light)) return round_up(paged_atlas_bytes(map), kAtlasAlignment);
   return round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
 }
 
@@ -92,13 +95,14 @@ void ShadowMaps::fit_to_budget() {
       const std::string lights = largest_lights(std::move(named), format_mib);
       throw ShadowBudgetError("the shadow maps need " + format_mib(total()) + ", over the budget of " +
                               format_mib(budget) + (budget == range ? " (the device's storage buffer range)" : "") + ": " + lights +
-                              "; lower their shadow.resolution or nodes, raise the budget (shadows.budget_mib) "
+                              "; lower their shadow.resolution, page_pool_mib or nodes, raise the budget (shadows.budget_mib) "
                               "or let it lower resolutions (shadows.fit_budget)");
     }
     // Halve the resolution of the light with the most bytes that can still go lower.
     LightState* largest = nullptr;
     for (LightState& light : lights_)
-      if (light.light.shadow.resolution > 16 && light_bytes(light) > 0 && (!largest || light_bytes(light) > light_bytes(*largest)))
+      if (!is_paged(light) && light.light.shadow.resolution > 16 && light_bytes(light) > 0 &&
+          (!largest || light_bytes(light) > light_bytes(*largest)))
         largest = &light;
     if (!largest)
       throw ShadowBudgetError("the shadow maps need " + format_mib(total()) +
@@ -131,6 +135,13 @@ void ShadowMaps::create_atlas() {
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
     if (!light.technique->has_map()) continue;
+    if (map.pages) {  // the page table, then the pool
+      const uint64_t table = page_table_bytes(map);
+      map.map = gpu::Buffer::region(atlas_, map.atlas_offset, paged_atlas_bytes(map), map.prefix + " paged avsm map");
+      map.page_table = gpu::Buffer::region(atlas_, map.atlas_offset, table, map.prefix + " page table");
+      map.page_pool_offset = map.atlas_offset + table;
+      continue;
+    }
     map.map = gpu::Buffer::region(atlas_, map.atlas_offset, light.technique->map_bytes(light.light.shadow, map.map_state),
                                   map.prefix + " " + light.light.shadow.technique + " map");
   }

@@ -36,6 +36,14 @@ LightShadowStats ShadowMaps::finish_map(MapState& map, uint32_t slot, bool& rema
   const LightState& light = lights_[map.light];
   const DeclaredMap& declared = map.declared[slot];
   LightShadowStats stats;
+  if (map.pages) {
+    stats.technique = light.light.shadow.technique;
+    stats.nodes = declared.map_state.layout.nodes;
+    stats.resolution = map.pages->virtual_resolution();
+    stats.mip_levels = map.pages->levels();
+    finish_pages(map, slot, stats);
+    return stats;
+  }
   uint32_t counters[3] = {0, 0, 0};  // capture segments, what the technique's build asked for
   if (declared.captured_lists) std::memcpy(counters, map.counter[slot].mapped(), sizeof(counters));
   const uint32_t requested = counters[0];
@@ -92,6 +100,20 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
     pool.build_cut_short = pool.build_cut_short || map.dsm_pool->build_cut_short;
     pool.held_by_budget = pool.held_by_budget || map.dsm_pool->held_by_budget;
     light.dsm_pool = pool;
+  }
+  if (map.pages) {
+    PageStats pages = light.pages.value_or(PageStats{});
+    const PageStats& m = *map.pages;
+    pages.slots += m.slots;
+    pages.requested += m.requested;
+    pages.resident += m.resident;
+    pages.built += m.built;
+    pages.invalidated += m.invalidated;
+    pages.evicted += m.evicted;
+    pages.pending += m.pending;
+    pages.unserved += m.unserved;
+    pages.lod_bias = std::max(pages.lod_bias, m.lod_bias);
+    light.pages = pages;
   }
   if (map.fixed_build) {
     FixedBuildStats f = light.fixed_build.value_or(FixedBuildStats{});

@@ -25,8 +25,13 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
   inputs.atlas = atlas_ ? gpu::BufferRange(atlas_) : gpu::BufferRange();
   inputs.list_heads = list_heads_ ? gpu::BufferRange(list_heads_) : gpu::BufferRange();
   inputs.list_nodes = list_nodes_ ? gpu::BufferRange(list_nodes_) : gpu::BufferRange();
+  if (page_requests_) inputs.page_requests = add_page_requests_clear(graph, slot);
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
+    if (map.pages) {
+      add_page_builds(graph, map, casters_of(map, casters), slot, inputs);
+      continue;
+    }
     const scene::ShadowSettings& settings = light.light.shadow;
     const ShadowCasters map_casters = casters_of(map, casters);
     const bool fixed = settings.build == scene::ShadowBuild::fixed;
@@ -59,14 +64,20 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
 CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
                                            uint32_t slot) const {
   const scene::ShadowSettings& settings = lights_[map.light].light.shadow;
-  const LightView& view = map.view;
   rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " capture counter", map.counter[slot],
                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  CaptureLists lists = add_capture_clear_pass(graph, map.prefix, view.resolution, map.capacity, counter);
-  lists = capture_opaque_.add_to_graph(graph, map.prefix, lists, view, casters.meshes);
-  lists = capture_hair_.add_to_graph(graph, map.prefix, lists, view, casters.strands);
-  lists = capture_smoke_.add_to_graph(graph, map.prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
-  if (settings.sort) lists = sort_.add_to_graph(graph, map.prefix, lists, view.resolution);
+  return add_capture_lists(graph, map.prefix, map.view, settings.sort, map.capacity, counter, casters);
+}
+
+// The lists of one view (a map, or a page of a paged map).
+CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const std::string& prefix, const LightView& view, bool sort,
+                                           uint64_t capacity, rg::BufferHandle counter,
+                                           const ShadowCasters& casters) const {
+  CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, capacity, counter);
+  lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
+  lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
+  lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
+  if (sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
   return lists;
 }
 

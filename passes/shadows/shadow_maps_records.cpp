@@ -51,6 +51,17 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
   g.views = shared::kViewsSingle;
   g.reference = options_.keep_reference ? record_count_ + map.record : kNoReference;
   light.technique->fill(g, settings, v);
+  if (map.pages) {  // the virtual map (shared/pages.h)
+    g.resolution = map.pages->virtual_resolution();
+    g.mip_count = map.pages->levels();
+    g.filter_mode = shared::kFilterTrilinear;
+    g.page_size = map.pages->page_size();
+    g.page_pool_offset = uint32_t(map.page_pool_offset / sizeof(glm::vec4));
+    g.page_requests_offset = map.page_requests_offset;
+    g.page_lod_bias = settings.page_lod_bias + map.pages->lod_bias();
+  } else {
+    g.page_requests_offset = shared::kNoPageRequests;
+  }
   return g;
 }
 

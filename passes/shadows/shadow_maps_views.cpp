@@ -10,7 +10,10 @@ void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const gl
   LightState& light = lights_.at(index);
   light.light.position = position;
   light.light.direction = direction;
-  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) maps_[m].view = initial_view(maps_[m]);
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) {
+    maps_[m].view = initial_view(maps_[m]);
+    if (maps_[m].pages) maps_[m].pages->invalidate_all();  // every page saw the light from where it was
+  }
   // Maps fitted to the camera are fitted again by the next frame (update_views).
   views_[index] = maps_[light.first_map].view;
 }
@@ -18,7 +21,8 @@ void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const gl
 // A map's view before any camera is known (update_views() fits the camera's).
 LightView ShadowMaps::initial_view(const MapState& map) const {
   const LightState& light = lights_[map.light];
-  const uint32_t resolution = uint32_t(light.light.shadow.resolution);
+  const scene::ShadowSettings& s = light.light.shadow;
+  const uint32_t resolution = uint32_t(is_paged(light) ? s.virtual_resolution : s.resolution);  // paged: the virtual map
   if (map.face >= 0) return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution);
   return make_light_view(light.light, map.fit_bounds, resolution);
 }

@@ -34,7 +34,34 @@ void check_light_settings(const scene::Light& light, size_t index) {
                                 std::to_string(shared::kMaxKernelRadius));
   if (s.resolution < 1 || s.resolution > 16384)
     throw std::invalid_argument(who + ": shadow resolution " + std::to_string(s.resolution) + " is outside 1..16384");
+  if (s.layout == scene::ShadowLayout::paged) check_paged_settings(light, who);
   check_shadow_settings(s, who);
+}
+
+// What paged maps build today: AVSM from capture lists, one virtual map per light (six
+// for a point light) that stays where the scene put it.
+void check_paged_settings(const scene::Light& light, const std::string& who) {
+  const scene::ShadowSettings& s = light.shadow;
+  auto refuse = [&](const std::string& why) {
+    throw std::invalid_argument(who + ": shadow.layout \"paged\" " + why);
+  };
+  if (s.technique != "avsm") refuse("builds AVSM maps only; set shadow.technique to \"avsm\" or shadow.layout to \"dense\"");
+  if (s.build != scene::ShadowBuild::lists)
+    refuse("builds pages from capture lists; set shadow.build to \"lists\" or shadow.layout to \"dense\"");
+  if (s.cascades > 1 || s.clusters > 1)
+    refuse("replaces cascades and clusters with one virtual map; set shadow.cascades to 1 and shadow.clusters to 0");
+  if (s.kernel != scene::ShadowKernel::none)
+    refuse("matches texels to pixels instead of blurring them; set shadow.kernel to \"none\"");
+  if (light.type == scene::LightType::directional && s.fit == scene::ShadowFit::view)
+    refuse("keeps pages while the camera moves, so its map covers the scene; set shadow.fit to \"scene\"");
+  if (s.page_size != 32 && s.page_size != 64 && s.page_size != 128)
+    refuse("pages are 32, 64 or 128 texels wide, not " + std::to_string(s.page_size) + "; set shadow.page_size");
+  const int v = s.virtual_resolution;
+  if (v < 256 || v > 16384 || (v & (v - 1)) != 0 || v < s.page_size)
+    refuse("needs a virtual resolution that is a power of two, 256 to 16384 texels and at least a page, not " +
+           std::to_string(v) + "; set shadow.virtual_resolution");
+  if (!(s.page_pool_mib > 0.0)) refuse("needs a page pool; set shadow.page_pool_mib above 0");
+  if (s.page_builds_per_frame < 0) refuse("needs shadow.page_builds_per_frame of 0 (no limit) or more");
 }
 
 }  // namespace avsm::passes

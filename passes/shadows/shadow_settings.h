@@ -26,12 +26,21 @@ struct ShadowOptions {
   // Over the budget: halve the resolution of the lights with the largest maps until
   // they fit (LightShadowStats::lowered_from says which) instead of failing.
   bool fit_budget = false;
+  // Paged maps build every page their receivers ask for in the next frame, whatever
+  // their shadow.page_builds_per_frame (captures, which must write converged maps).
+  bool unlimited_page_builds = false;
+  // Every page of this level of every paged map counts as asked for, frame after frame
+  // (tests comparing a whole level with a dense map; -1: only what receivers ask for).
+  int required_page_level = -1;
 };
 
 // Throws std::invalid_argument, naming light `index`, for shadow settings this build
 // cannot render (cascades, clusters, nodes, kernel radius, resolution, the technique's
 // own); set_scene() and set_lights() check every light with it.
 void check_light_settings(const scene::Light& light, size_t index);
+
+// The part of check_light_settings() for shadow.layout "paged" (`who` names the light).
+void check_paged_settings(const scene::Light& light, const std::string& who);
 
 // "light 2 'key'": how messages name a light.
 std::string light_display_name(const scene::Light& light, size_t index);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "passes/shadows/pages/page_table.h"
 #include "scene/light.h"
 
 namespace avsm::passes {
@@ -55,14 +56,19 @@ struct LightShadowStats {
   std::optional<DsmPoolStats> dsm_pool;  // technique dsm only
   std::optional<FixedBuildStats> fixed_build;  // build fixed only (the lists above are then
                                                // only there for the uncompressed reference)
+  // Layout paged only: its pages (summed over a point light's faces). The capture figures
+  // above are then those of one page build.
+  std::optional<PageStats> pages;
   // A buffer grows for the next frame: rendering again does better. Not a figure of
   // the frame, so not in memory.json.
   bool grew = false;
 
   // Some of the frame's shadowing was lost: capture segments or pool nodes did not fit,
-  // or a deep shadow map's build did not finish.
+  // a deep shadow map's build did not finish, or receivers read coarser pages than they
+  // asked for.
   bool lost_shadowing() const {
-    return overflowed || (dsm_pool && (dsm_pool->overflowed || dsm_pool->build_cut_short));
+    return overflowed || (dsm_pool && (dsm_pool->overflowed || dsm_pool->build_cut_short)) ||
+           (pages && pages->pending > 0);
   }
   bool operator==(const LightShadowStats&) const = default;
 };

@@ -26,7 +26,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(texel), uvec2(pc.resolution)))) return;
-  march_smoke_from_light(texel, pc.resolution, pc.world_from_light, pc.depth_plane, pc.volume_count,
+  march_smoke_from_light(texel, pc.raster_origin, pc.raster_resolution, pc.world_from_light, pc.depth_plane, pc.volume_count,
                          pc.volume_mask, pc.samples_per_segment, 3.4e38);
 }
 

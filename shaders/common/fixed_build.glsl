@@ -186,7 +186,7 @@ void main() {
   if (in_map) insert_opaque(texel, world_from_light);
   if (pc.segment_count > 0u) insert_hair(texel, in_map);
   if (!in_map) return;
-  march_smoke_from_light(texel, pc.resolution, world_from_light, pc.depth_plane, fixed_volume_count(),
+  march_smoke_from_light(texel, uvec2(0u), pc.resolution, world_from_light, pc.depth_plane, fixed_volume_count(),
                          pc.volume_mask, fixed_samples_per_segment(), blocker_end);
   fixed_store(uint(texel.y) * pc.resolution + uint(texel.x));
   if (inserted > 0u) atomicAdd(fixed_counters[kFixedCounterInserted], inserted);

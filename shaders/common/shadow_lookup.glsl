@@ -64,6 +64,15 @@ layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_LIST_NODES_BINDING) 
   CaptureSegment shadow_nodes[];
 };
 
+// Paged maps' request bits (shared/pages.h): a pass whose receivers ask for the pages
+// they read defines AVSM_SHADOW_PAGE_REQUESTS_BINDING (ShadowInputs::page_requests);
+// lookups elsewhere read whatever is resident.
+#ifdef AVSM_SHADOW_PAGE_REQUESTS_BINDING
+layout(std430, set = AVSM_SHADOW_SET, binding = AVSM_SHADOW_PAGE_REQUESTS_BINDING) buffer ShadowPageRequests {
+  uint shadow_page_requests[];
+};
+#endif
+
 // vec4 i of the map record `s` describes.
 vec4 shadow_map_texel(GpuShadow s, uint i) { return shadow_atlas[s.map_offset + i]; }
 
@@ -84,6 +93,80 @@ float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.
 
 // Below this a curve counts as opaque (opaque segments end at exactly 0).
 const float kShadowOpaque = 1e-4;
+
+// ---- Paged maps (GpuShadow::page_size != kDenseLayout; shared/pages.h) ----
+
+bool shadow_is_paged(GpuShadow s) { return s.page_size != kDenseLayout; }
+
+// Page-table entry of the page holding `texel` of `level`, and its word (0: absent).
+uint shadow_page_entry(GpuShadow s, uint level, ivec2 texel) {
+  uvec2 page = uvec2(texel) / s.page_size;
+  return page_table_level_first(s.resolution, s.page_size, level) +
+         page.y * page_grid(s.resolution, s.page_size, level) + page.x;
+}
+uint shadow_page_word(GpuShadow s, uint entry) {
+  return floatBitsToUint(shadow_atlas[s.map_offset + entry / 4u][entry % 4u]);
+}
+
+// Marks a page as asked for, where the including pass marks (the bit is read first:
+// most receivers ask for pages their neighbours already asked for).
+void shadow_request_page(GpuShadow s, uint entry) {
+#ifdef AVSM_SHADOW_PAGE_REQUESTS_BINDING
+  if (s.page_requests_offset == kNoPageRequests) return;
+  uint word = s.page_requests_offset + entry / 32u, bit = 1u << (entry % 32u);
+  if ((shadow_page_requests[word] & bit) == 0u) atomicOr(shadow_page_requests[word], bit);
+#endif
+}
+
+// The level a receiver at p (light depth d) asks for: the one whose texels match a
+// camera pixel's footprint there, moved by the map's bias; fractional (trilinear).
+float shadow_paged_lod(GpuShadow s, vec3 p, float d) {
+  float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
+  float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)) + s.page_lod_bias;
+  return clamp(lod, 0.0, float(s.mip_count - 1u));
+}
+
+// The finest level at or above `level` whose pages hold all four bilinear taps around
+// uv; `mark`: ask for the pages of `level` itself. The coarsest level is one page that
+// is always resident, so there is always an answer.
+uint shadow_paged_resident_level(GpuShadow s, vec2 uv, uint level, bool mark) {
+  uint found = s.mip_count - 1u;
+  for (uint k = 0u; k < kMaxPageLevels; ++k) {  // a constant bound: lavapipe miscompiles per-lane ones
+    uint l = level + k;
+    if (l >= s.mip_count - 1u) break;
+    int size = int(max(s.resolution >> l, 1u));
+    ivec2 base = ivec2(floor(uv * float(size) - 0.5));
+    ivec2 lo = clamp(base, ivec2(0), ivec2(size - 1)), hi = clamp(base + 1, ivec2(0), ivec2(size - 1));
+    uint e00 = shadow_page_entry(s, l, lo), e10 = shadow_page_entry(s, l, ivec2(hi.x, lo.y));
+    uint e01 = shadow_page_entry(s, l, ivec2(lo.x, hi.y)), e11 = shadow_page_entry(s, l, hi);
+    if (mark && k == 0u) {
+      shadow_request_page(s, e00);
+      if (e10 != e00) shadow_request_page(s, e10);
+      if (e01 != e00) shadow_request_page(s, e01);
+      if (e11 != e10 && e11 != e01) shadow_request_page(s, e11);
+    }
+    if (shadow_page_word(s, e00) != kPageAbsent && shadow_page_word(s, e10) != kPageAbsent &&
+        shadow_page_word(s, e01) != kPageAbsent && shadow_page_word(s, e11) != kPageAbsent) {
+      found = l;
+      break;
+    }
+  }
+  return found;
+}
+
+// Where texel `texel` of `level` lives: the record of its page's slot (a dense map of
+// page_size texels, one level) and the texel in it. False when the page is absent.
+bool shadow_page_texel(GpuShadow s, uint level, ivec2 texel, out GpuShadow page, out ivec2 page_texel) {
+  page = s;
+  page_texel = texel;
+  uint word = shadow_page_word(s, shadow_page_entry(s, level, texel));
+  if (word == kPageAbsent) return false;
+  page.map_offset = s.page_pool_offset + (word - 1u) * page_slot_vec4s(s.page_size, s.node_count);
+  page.resolution = s.page_size;
+  page.mip_count = 1u;
+  page_texel = texel % int(s.page_size);
+  return true;
+}
 
 // shadow_texel_transmittance(s, level, texel, d): the light's technique's texel
 // lookup, dispatched over the registry (passes/shadows/techniques/registry.h) by the code the
@@ -130,7 +213,19 @@ float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
   int levels = 1;
   float level_blend = 0.0;
   bool kernel = soft && s.kernel != kKernelNone;  // at level 0: the kernel is the filter
-  if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
+  bool paged = shadow_is_paged(s);
+  if (paged) {
+    // Trilinear between the two levels around the receiver's; while one of them is not
+    // resident, the finest resident level above stands in alone.
+    float lod = shadow_paged_lod(s, p, d);
+    level = uint(floor(lod));
+    level_blend = lod - float(level);
+    levels = level + 1u < s.mip_count ? 2 : 1;
+    uint resident = shadow_paged_resident_level(s, uv, level, true);
+    if (levels == 2 && shadow_paged_resident_level(s, uv, level + 1u, true) != level + 1u) levels = 1;
+    if (resident != level) levels = 1;
+    level = resident;
+  } else if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
     // Level of detail: a camera pixel's footprint at p over a light texel's size there.
     float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
     float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
@@ -163,7 +258,14 @@ float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
         texel = base + offset;
       }
       texel = clamp(texel, ivec2(0), ivec2(size - 1));
-      if (w > 0.0) level_value += w * shadow_texel_transmittance(s, current, texel, d);
+      // A paged map's texel is in its page's slot: a dense one-level map of its own.
+      GpuShadow map = s;
+      uint map_level = current;
+      if (paged) {
+        map_level = 0u;
+        if (!shadow_page_texel(s, current, texel, map, texel)) w = 0.0;  // not after a resident level
+      }
+      if (w > 0.0) level_value += w * shadow_texel_transmittance(map, map_level, texel, d);
       weights += w;
     }
     level_value /= max(weights, 1e-20);
@@ -176,9 +278,13 @@ float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_fi
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
+// A paged map's texels are those of the coarser of the two levels the receiver reads.
 vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
-  return p + n * (s.camera_position.w * shadow_texel_size(s, shadow_light_depth(s, p)));
+  float d = shadow_light_depth(s, p);
+  float texel = shadow_texel_size(s, d);
+  if (shadow_is_paged(s)) texel *= exp2(ceil(shadow_paged_lod(s, p, d)));
+  return p + n * (s.camera_position.w * texel);
 }
 
 // The face of a point light's cube that direction d (from the light) leaves through:

@@ -58,11 +58,14 @@ bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 wo
   return true;
 }
 
-// Marches texel `texel` of a `resolution`^2 light map through volumes 0..volume_count-1
-// that `volume_mask` selects (bit v for volume v < 32; volumes from 32 on always march).
-void march_smoke_from_light(ivec2 texel, uint resolution, mat4 world_from_light, vec4 depth_plane, uint volume_count,
-                            uint volume_mask, uint samples_per_segment, float stop_depth) {
-  vec2 ndc = (vec2(texel) + 0.5) / float(resolution) * 2.0 - 1.0;
+// Marches texel `texel` of a light map through volumes 0..volume_count-1 that
+// `volume_mask` selects (bit v for volume v < 32; volumes from 32 on always march). The
+// map is the window at `raster_origin` of a `raster_resolution`^2 raster (LightView:
+// a page of a paged map; a dense map is its own raster at origin 0).
+void march_smoke_from_light(ivec2 texel, uvec2 raster_origin, uint raster_resolution, mat4 world_from_light,
+                            vec4 depth_plane, uint volume_count, uint volume_mask, uint samples_per_segment,
+                            float stop_depth) {
+  vec2 ndc = (vec2(uvec2(texel) + raster_origin) + 0.5) / float(raster_resolution) * 2.0 - 1.0;
   vec4 near_h = world_from_light * vec4(ndc, 0.0, 1.0), far_h = world_from_light * vec4(ndc, 1.0, 1.0);
   vec3 origin = near_h.xyz / near_h.w, far_point = far_h.xyz / far_h.w;
   float t_max = length(far_point - origin);

@@ -6,6 +6,7 @@
 #ifndef AVSM_SHARED_SHADOW_H
 #define AVSM_SHARED_SHADOW_H
 #include "shared/gpu_struct.h"
+#include "shared/pages.h"
 GPU_NAMESPACE_BEGIN
 
 // GpuShadow::technique: a light without shadows; the techniques' codes follow their
@@ -59,7 +60,13 @@ GPU_CONST(uint, kMaxViewsPerLight, 8u)
   F(uint, view_count)                                                                                          \
   F(uint, kernel)           /* kKernel*: the soft-shadow kernel of surface lookups */                          \
   F(uint, kernel_radius)    /* its radius in level-0 texels, 1 to kMaxKernelRadius */                         \
-  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */
+  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */           \
+  F(uint, page_size)        /* kDenseLayout, or a paged map's page texels per side (shared/pages.h); then  \
+                               resolution is the virtual one, mip_count its levels and map_offset its      \
+                               page table */                                                                \
+  F(uint, page_pool_offset) /* paged: the pool's first vec4 in the atlas */                                \
+  F(uint, page_requests_offset) /* paged: its request bits' first word, or kNoPageRequests */              \
+  F(float, page_lod_bias)   /* paged: levels added to every receiver's (coarser when > 0) */
 GPU_STRUCT(GpuShadow, GPU_SHADOW)
 
 GPU_NAMESPACE_END

@@ -122,6 +122,7 @@ OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle
         rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat, kCameraSizeSetting};
         d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
         shadows.declare_reads(b);
+        d.page_requests = shadows.declare_page_requests(b);
       },
       [this, view, &lights, light_count, shadows](const Outputs& d, rg::PassContext& c) {
         record(c, d, view, lights, light_count, shadows);
@@ -149,6 +150,7 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
       bindings.image(kTextureBindings[i], texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
     }
     shadows.bind(bindings, c);
+    shadows.bind_page_requests(bindings, c, targets.page_requests);
     bindings.push(cmd);
     pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                              draw.material, light_count});

@@ -33,6 +33,7 @@ class OpaquePass {
   struct Outputs {
     rg::TextureHandle color;  // written as ColorAttachment
     rg::TextureHandle depth;  // written as DepthAttachmentWrite
+    rg::BufferHandle page_requests;  // the paged maps' request bits, marked (invalid without paged maps)
   };
   // The geometry as shadow casters (vertices are CasterVertex; passes/shadows/capture/capture_opaque_pass.h).
   MeshCasters casters() const;

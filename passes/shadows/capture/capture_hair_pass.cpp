@@ -28,15 +28,16 @@ CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& 
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
       [this, light, hair](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
-        gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
+        begin_light_rendering(cmd, light);
         pipeline_.bind(cmd);
         gpu::Bindings bindings(ctx_, pipeline_);
         bindings.buffer("Points", hair.points).buffer("Segments", hair.segments).buffer("Strands", hair.strands);
         bind_capture_lists(bindings, c, d);
         bindings.push(cmd);
-        const float resolution = float(light.resolution);
+        const float resolution = float(light.raster());  // ribbon widths are in raster pixels
         pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(hair_ribbon_facing_point(light), 1.0f),
-                                           {resolution, resolution}, 0, 0.0f, light.depth_plane,
+                                           {resolution, resolution}, glm::ivec2(light.raster_origin),
+                                           light.depth_plane,
                                            {light.texel_size_base, light.texel_size_per_depth, 0.0f, 0.0f}});
         vkCmdDraw(cmd, hair.segment_count * 6, 1, hair.first_segment * 6, 0);  // gl_VertexIndex counts from the first
         vkCmdEndRendering(cmd);

@@ -1,11 +1,27 @@
 #include "passes/shadows/capture/capture_lists.h"
 
+#include "gpu/rendering.h"
+
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/pipeline.h"
 #include "passes/shadows/light_view.h"
 
 namespace avsm::passes {
+
+void begin_light_rendering(VkCommandBuffer cmd, const LightView& view) {
+  // No attachments, so the render area may be any window of the raster: the viewport
+  // and every vertex's framebuffer position are the whole raster's, bit for bit.
+  const VkRect2D window{{int32_t(view.raster_origin.x), int32_t(view.raster_origin.y)}, {view.resolution, view.resolution}};
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = window;
+  rendering.layerCount = 1;
+  vkCmdBeginRendering(cmd, &rendering);
+  const float raster = float(view.raster());
+  const VkViewport viewport{0.0f, 0.0f, raster, raster, 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &window);
+}
 
 CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
                                     uint64_t node_capacity, rg::BufferHandle counter) {
@@ -23,8 +39,10 @@ CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix,
         const VkClearColorValue end_of_list{.uint32 = {~0u, 0, 0, 0}};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(c.cmd(), c.image(d.heads), c.layout(d.heads), &end_of_list, 1, &all);
-        vkCmdFillBuffer(c.cmd(), c.buffer(d.nodes), 0, kCaptureSegmentBytes, ~0u);
-        vkCmdFillBuffer(c.cmd(), c.buffer(d.counter), 0, VK_WHOLE_SIZE, 0);
+        // At each range's own offset: a paged map's page builds count into regions of one buffer.
+        const gpu::BufferRange nodes = c.buffer(d.nodes), counter = c.buffer(d.counter);
+        vkCmdFillBuffer(c.cmd(), nodes, nodes.offset, kCaptureSegmentBytes, ~0u);
+        vkCmdFillBuffer(c.cmd(), counter, counter.offset, counter.size, 0);
       });
   return lists;
 }

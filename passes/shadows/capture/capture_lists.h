@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 
+#include "passes/shadows/light_view.h"
 #include "shared/capture.h"
 
 namespace avsm::gpu {
@@ -38,6 +39,12 @@ CaptureLists add_capture_clear_pass(rg::Graph& graph, const std::string& prefix,
 // For a pass that appends: declares read-write access to all three and returns
 // the new versions.
 CaptureLists append_to_lists(rg::PassBuilder& builder, const CaptureLists& lists);
+
+// Begins rendering a light's map (no attachments: the captures append to the lists)
+// with the viewport of its whole raster and the render area of the map's window in it:
+// a page of a paged map rasterizes exactly as its raster would, and the captures append
+// at gl_FragCoord - LightView::raster_origin.
+void begin_light_rendering(VkCommandBuffer cmd, const LightView& view);
 
 // Binds heads, nodes and counter by their shader names (shaders/common/capture_lists.glsl).
 void bind_capture_lists(gpu::Bindings& bindings, const rg::PassContext& context,

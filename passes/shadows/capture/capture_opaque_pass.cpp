@@ -39,10 +39,11 @@ CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
       [this, light, meshes](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
-        gpu::begin_rendering(cmd, {light.resolution, light.resolution}, {});
+        begin_light_rendering(cmd, light);
         pipeline_.bind(cmd);
         vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
-        Push push{light.light_from_world, light.depth_plane, {light.texel_size_base, light.texel_size_per_depth}};
+        Push push{light.light_from_world, light.depth_plane, {light.texel_size_base, light.texel_size_per_depth},
+                  glm::ivec2(light.raster_origin)};
         // Opaque draws first, under one binding; then each draw that tests alpha with its texture.
         bind(cmd, c, d, meshes, MeshDraw{});
         pipeline_.push_constants(cmd, push);

@@ -33,7 +33,8 @@ CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string&
         bind_capture_lists(bindings, c, d);
         bindings.push(c.cmd());
         pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
-                                               volumes.volume_count, samples_per_segment, volumes.volume_mask});
+                                               volumes.volume_count, samples_per_segment, volumes.volume_mask,
+                                               light.raster_origin, light.raster()});
         pipeline.dispatch_threads(c.cmd(), light.resolution, light.resolution);
       });
 }

@@ -2,6 +2,7 @@
 
 #include <rendergraph/vulkan/pass_context.h>
 
+#include <algorithm>
 #include <string>
 
 #include "shared/passes/shadows/inspection/shadow_debug.h"
@@ -15,7 +16,9 @@ void ShadowDebugPass::set_lights(const ShadowMaps& shadows) {
   images_.clear();
   for (uint32_t light = 0; light < shadows.light_count(); ++light) {
     gpu::ImageDesc desc;
-    desc.width = desc.height = shadows.light_views()[light].resolution;
+    // A paged map's picture is of its virtual map at kPagedPictureSize, through its pages.
+    const uint32_t resolution = shadows.light_views()[light].resolution;
+    desc.width = desc.height = shadows.is_paged(light) ? std::min(resolution, kPagedPictureSize) : resolution;
     desc.format = kFormat;
     desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     desc.name = "light " + std::to_string(light) + " debug image";

@@ -2,7 +2,9 @@
 // Pictures of the lights' transmittance maps: per light, an RGBA8 image of the
 // transmittance reaching the first opaque surface of each level-0 texel (grey 0
 // dark .. 1 lit), from the same data the camera passes read (AVSM nodes or the
-// exact lists): the shadows as the light sees them.
+// exact lists): the shadows as the light sees them. A paged map's picture shows its
+// virtual map at kPagedPictureSize through the finest resident pages, tinted by their
+// level with page edges drawn: which pages the receivers made resident.
 // Shader: shaders/passes/shadows/inspection/shadow_debug.comp.
 #include <rendergraph/graph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -20,6 +22,7 @@ class ShadowDebugPass {
  public:
   static constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
   static constexpr VkImageLayout kOutputLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  static constexpr uint32_t kPagedPictureSize = 1024;
 
   ShadowDebugPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   // One image per light of `shadows`, at its map resolution.

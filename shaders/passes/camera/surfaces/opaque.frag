@@ -5,6 +5,9 @@
 #include "common/lights.glsl"
 #include "common/pbr_brdf.glsl"
 #define AVSM_SHADOW_BINDING 4
+// Visible surfaces ask for the paged maps' pages they read (overdrawn ones too: alpha
+// masks discard, so depth is not tested before the shader).
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 13
 #include "common/shadow_lookup.glsl"
 
 #include "shared/mesh.h"

@@ -31,9 +31,39 @@ float shadow_stepped_first_opaque_depth(GpuShadow s, ivec2 texel) {
 // segment), else the stepped one above.
 #include "techniques_first_opaque.glsl"
 
+// A tint per level of a paged map, so the picture shows which levels are resident.
+vec3 level_tint(uint level) {
+  const vec3 tints[4] = vec3[4](vec3(1.0, 0.55, 0.45), vec3(0.5, 0.85, 0.45), vec3(0.45, 0.6, 1.0), vec3(1.0, 0.9, 0.4));
+  return tints[level % 4u];
+}
+
+// A paged map's picture: the virtual map at the image's size, through the finest
+// resident page at or above that level, tinted by its level, page edges darker.
+void paged_picture(GpuShadow s, ivec2 pixel, int size) {
+  vec2 uv = (vec2(pixel) + 0.5) / float(size);
+  uint level = 0u;
+  while (level + 1u < s.mip_count && (s.resolution >> level) > uint(size)) level += 1u;
+  level = shadow_paged_resident_level(s, uv, level, false);
+  ivec2 texel = ivec2(uv * float(max(s.resolution >> level, 1u)));
+  GpuShadow page;
+  ivec2 page_texel;
+  vec3 color = vec3(1.0, 0.0, 1.0);  // no page: never, the coarsest level is always resident
+  if (shadow_page_texel(s, level, texel, page, page_texel)) {
+    float t = shadow_texel_transmittance(page, 0u, page_texel, shadow_first_opaque_depth(page, page_texel));
+    bool edge = any(equal(page_texel, ivec2(0)));
+    color = vec3(t) * mix(vec3(1.0), level_tint(level), 0.35) * (edge ? 0.7 : 1.0);
+  }
+  imageStore(debug_image, ivec2(pixel.x, size - 1 - pixel.y), vec4(color, 1.0));
+}
+
 void main() {
   GpuShadow s = shadows[pc.light];
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (shadow_is_paged(s)) {
+    int size = imageSize(debug_image).x;
+    if (all(lessThan(texel, ivec2(size)))) paged_picture(s, texel, size);
+    return;
+  }
   if (any(greaterThanEqual(uvec2(texel), uvec2(s.resolution)))) return;
   float t = shadow_texel_transmittance(s, 0u, texel, shadow_first_opaque_depth(s, texel));
   // Row 0 of the map is the light's -y side; flip so the picture is upright.

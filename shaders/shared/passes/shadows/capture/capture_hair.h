@@ -8,8 +8,7 @@ GPU_NAMESPACE_BEGIN
   F(mat4, view_projection)   /* light clip from world */                        \
   F(vec4, facing_point)      /* xyz: where ribbons turn to (the light) */       \
   F(vec2, viewport)                                                             \
-  F(uint, light_count)                                                          \
-  F(float, pad)                                                                 \
+  F(ivec2, raster_origin)    /* LightView::raster_origin: map texel = frag - it */ \
   F(vec4, depth_plane)       /* light depth(p) = dot(xyz, p) + w */             \
   F(vec4, texel_size)        /* world size of a texel at depth d: x + y * d */
 GPU_PUSH_CONSTANTS(CaptureHairPush, GPU_CAPTURE_HAIR_PUSH)

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Paged maps (shadow.layout paged) against dense ones on the default scene, measured in
+one run with the configurations interleaved over rounds:
+
+  dense 256 gaussian r2   today's default (a 256^2 map per light, soft kernel on the sun)
+  dense 256 bilinear      the same maps without the kernel
+  dense 1024 bilinear     the finest dense map lavapipe holds: the quality reference
+  paged 16384/64          a 16384^2 virtual map per light in 64^2 pages, no kernel
+
+Per configuration: the converged frame's GPU ms (the fastest measured frame: a paged
+capture's first frames build its pages), the opaque pass and the shadow passes' ms in
+that frame, the first frames' cost, the pages asked for, resident and built, and the
+frame's mean |difference| from the dense 1024 frame (avsm-compare, in 1/255).
+
+usage: bench/avsm/paged.py [--build DIR] [--width W] [--height H] [--rounds R]
+                           [--page-size P] [--virtual-res V]
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def configs(args):
+    paged = ["--shadow-layout", "paged", "--kernel", "none", "--fit", "scene", "--filter", "trilinear",
+             "--virtual-res", str(args.virtual_res), "--page-size", str(args.page_size)]
+    return [("dense 256 gaussian r2", []),
+            ("dense 256 bilinear", ["--kernel", "none"]),
+            ("dense 1024 bilinear", ["--kernel", "none", "--shadow-res", "1024"]),
+            (f"paged {args.virtual_res}/{args.page_size}", paged)]
+
+
+def capture(tool, scene, out, args, flags):
+    subprocess.run([tool, "--scene", scene, "--out", out, "--width", str(args.width), "--height", str(args.height),
+                    "--frames", "4", "--frames-in-flight", "1", "--quiet"] + flags, check=True, capture_output=True)
+    timings = json.load(open(os.path.join(out, "timings.json")))
+    memory = json.load(open(os.path.join(out, "memory.json")))
+    frames = [f["gpu_ms"] for f in timings["frames"]]
+    passes = {p["name"]: p["gpu_ms"]["min"] for p in timings["passes"]}
+    shadow = sum(ms for name, ms in passes.items() if name.startswith("light ") and "debug image" not in name)
+    pages = [l["pages"] for l in memory["lights"] if "pages" in l]
+    return {"frame": min(frames), "first": frames[0], "opaque": passes.get("opaque", 0.0), "shadow": shadow,
+            "pages": pages}
+
+
+def mean_abs_error(compare, base, new):
+    run = subprocess.run([compare, base, new, "--allow-different-settings"], capture_output=True, text=True)
+    found = re.search(r"image mean_abs_error\s+([0-9.e-]+)", run.stdout)
+    return float(found.group(1)) * 255.0 if found else 0.0
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--width", type=int, default=640)
+    parser.add_argument("--height", type=int, default=360)
+    parser.add_argument("--rounds", type=int, default=2)
+    parser.add_argument("--page-size", type=int, default=64)
+    parser.add_argument("--virtual-res", type=int, default=16384)
+    args = parser.parse_args()
+    tool = os.path.join(args.build, "tools", "avsm-capture")
+    compare = os.path.join(args.build, "tools", "avsm-compare")
+    scene = os.path.join(args.build, "content", "default", "scene.json")
+    if not os.path.exists(tool):
+        sys.exit(f"{tool} not found: build first")
+    os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
+    rows = configs(args)
+    results = {name: [] for name, _ in rows}
+    errors = {name: [] for name, _ in rows}
+    with tempfile.TemporaryDirectory() as work:
+        for r in range(args.rounds):
+            for i, (name, flags) in enumerate(rows):
+                results[name].append(capture(tool, scene, os.path.join(work, f"{r}_{i}"), args, flags))
+            reference = os.path.join(work, f"{r}_2")
+            for i, (name, _) in enumerate(rows):
+                errors[name].append(mean_abs_error(compare, reference, os.path.join(work, f"{r}_{i}")))
+    today = statistics.median(x["frame"] for x in results[rows[0][0]])
+    print(f"default scene, {args.width}x{args.height}, 2 lights, AVSM-8; GPU ms, medians of {args.rounds} "
+          f"interleaved rounds; converged frame = the fastest of 4 (+ frames rendered again until converged)")
+    print(f"   {'configuration':<24}{'frame ms':>10}{'x today':>9}{'opaque':>9}{'shadow':>9}{'1st frame':>11}"
+          f"{'|d| /255':>10}   pages asked / resident / built (per light)")
+    for name, _ in rows:
+        xs = results[name]
+        frame = statistics.median(x["frame"] for x in xs)
+        pages = "  ".join(f"{p['requested']}/{p['resident']}/{p['built']}" for p in xs[-1]["pages"])
+        print(f"   {name:<24}{frame:>10.1f}{frame / today:>9.2f}{statistics.median(x['opaque'] for x in xs):>9.1f}"
+              f"{statistics.median(x['shadow'] for x in xs):>9.1f}{statistics.median(x['first'] for x in xs):>11.1f}"
+              f"{statistics.median(errors[name]):>10.2f}   {pages}")
+
+
+if __name__ == "__main__":
+    main()

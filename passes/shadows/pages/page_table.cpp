@@ -1,0 +1,179 @@
+#include "passes/shadows/pages/page_table.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "shared/pages.h"
+
+namespace avsm::passes {
+
+namespace {
+
+// Requests within this share of the pool leave the bias alone; above it the bias grows.
+constexpr float kPoolHigh = 0.85f;
+// Below this share the bias shrinks: a quarter level less asks for about 1.4x the pages,
+// which stays under kPoolHigh, so the bias does not swing back and forth.
+constexpr float kPoolLow = 0.55f;
+constexpr float kBiasStep = 0.25f;
+constexpr float kMaxBias = 8.0f;
+
+bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
+
+}  // namespace
+
+PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots)
+    : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots) {
+  if (!is_power_of_two(virtual_resolution) || !is_power_of_two(page_size) || page_size > virtual_resolution)
+    throw std::invalid_argument("page table: a virtual resolution of " + std::to_string(virtual_resolution) +
+                                " texels does not split into pages of " + std::to_string(page_size));
+  if (slots == 0) throw std::invalid_argument("page table: a pool of no pages");
+  levels_ = shared::page_level_count(virtual_resolution, page_size);
+  for (uint32_t level = 0; level <= levels_; ++level)
+    level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, level));
+  pages_.resize(level_first_.back());
+  table_.assign(pages_.size(), shared::kPageAbsent);
+  slot_owner_.assign(slots, kNoSlot);
+  for (uint32_t s = slots; s-- > 0;) free_slots_.push_back(s);  // slot 0 handed out first
+  stats_.slots = slots;
+}
+
+uint32_t PageTable::entry(const PageKey& key) const {
+  const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, key.level);
+  if (key.level >= levels_ || key.page.x >= grid || key.page.y >= grid)
+    throw std::out_of_range("page table: no page (" + std::to_string(key.page.x) + ", " + std::to_string(key.page.y) +
+                            ") at level " + std::to_string(key.level));
+  return level_first_[key.level] + key.page.y * grid + key.page.x;
+}
+
+PageKey PageTable::key(uint32_t entry) const {
+  if (entry >= entries()) throw std::out_of_range("page table: no entry " + std::to_string(entry));
+  const uint32_t level = uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), entry) - level_first_.begin()) - 1;
+  const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, level);
+  const uint32_t index = entry - level_first_[level];
+  return {level, {index % grid, index / grid}};
+}
+
+void PageTable::add_requests(std::span<const uint32_t> bits) {
+  ++request_clock_;
+  uint32_t requested = 0;
+  for (uint32_t e = 0; e < entries(); ++e) {
+    Page& page = pages_[e];
+    const uint32_t word = e / 32;
+    page.requested = (word < bits.size() && (bits[word] >> (e % 32) & 1u) != 0) ||
+                     (required_level_ < levels_ && e >= level_first_[required_level_] && e < level_first_[required_level_ + 1]);
+    if (!page.requested) continue;
+    page.last_request = request_clock_;
+    ++requested;
+  }
+  stats_.requested = requested;
+  adapt_lod_bias();
+}
+
+void PageTable::require_level(uint32_t level) {
+  if (level >= levels_) throw std::out_of_range("page table: no level " + std::to_string(level));
+  required_level_ = level;
+  add_requests({});
+}
+
+bool PageTable::has_pending_requests() const {
+  for (uint32_t e = 0; e < entries(); ++e)
+    if (needs_build(e)) return true;
+  return false;
+}
+
+void PageTable::adapt_lod_bias() {
+  const float share = float(stats_.requested) / float(slots_);
+  if (share > kPoolHigh || stats_.unserved > 0)
+    lod_bias_ = std::min(lod_bias_ + kBiasStep, kMaxBias);
+  else if (share < kPoolLow)
+    lod_bias_ = std::max(lod_bias_ - kBiasStep, 0.0f);
+}
+
+bool PageTable::needs_build(uint32_t entry) const {
+  const Page& page = pages_[entry];
+  return (page.requested || entry == root()) && (page.slot == kNoSlot || !page.current);
+}
+
+void PageTable::assign(uint32_t entry, uint32_t slot) {
+  pages_[entry].slot = slot;
+  slot_owner_[slot] = entry;
+  table_[entry] = slot + 1;
+}
+
+void PageTable::release(uint32_t entry) {
+  Page& page = pages_[entry];
+  slot_owner_[page.slot] = kNoSlot;
+  page.slot = kNoSlot;
+  page.current = false;
+  table_[entry] = shared::kPageAbsent;
+}
+
+std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
+  PageStats stats;
+  stats.slots = slots_;
+  stats.requested = stats_.requested;
+  stats.invalidated = invalidated_since_plan_;
+  invalidated_since_plan_ = 0;
+  // Wanted: coarsest level first (their entries come last), so the stand-ins for
+  // missing fine pages improve first.
+  std::vector<uint32_t> wanted;
+  for (uint32_t e = entries(); e-- > 0;)
+    if (needs_build(e)) wanted.push_back(e);
+  // Slots to take back, least recently requested first: resident pages nobody asked for
+  // in the last frame (never the root).
+  std::vector<uint32_t> evictable;
+  for (uint32_t e = 0; e < root(); ++e)
+    if (pages_[e].slot != kNoSlot && !pages_[e].requested) evictable.push_back(e);
+  std::stable_sort(evictable.begin(), evictable.end(),
+                   [&](uint32_t a, uint32_t b) { return pages_[a].last_request < pages_[b].last_request; });
+  size_t next_evictable = 0;
+
+  std::vector<PageBuild> builds;
+  for (uint32_t e : wanted) {
+    if (budget != 0 && builds.size() >= budget) break;
+    if (pages_[e].slot == kNoSlot) {
+      if (free_slots_.empty() && next_evictable < evictable.size()) {
+        const uint32_t victim = evictable[next_evictable++];
+        free_slots_.push_back(pages_[victim].slot);
+        release(victim);
+        ++stats.evicted;
+      }
+      if (free_slots_.empty()) {
+        ++stats.unserved;
+        continue;
+      }
+      assign(e, free_slots_.back());
+      free_slots_.pop_back();
+    }
+    pages_[e].current = true;  // built by this frame, before its lookups
+    builds.push_back({e, key(e), pages_[e].slot});
+  }
+  for (uint32_t e = 0; e < entries(); ++e) {
+    const Page& page = pages_[e];
+    if (page.slot != kNoSlot) ++stats.resident;
+    if (page.requested && (page.slot == kNoSlot || !page.current)) ++stats.pending;
+  }
+  stats.built = uint32_t(builds.size());
+  stats.lod_bias = lod_bias_;
+  stats_ = stats;
+  return builds;
+}
+
+// A stale page gives its slot up at once, so no lookup reads it: coarser pages serve
+// until it is built again. The root keeps its slot; it is the first page rebuilt.
+void PageTable::invalidate(uint32_t entry) {
+  Page& page = pages_.at(entry);
+  if (page.slot == kNoSlot) return;
+  ++invalidated_since_plan_;
+  page.current = false;
+  if (entry == root()) return;
+  free_slots_.push_back(page.slot);
+  release(entry);
+}
+
+void PageTable::invalidate_all() {
+  for (uint32_t e = 0; e < entries(); ++e) invalidate(e);
+}
+
+}  // namespace avsm::passes

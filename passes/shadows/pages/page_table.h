@@ -1,0 +1,116 @@
+#pragma once
+// A paged map's pages on the CPU (shadow.layout "paged"; the layout the GPU reads is
+// shaders/shared/pages.h): which page of which level holds which slot of the fixed
+// pool, what the receivers asked for, and which pages to build next.
+//
+// Each frame the camera's receivers mark the pages their lookups read (request bits,
+// read back when the frame completes: add_requests()). The next frame declared builds
+// what plan_builds() picks: requested pages that have no slot or whose contents are
+// stale, coarsest level first, so that a lookup whose page is still missing finds the
+// finest coarser one. A page keeps its slot until the pool needs it for a page
+// requested now: then the page least recently requested gives it up. The coarsest
+// level is one page, always resident, so every lookup finds some level.
+//
+// When requests outgrow the pool, the pages that do not fit are counted (unserved)
+// and served by coarser levels, and a level-of-detail bias grows until the requests
+// fit in about 85% of the pool; it shrinks back when they would fit again.
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace avsm::passes {
+
+// Where a page sits: its level (0 the finest) and its place in that level's grid.
+struct PageKey {
+  uint32_t level = 0;
+  glm::uvec2 page{0u};
+  bool operator==(const PageKey&) const = default;
+};
+
+// A page the frame builds into `slot` (its table word is already set).
+struct PageBuild {
+  uint32_t entry = 0;
+  PageKey key;
+  uint32_t slot = 0;
+};
+
+// One frame's figures of a paged map (memory.json, the report, the viewer's panel).
+struct PageStats {
+  uint32_t slots = 0;        // the pool's size in pages
+  uint32_t requested = 0;    // pages the receivers asked for (the last frame read back)
+  uint32_t resident = 0;     // pages holding a slot after this frame's builds
+  uint32_t built = 0;        // pages this frame built
+  uint32_t invalidated = 0;  // pages whose contents went stale since the last frame
+  uint32_t evicted = 0;      // pages that gave their slot to another this frame
+  uint32_t pending = 0;      // pages the frame's receivers asked for that it did not hold (coarser ones stood in)
+  uint32_t unserved = 0;     // requested pages the pool could not hold (overflow)
+  float lod_bias = 0.0f;     // the bias that keeps requests within the pool (levels)
+  bool operator==(const PageStats&) const = default;
+};
+
+class PageTable {
+ public:
+  // Throws std::invalid_argument unless page_size divides virtual_resolution (both
+  // powers of two) and slots >= 1.
+  PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots);
+
+  uint32_t virtual_resolution() const { return virtual_resolution_; }
+  uint32_t page_size() const { return page_size_; }
+  uint32_t levels() const { return levels_; }
+  uint32_t entries() const { return uint32_t(pages_.size()); }
+  uint32_t slots() const { return slots_; }
+  uint32_t entry(const PageKey& key) const;
+  PageKey key(uint32_t entry) const;
+
+  // The request bits of a completed frame: bit i of word i / 32 asks for entry i.
+  void add_requests(std::span<const uint32_t> bits);
+  // Every page of `level` counts as asked for from now on (whatever the requests say).
+  void require_level(uint32_t level);
+  // The pages the next frame builds: at most `budget` (0: every one that fits the pool).
+  std::vector<PageBuild> plan_builds(uint32_t budget);
+  // A page whose contents are stale (what it covers changed): it leaves the table (the
+  // root excepted, which is rebuilt first) and is built again when next requested.
+  void invalidate(uint32_t entry);
+  void invalidate_all();
+
+  // The page table as the GPU reads it: a word per entry, 0 or slot + 1.
+  const std::vector<uint32_t>& table_words() const { return table_; }
+  bool resident(uint32_t entry) const { return pages_.at(entry).slot != kNoSlot; }
+  // Requested pages that are missing or stale (after add_requests(): the next frame has
+  // pages to build, or cannot hold them).
+  bool has_pending_requests() const;
+  // Every requested page is resident and current: a capture may write the frame.
+  bool converged() const { return stats_.pending == 0 && stats_.unserved == 0; }
+  const PageStats& stats() const { return stats_; }
+  float lod_bias() const { return lod_bias_; }
+
+ private:
+  static constexpr uint32_t kNoSlot = ~0u;
+  struct Page {
+    uint32_t slot = kNoSlot;
+    bool current = false;    // built since it last went stale
+    bool requested = false;  // in the last frame's requests
+    uint64_t last_request = 0;
+  };
+  uint32_t root() const { return entries() - 1; }
+  bool needs_build(uint32_t entry) const;
+  void assign(uint32_t entry, uint32_t slot);
+  void release(uint32_t entry);
+  void adapt_lod_bias();
+
+  uint32_t virtual_resolution_, page_size_, levels_, slots_;
+  std::vector<uint32_t> level_first_;  // entry of each level's first page
+  std::vector<Page> pages_;
+  std::vector<uint32_t> table_;
+  std::vector<uint32_t> free_slots_;
+  std::vector<uint32_t> slot_owner_;  // entry per slot, or kNoSlot
+  uint64_t request_clock_ = 0;
+  uint32_t invalidated_since_plan_ = 0;
+  float lod_bias_ = 0.0f;
+  uint32_t required_level_ = ~0u;
+  PageStats stats_;
+};
+
+}  // namespace avsm::passes

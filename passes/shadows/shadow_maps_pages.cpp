@@ -1,0 +1,179 @@
+// ShadowMaps' paged maps (shadow.layout "paged"; shaders/shared/pages.h): the pool's size
+// and place in the atlas, the request bits the camera's receivers mark, the frame's page
+// builds (each page captured and resolved like a small dense map over its window of the
+// virtual map), the page table's upload, and what a completed frame asked for next.
+#include <rendergraph/vulkan/executor.h>
+#include <rendergraph/vulkan/pass_context.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "gpu/context.h"
+#include "passes/shadows/shadow_maps.h"
+
+namespace avsm::passes {
+
+namespace {
+
+uint64_t slot_bytes(const scene::ShadowSettings& s) {
+  return uint64_t(shared::page_slot_vec4s(uint32_t(s.page_size), uint32_t(s.nodes))) * sizeof(glm::vec4);
+}
+
+}  // namespace
+
+// A page build's capture counter (16 bytes: CaptureLists::counter), on the device's
+// storage buffer offset alignment, since each is bound on its own.
+uint64_t ShadowMaps::page_counter_stride() const {
+  return round_up(16, std::max<uint64_t>(ctx_.info().min_storage_buffer_offset_alignment, 16));
+}
+
+uint32_t ShadowMaps::page_slots(const MapState& map) const {
+  const LightState& light = lights_[map.light];
+  const scene::ShadowSettings& s = light.light.shadow;
+  const uint64_t pool = uint64_t(s.page_pool_mib * double(1 << 20)) / light.map_count;
+  return uint32_t(std::clamp<uint64_t>(pool / slot_bytes(s), 1, 1u << 20));
+}
+
+uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
+  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
+  return round_up(uint64_t(shared::page_table_entries(uint32_t(s.virtual_resolution), uint32_t(s.page_size))) * 4,
+                  kAtlasAlignment);
+}
+
+uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
+  return page_table_bytes(map) + uint64_t(page_slots(map)) * slot_bytes(lights_[map.light].light.shadow);
+}
+
+void ShadowMaps::create_page_state(MapState& map) const {
+  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
+  map.pages = std::make_unique<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size), page_slots(map));
+  if (options_.required_page_level >= 0) map.pages->require_level(uint32_t(options_.required_page_level));
+  map.page_counters.set_frames(ctx_, frames_in_flight());
+  map.page_counters.create(ctx_, {map.pages->slots() * page_counter_stride(),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  gpu::MemoryLocation::HostReadback, map.prefix + " page capture counters"});
+}
+
+// One bit per page-table entry of every paged map, per frame slot.
+void ShadowMaps::create_page_requests() {
+  page_request_words_ = 0;
+  for (MapState& map : maps_) {
+    map.page_requests_offset = shared::kNoPageRequests;
+    if (!map.pages) continue;
+    map.page_requests_offset = page_request_words_;
+    page_request_words_ += (map.pages->entries() + 31) / 32;
+  }
+  page_requests_ = {};
+  if (page_request_words_ == 0) return;
+  page_requests_.set_frames(ctx_, frames_in_flight());
+  page_requests_.create(ctx_, {uint64_t(page_request_words_) * 4,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               gpu::MemoryLocation::HostReadback, "shadow page requests"});
+}
+
+// "clear page requests": the frame's receivers mark the bits from nothing.
+rg::BufferHandle ShadowMaps::add_page_requests_clear(rg::Graph& graph, uint32_t slot) const {
+  rg::BufferHandle requests = rg::vulkan::import(graph, "shadow page requests", page_requests_[slot],
+                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  struct Data {
+    rg::BufferHandle requests;
+  };
+  return graph.add_pass<Data>("clear page requests", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b, Data& d) { d.requests = b.write(requests, rg::Usage::TransferDst); },
+      [](const Data& d, rg::PassContext& c) {
+        const gpu::BufferRange target = c.buffer(d.requests);
+        vkCmdFillBuffer(c.cmd(), target, target.offset, target.size, 0u);
+      })
+      .requests;
+}
+
+// The pages the page table picks for this frame, each captured over its window and
+// resolved into its slot; then the page table, which the frame's lookups read.
+void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
+                                 ShadowInputs& inputs) {
+  const LightState& light = lights_[map.light];
+  const scene::ShadowSettings& settings = light.light.shadow;
+  const uint32_t budget = options_.unlimited_page_builds ? 0u : uint32_t(settings.page_builds_per_frame);
+  DeclaredMap& declared = map.declared[slot];
+  declared = {map.capacity, map.map_state, true, casters.strands.segment_count};
+  declared.page_builds = map.pages->plan_builds(budget);
+  declared.pages = map.pages->stats();
+  declared.page_table = map.pages->table_words();
+  const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+  const uint64_t bytes_per_slot = slot_bytes(settings);
+  const rg::ImportState after = map_state_after_frame();
+  for (size_t i = 0; i < declared.page_builds.size(); ++i) {
+    const PageBuild& page = declared.page_builds[i];
+    const std::string prefix = map.prefix + " page " + std::to_string(page.key.level) + "/" +
+                               std::to_string(page.key.page.x) + "," + std::to_string(page.key.page.y);
+    const LightView view = page_view(map.view, page.key.level, page.key.page, uint32_t(settings.page_size));
+    const gpu::Buffer& counter_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
+        gpu::Buffer::region(map.page_counters[slot], i * page_counter_stride(), 16, prefix + " capture counter")));
+    rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
+                                                  rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+    CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter, casters);
+    const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
+        atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
+    rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
+    inputs.maps.push_back(builder.add_to_graph({graph, prefix, lists, handle, view, settings, map.map_state}, lists));
+  }
+  // The page table, as plan_builds() left it: pages built above are already in it.
+  rg::BufferHandle table = rg::vulkan::import(graph, map.prefix + " page table", map.page_table, rewritten_after(after), after);
+  struct Data {
+    rg::BufferHandle table;
+  };
+  inputs.maps.push_back(graph.add_pass<Data>(map.prefix + " page table", rg::QueueType::Transfer,
+      [&](rg::PassBuilder& b, Data& d) { d.table = b.write(table, rg::Usage::TransferDst); },
+      [words = map.pages->table_words()](const Data& d, rg::PassContext& c) {
+        constexpr size_t kPerCall = (64 << 10) / sizeof(uint32_t);  // vkCmdUpdateBuffer's limit
+        const gpu::BufferRange target = c.buffer(d.table);
+        for (size_t first = 0; first < words.size(); first += kPerCall) {
+          const size_t count = std::min(kPerCall, words.size() - first);
+          vkCmdUpdateBuffer(c.cmd(), target, target.offset + first * 4, count * 4, words.data() + first);
+        }
+      })
+      .table);
+}
+
+// After the frame in `slot` completed: its page builds' capture figures (an overflowed
+// page is built again with more room), and its receivers' requests for the next frame.
+void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats) {
+  const DeclaredMap& declared = map.declared[slot];
+  uint64_t requested_segments = 0, most = 0;
+  bool overflowed = false;
+  for (size_t i = 0; i < declared.page_builds.size(); ++i) {
+    uint32_t counter = 0;
+    std::memcpy(&counter, static_cast<const char*>(map.page_counters[slot].mapped()) + i * page_counter_stride(), 4);
+    requested_segments += counter;
+    most = std::max<uint64_t>(most, counter);
+    if (counter <= declared.capacity) continue;
+    overflowed = true;
+    // Rebuilt when asked for again, unless the lists cannot grow any more (then reported).
+    if (declared.capacity < options_.capture_limit_bytes / kCaptureSegmentBytes) map.pages->invalidate(declared.page_builds[i].entry);
+  }
+  if (most > map.capacity) {
+    const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
+    map.capacity = std::max(map.capacity, std::min(limit, round_up(most + most / 4, 1024)));
+  }
+  stats.pages = declared.pages;
+  stats.pages->pending = 0;
+  if (page_requests_) {
+    const auto* bits = static_cast<const uint32_t*>(page_requests_[slot].mapped()) + map.page_requests_offset;
+    const uint32_t words = (map.pages->entries() + 31) / 32;
+    // What the frame's receivers asked for and did not find (its table, not today's).
+    for (uint32_t e = 0; e < map.pages->entries(); ++e)
+      if ((bits[e / 32] >> (e % 32) & 1u) != 0 && declared.page_table[e] == shared::kPageAbsent) ++stats.pages->pending;
+    map.pages->add_requests({bits, words});
+  }
+  const uint64_t texels = uint64_t(declared.map_state.layout.resolution) * declared.map_state.layout.resolution;
+  stats.capture_capacity = declared.capacity;
+  stats.capture_requested = requested_segments;
+  stats.capture_bytes = declared.page_builds.empty() ? 0 : declared.capacity * kCaptureSegmentBytes + texels * 4;
+  stats.overflowed = overflowed;
+  stats.next_capture_capacity = map.capacity;
+  // Rendering again does better while requested pages wait (the budget, a growing bias).
+  stats.grew = overflowed || map.pages->has_pending_requests();
+}
+
+}  // namespace avsm::passes

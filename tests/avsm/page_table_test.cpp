@@ -1,0 +1,137 @@
+// The paged maps' CPU page table (passes/shadows/pages/page_table.h): layout, requests,
+// builds within a budget and a pool, eviction by least recent request, invalidation,
+// and the level-of-detail bias under overflow. No GPU needed.
+#include "passes/shadows/pages/page_table.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "shared/pages.h"
+
+namespace avsm::passes {
+namespace page_table_test {
+
+// Request bits asking for `entries`.
+std::vector<uint32_t> requests(const PageTable& table, const std::vector<uint32_t>& entries) {
+  std::vector<uint32_t> bits((table.entries() + 31) / 32, 0u);
+  for (uint32_t e : entries) bits[e / 32] |= 1u << (e % 32);
+  return bits;
+}
+
+std::vector<uint32_t> built_entries(const std::vector<PageBuild>& builds) {
+  std::vector<uint32_t> entries;
+  for (const PageBuild& b : builds) entries.push_back(b.entry);
+  return entries;
+}
+
+TEST(PageTableTest, LevelsRunFromTheVirtualResolutionDownToOnePage) {
+  const PageTable table(1024, 64, 8);
+  EXPECT_EQ(table.levels(), 5u);  // 1024, 512, 256, 128, 64 texels
+  EXPECT_EQ(table.entries(), 16u * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1);
+  EXPECT_EQ(shared::page_table_entries(1024, 64), table.entries());
+  for (uint32_t e = 0; e < table.entries(); ++e) EXPECT_EQ(table.entry(table.key(e)), e);
+  EXPECT_EQ(table.key(table.entries() - 1), (PageKey{4, {0, 0}}));
+  EXPECT_EQ(table.entry({1, {3, 2}}), 256u + 2 * 8 + 3);
+  EXPECT_THROW(table.entry({0, {16, 0}}), std::out_of_range);
+  EXPECT_THROW(PageTable(1000, 64, 8), std::invalid_argument);
+  EXPECT_THROW(PageTable(1024, 64, 0), std::invalid_argument);
+}
+
+TEST(PageTableTest, TheCoarsestPageIsBuiltFirstAndRequestedPagesCoarsestFirst) {
+  PageTable table(256, 64, 8);  // levels: 4x4, 2x2, 1 pages
+  const uint32_t root = table.entries() - 1;
+  EXPECT_EQ(built_entries(table.plan_builds(0)), std::vector<uint32_t>{root});
+  EXPECT_TRUE(table.resident(root));
+  const uint32_t fine = table.entry({0, {1, 2}}), mid = table.entry({1, {0, 1}});
+  table.add_requests(requests(table, {fine, mid, root}));
+  const std::vector<PageBuild> builds = table.plan_builds(0);
+  EXPECT_EQ(built_entries(builds), (std::vector<uint32_t>{mid, fine}));
+  EXPECT_EQ(builds[1].key, (PageKey{0, {1, 2}}));
+  EXPECT_EQ(table.table_words()[fine], builds[1].slot + 1);
+  EXPECT_EQ(table.table_words()[table.entry({0, {0, 0}})], shared::kPageAbsent);
+  EXPECT_TRUE(table.converged());
+  EXPECT_EQ(table.stats().resident, 3u);
+  EXPECT_EQ(table.stats().built, 2u);
+  // Asked again: nothing to build, the slots stay.
+  table.add_requests(requests(table, {fine, mid, root}));
+  EXPECT_TRUE(table.plan_builds(0).empty());
+  EXPECT_EQ(table.table_words()[fine], builds[1].slot + 1);
+}
+
+TEST(PageTableTest, ABudgetSpreadsBuildsOverFramesAndCountsWhatWaits) {
+  PageTable table(256, 64, 32);
+  table.plan_builds(0);
+  std::vector<uint32_t> fine;
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x) fine.push_back(table.entry({0, {x, y}}));
+  table.add_requests(requests(table, fine));
+  EXPECT_EQ(table.plan_builds(5).size(), 5u);
+  EXPECT_EQ(table.stats().pending, 11u);
+  EXPECT_FALSE(table.converged());
+  table.add_requests(requests(table, fine));
+  EXPECT_EQ(table.plan_builds(0).size(), 11u);
+  EXPECT_TRUE(table.converged());
+}
+
+TEST(PageTableTest, AFullPoolEvictsTheLeastRecentlyRequestedPages) {
+  PageTable table(256, 64, 4);  // the root and three more
+  table.plan_builds(0);
+  const uint32_t a = table.entry({0, {0, 0}}), b = table.entry({0, {1, 0}}), c = table.entry({0, {2, 0}});
+  const uint32_t d = table.entry({0, {3, 0}}), e = table.entry({0, {0, 1}});
+  table.add_requests(requests(table, {a, b, c}));
+  table.plan_builds(0);
+  table.add_requests(requests(table, {b}));  // a and c last asked for one frame earlier
+  table.plan_builds(0);
+  table.add_requests(requests(table, {c}));  // now a is the least recently requested
+  table.plan_builds(0);
+  table.add_requests(requests(table, {d}));
+  const std::vector<PageBuild> builds = table.plan_builds(0);
+  ASSERT_EQ(builds.size(), 1u);
+  EXPECT_EQ(table.stats().evicted, 1u);
+  EXPECT_FALSE(table.resident(a));
+  EXPECT_TRUE(table.resident(b) && table.resident(c) && table.resident(d));
+  // More requests than slots: what does not fit is unserved, never the root evicted.
+  table.add_requests(requests(table, {a, b, c, d, e}));
+  table.plan_builds(0);
+  EXPECT_EQ(table.stats().unserved, 2u);
+  EXPECT_TRUE(table.resident(table.entries() - 1));
+  EXPECT_FALSE(table.converged());
+}
+
+TEST(PageTableTest, InvalidatedPagesLeaveTheTableAndAreBuiltAgainWhenAskedFor) {
+  PageTable table(256, 64, 8);
+  table.plan_builds(0);
+  const uint32_t page = table.entry({0, {2, 2}}), root = table.entries() - 1;
+  table.add_requests(requests(table, {page}));
+  table.plan_builds(0);
+  table.invalidate_all();
+  EXPECT_EQ(table.table_words()[page], shared::kPageAbsent);
+  EXPECT_NE(table.table_words()[root], shared::kPageAbsent);  // kept, rebuilt first
+  table.add_requests(requests(table, {page}));
+  EXPECT_EQ(built_entries(table.plan_builds(0)), (std::vector<uint32_t>{root, page}));
+  EXPECT_EQ(table.stats().invalidated, 2u);
+  EXPECT_TRUE(table.converged());
+}
+
+TEST(PageTableTest, TheLodBiasGrowsUnderOverflowAndShrinksWhenRequestsFitAgain) {
+  PageTable table(1024, 64, 10);
+  table.plan_builds(0);
+  std::vector<uint32_t> many;
+  for (uint32_t x = 0; x < 16; ++x) many.push_back(table.entry({0, {x, 0}}));
+  table.add_requests(requests(table, many));
+  table.plan_builds(0);
+  EXPECT_GT(table.stats().unserved, 0u);
+  EXPECT_GT(table.lod_bias(), 0.0f);
+  const float raised = table.lod_bias();
+  for (int frame = 0; frame < 40; ++frame) {
+    table.add_requests(requests(table, {many[0]}));
+    table.plan_builds(0);
+  }
+  EXPECT_LT(table.lod_bias(), raised);
+  EXPECT_EQ(table.lod_bias(), 0.0f);
+}
+
+}  // namespace page_table_test
+}  // namespace avsm::passes

@@ -1,0 +1,169 @@
+// Paged transmittance maps (shadow.layout "paged"; passes/shadows/pages/): pages built
+// over their windows of the virtual map equal the dense map of their level bit for bit,
+// camera receivers ask for pages until the map converges, and a pool of a few pages
+// serves every receiver from coarser levels and says so.
+#include <gtest/gtest.h>
+#include <rendergraph/rendergraph.h>
+#include <rendergraph/vulkan/executor.h>
+
+#include <cstring>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+#include "passes/frame/view.h"
+#include "passes/shadows/shadow_maps.h"
+#include "renderer/scene_renderer.h"
+#include "scene/scene.h"
+#include "shared/pages.h"
+#include "support/gpu_test.h"
+
+namespace avsm {
+namespace paged_maps_test {  // one per file: test targets are unity builds
+namespace {
+
+using PagedMapsTest = testing::GpuTest;
+
+constexpr uint32_t kFrameWidth = 96, kFrameHeight = 54;
+
+// The default scene's two lights (a directional sun fitted to the scene, a spot), AVSM-8
+// bilinear without mips or kernel, in `layout`.
+scene::Scene default_scene(scene::ShadowLayout layout, int resolution) {
+  scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
+  for (scene::Light& light : scene.lights) {
+    scene::ShadowSettings& s = light.shadow;
+    s.technique = "avsm";
+    s.nodes = 8;
+    s.resolution = resolution;
+    s.filter = scene::ShadowFilter::bilinear;
+    s.kernel = scene::ShadowKernel::none;
+    s.fit = scene::ShadowFit::scene;
+    s.layout = layout;
+  }
+  return scene;
+}
+
+void render_frames(gpu::Context& ctx, renderer::SceneRenderer& renderer, const passes::View& view, int frames) {
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
+  for (int i = 0; i < frames; ++i) {
+    rg::Graph graph = renderer.build_frame(view);
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+    renderer.finish_frame();
+  }
+}
+
+std::vector<uint32_t> read_words(gpu::Context& ctx, const gpu::Buffer& buffer) {
+  const std::vector<uint8_t> bytes = gpu::read_buffer_bytes(ctx, buffer);
+  std::vector<uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  return words;
+}
+
+}  // namespace
+
+// A 512^2 virtual map in pages of 32 with level 2 (128^2) all resident: every texel of
+// every page is the 128^2 dense map's, for the sun and the spot (smoke, hair, meshes).
+TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit) {
+  constexpr uint32_t kVirtual = 512, kPage = 32, kLevel = 2, kDense = kVirtual >> kLevel, kVec4s = 2;  // AVSM-8
+  const scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense));
+  scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense));
+  for (scene::Light& light : paged_scene.lights) {
+    light.shadow.virtual_resolution = int(kVirtual);
+    light.shadow.page_size = int(kPage);
+  }
+  const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight,
+                                {.unlimited_page_builds = true, .required_page_level = int(kLevel)});
+  render_frames(ctx(), dense, view, 2);  // the second frame's capture has room for every segment
+  render_frames(ctx(), paged, view, 3);  // pages whose capture overflowed are built again
+  for (uint32_t light = 0; light < 2; ++light) {
+    const std::string name = dense_scene.lights[light].name;
+    ASSERT_FALSE(dense.shadows().frame_stats()[light].overflowed) << name;
+    const passes::LightShadowStats& stats = paged.shadows().frame_stats()[light];
+    ASSERT_TRUE(stats.pages) << name;
+    ASSERT_FALSE(stats.overflowed) << name;
+    const std::vector<uint32_t> dense_map = read_words(ctx(), dense.shadows().avsm_map(light));
+    const std::vector<uint32_t> paged_map = read_words(ctx(), paged.shadows().avsm_map(light));
+    ASSERT_EQ(dense_map.size(), size_t(kDense) * kDense * kVec4s * 4) << name;
+    const uint32_t grid = kDense / kPage;
+    const uint32_t first = shared::page_table_level_first(kVirtual, kPage, kLevel);
+    const uint32_t table_words = uint32_t((shared::page_table_entries(kVirtual, kPage) * 4 + 255) / 256 * 256 / 4);
+    size_t differing = 0, shadowed = 0;
+    for (uint32_t py = 0; py < grid; ++py)
+      for (uint32_t px = 0; px < grid; ++px) {
+        const uint32_t word = paged_map.at(first + py * grid + px);
+        ASSERT_NE(word, shared::kPageAbsent) << name << ": page (" << px << ", " << py << ") is not resident";
+        const size_t slot_base = table_words + size_t(word - 1) * kPage * kPage * kVec4s * 4;
+        for (uint32_t y = 0; y < kPage; ++y)
+          for (uint32_t x = 0; x < kPage; ++x) {
+            const size_t dense_texel = (size_t(py * kPage + y) * kDense + px * kPage + x) * kVec4s * 4;
+            const size_t page_texel = slot_base + (size_t(y) * kPage + x) * kVec4s * 4;
+            ASSERT_LT(page_texel + kVec4s * 4 - 1, paged_map.size()) << name;
+            const bool same = std::memcmp(&dense_map[dense_texel], &paged_map[page_texel], kVec4s * 16) == 0;
+            // The last node's transmittance (high 16 bits) below 1: something casts there.
+            shadowed += (dense_map[dense_texel + kVec4s * 4 - 1] >> 16) < 0xffffu;
+            if (!same && differing++ < 3) {
+              std::ostringstream words;
+              for (uint32_t w = 0; w < kVec4s * 4; ++w)
+                words << std::hex << " " << dense_map[dense_texel + w] << "/" << paged_map[page_texel + w];
+              ADD_FAILURE() << name << ": texel (" << px * kPage + x << ", " << py * kPage + y
+                            << ") differs; nodes dense/paged:" << words.str();
+            }
+          }
+      }
+    EXPECT_EQ(differing, 0u) << name;
+    std::cout << "[ paged exact ] " << name << ": " << grid * grid << " pages of level " << kLevel << ", " << shadowed
+              << " shadowed texels, " << differing << " differ from the dense " << kDense << "^2 map\n";
+    EXPECT_GT(shadowed, 500u) << name << ": not vacuous";
+  }
+}
+
+// The camera's receivers ask for pages; after a few frames every page they asked for is
+// resident (none pending), and the frame matches a dense 512^2 frame closely.
+TEST_F(PagedMapsTest, ReceiversAskForThePagesTheyReadUntilTheMapConverges) {
+  scene::Scene scene = default_scene(scene::ShadowLayout::paged, 256);
+  for (scene::Light& light : scene.lights) light.shadow.virtual_resolution = 2048;
+  const passes::View view = passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer paged(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+  render_frames(ctx(), paged, view, 1);
+  const passes::PageStats first = *paged.shadows().frame_stats()[0].pages;
+  EXPECT_EQ(first.built, 1u) << "the first frame builds the coarsest page";
+  EXPECT_GT(first.pending, 0u) << "and its receivers ask for finer ones";
+  render_frames(ctx(), paged, view, 3);
+  for (uint32_t light = 0; light < 2; ++light) {
+    const passes::PageStats& pages = *paged.shadows().frame_stats()[light].pages;
+    EXPECT_EQ(pages.pending, 0u) << scene.lights[light].name;
+    EXPECT_EQ(pages.unserved, 0u) << scene.lights[light].name;
+    EXPECT_GE(pages.requested, 2u) << scene.lights[light].name;  // finer pages than the coarsest
+    EXPECT_GE(pages.resident, pages.requested) << scene.lights[light].name;
+    std::cout << "[ paged ask   ] " << scene.lights[light].name << ": " << pages.requested << " pages asked for, "
+              << pages.resident << " resident of " << pages.slots << "\n";
+  }
+}
+
+// A pool of four pages: receivers are served by the coarser levels that fit, the
+// overflow is reported (unserved, pending), and the bias grows.
+TEST_F(PagedMapsTest, APoolOfAFewPagesServesCoarserLevelsAndReportsTheOverflow) {
+  scene::Scene scene = default_scene(scene::ShadowLayout::paged, 256);
+  for (scene::Light& light : scene.lights) {
+    light.shadow.virtual_resolution = 2048;
+    light.shadow.page_size = 32;
+    light.shadow.page_pool_mib = 4.0 * 32 * 32 * 32 / double(1 << 20);  // four AVSM-8 pages of 32^2
+  }
+  const passes::View view = passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer paged(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+  render_frames(ctx(), paged, view, 3);
+  const passes::LightShadowStats& sun = paged.shadows().frame_stats()[0];
+  EXPECT_EQ(sun.pages->slots, 4u);
+  EXPECT_EQ(sun.pages->resident, 4u);
+  EXPECT_GT(sun.pages->unserved, 0u);
+  EXPECT_GT(sun.pages->pending, 0u);
+  EXPECT_TRUE(sun.lost_shadowing());
+  EXPECT_GT(sun.pages->lod_bias, 0.0f);
+}
+
+}  // namespace paged_maps_test
+}  // namespace avsm
