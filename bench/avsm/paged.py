@@ -7,13 +7,19 @@ one run with the configurations interleaved over rounds:
   dense 1024 bilinear     the finest dense map lavapipe holds: the quality reference
   paged 16384/64          a 16384^2 virtual map per light in 64^2 pages, no kernel
 
-Per configuration: the converged frame's GPU ms (the fastest measured frame: a paged
-capture's first frames build its pages), the opaque pass and the shadow passes' ms in
-that frame, the first frames' cost, the pages asked for, resident and built, and the
-frame's mean |difference| from the dense 1024 frame (avsm-compare, in 1/255).
+A static camera first. Per configuration: the converged frame's GPU ms (the fastest
+measured frame: a paged capture's first frames build its pages), the opaque pass and the
+shadow passes' ms in that frame, the first frame's cost, the pages asked for, resident
+and built, and the frame's mean |difference| from the dense 1024 frame (avsm-compare,
+in 1/255).
+
+Then the viewer's case: the camera orbits the static scene (avsm-capture --orbit, the
+default 2 degrees a frame). Per frame after the first ones have converged: GPU ms, the
+shadow passes' ms, and the pages built against those resident.
 
 usage: bench/avsm/paged.py [--build DIR] [--width W] [--height H] [--rounds R]
-                           [--page-size P] [--virtual-res V]
+                           [--page-size P] [--virtual-res V] [--orbit DEGREES]
+                           [--orbit-frames K]
 """
 import argparse
 import json
@@ -36,17 +42,28 @@ def configs(args):
             (f"paged {args.virtual_res}/{args.page_size}", paged)]
 
 
-def capture(tool, scene, out, args, flags):
+def capture(tool, scene, out, args, flags, frames=4, orbit=0.0):
     subprocess.run([tool, "--scene", scene, "--out", out, "--width", str(args.width), "--height", str(args.height),
-                    "--frames", "4", "--frames-in-flight", "1", "--quiet"] + flags, check=True, capture_output=True)
+                    "--frames", str(frames), "--frames-in-flight", "1", "--orbit", str(orbit), "--quiet"] + flags,
+                   check=True, capture_output=True)
     timings = json.load(open(os.path.join(out, "timings.json")))
     memory = json.load(open(os.path.join(out, "memory.json")))
-    frames = [f["gpu_ms"] for f in timings["frames"]]
+    frames = timings["frames"]
+    fastest = min(frames, key=lambda f: f["gpu_ms"])
     passes = {p["name"]: p["gpu_ms"]["min"] for p in timings["passes"]}
-    shadow = sum(ms for name, ms in passes.items() if name.startswith("light ") and "debug image" not in name)
     pages = [l["pages"] for l in memory["lights"] if "pages" in l]
-    return {"frame": min(frames), "first": frames[0], "opaque": passes.get("opaque", 0.0), "shadow": shadow,
-            "pages": pages}
+    return {"frame": fastest["gpu_ms"], "first": frames[0]["gpu_ms"], "opaque": passes.get("opaque", 0.0),
+            "shadow": fastest["shadow_gpu_ms"], "pages": pages, "frames": frames}
+
+
+def orbit_figures(result, skip):
+    """Medians over the orbit's frames after `skip` (the frames that build the first pages)."""
+    frames = result["frames"][skip:]
+    resident = sum(p["resident"] for p in result["pages"])
+    return {"frame": statistics.median(f["gpu_ms"] for f in frames),
+            "shadow": statistics.median(f["shadow_gpu_ms"] for f in frames),
+            "built": statistics.median(f["pages_built"] for f in frames),
+            "most built": max(f["pages_built"] for f in frames), "resident": resident}
 
 
 def mean_abs_error(compare, base, new):
@@ -63,6 +80,8 @@ def main():
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--page-size", type=int, default=64)
     parser.add_argument("--virtual-res", type=int, default=16384)
+    parser.add_argument("--orbit", type=float, default=2.0)
+    parser.add_argument("--orbit-frames", type=int, default=10)
     args = parser.parse_args()
     tool = os.path.join(args.build, "tools", "avsm-capture")
     compare = os.path.join(args.build, "tools", "avsm-compare")
@@ -71,8 +90,11 @@ def main():
         sys.exit(f"{tool} not found: build first")
     os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
     rows = configs(args)
+    orbit_rows = [rows[0], rows[1], rows[3]]
     results = {name: [] for name, _ in rows}
     errors = {name: [] for name, _ in rows}
+    orbits = {name: [] for name, _ in orbit_rows}
+    skip = 2  # measured frames left out of the orbit figures: the paged maps' first builds
     with tempfile.TemporaryDirectory() as work:
         for r in range(args.rounds):
             for i, (name, flags) in enumerate(rows):
@@ -80,6 +102,10 @@ def main():
             reference = os.path.join(work, f"{r}_2")
             for i, (name, _) in enumerate(rows):
                 errors[name].append(mean_abs_error(compare, reference, os.path.join(work, f"{r}_{i}")))
+            for i, (name, flags) in enumerate(orbit_rows):
+                result = capture(tool, scene, os.path.join(work, f"{r}_orbit_{i}"), args, flags,
+                                 frames=args.orbit_frames, orbit=args.orbit)
+                orbits[name].append(orbit_figures(result, skip))
     today = statistics.median(x["frame"] for x in results[rows[0][0]])
     print(f"default scene, {args.width}x{args.height}, 2 lights, AVSM-8; GPU ms, medians of {args.rounds} "
           f"interleaved rounds; converged frame = the fastest of 4 (+ frames rendered again until converged)")
@@ -92,6 +118,22 @@ def main():
         print(f"   {name:<24}{frame:>10.1f}{frame / today:>9.2f}{statistics.median(x['opaque'] for x in xs):>9.1f}"
               f"{statistics.median(x['shadow'] for x in xs):>9.1f}{statistics.median(x['first'] for x in xs):>11.1f}"
               f"{statistics.median(errors[name]):>10.2f}   {pages}")
+    dense_rebuild = statistics.median(o["shadow"] for o in orbits[rows[1][0]])
+    orbit_today = statistics.median(o["frame"] for o in orbits[rows[0][0]])
+    print(f"\norbiting the static scene: --orbit {args.orbit} degrees a frame, {args.orbit_frames} frames, the "
+          f"first {skip + 1} left out (warm-up and first builds); medians per frame")
+    print(f"   {'configuration':<24}{'frame ms':>10}{'x today':>9}{'shadow':>9}{'x dense':>9}"
+          f"{'built':>8}{'most':>6}{'resident':>10}{'built %':>9}")
+    for name, _ in orbit_rows:
+        xs = orbits[name]
+        frame = statistics.median(o["frame"] for o in xs)
+        shadow = statistics.median(o["shadow"] for o in xs)
+        built = statistics.median(o["built"] for o in xs)
+        resident = xs[-1]["resident"]
+        share = f"{100.0 * built / resident:>8.1f}%" if resident else f"{'-':>9}"
+        print(f"   {name:<24}{frame:>10.1f}{frame / orbit_today:>9.2f}{shadow:>9.1f}{shadow / dense_rebuild:>9.2f}"
+              f"{built:>8.0f}{max(o['most built'] for o in xs):>6}{resident:>10}{share}")
+    print("   x dense: the shadow passes against the dense 256 bilinear full rebuild in the same run")
 
 
 if __name__ == "__main__":

@@ -57,6 +57,7 @@ SettingsReport settings_report(const CaptureOptions& options, const scene::Scene
   report.height = options.height;
   report.frames = options.frames;
   report.frames_in_flight = options.frames_in_flight;
+  report.orbit_degrees = options.orbit_degrees;
   report.validation = options.validation;
   report.volume_shading = scene.volume_shading;
   report.compare_volume_shading = options.compare_volume_shading;
@@ -258,7 +259,7 @@ class VolumeShadingRun {
     const std::optional<bool> hair_per_fragment = frame_.hair_lighting_per_fragment();
     if (mode == scene::VolumeShading::Mode::hidden) frame_.set_hair_lighting_per_fragment(true);
     const FrameClock clock = render_timed_frame(ctx_, frame_, executor_, cmd, view);
-    (log ? *log : log_).add_frame(clock, executor_.read_timings(), measured);
+    (log ? *log : log_).add_frame(clock, executor_.read_timings(), frame_.shadows().frame_stats(), measured);
     if (keep) *keep = gpu::read_image(ctx_, frame_.hdr(), renderer::SceneRenderer::kOutputLayout);
     frame_.set_hair_lighting_per_fragment(hair_per_fragment);
     frame_.set_volume_shading(main_);
@@ -335,9 +336,14 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (!probe_points.empty()) frame.set_probes(probe_points);
   if (options.compare_to_uncompressed) frame.enable_quality();
   if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));
-  passes::View view = passes::make_view(camera, options.width, options.height);
+  // Frame `index`'s view: the camera turned by --orbit per frame; frames rendered again
+  // keep the last frame's.
+  auto view_of = [&](uint32_t index) {
+    const float degrees = options.orbit_degrees * float(std::min(index, options.frames - 1));
+    return passes::make_view(scene::orbited(camera, glm::radians(degrees)), options.width, options.height);
+  };
   if (!options.dump_passes.empty()) {  // the first frame's shadow work, described only
-    write_pass_list(options.dump_passes, frame.describe_shadows(view));
+    write_pass_list(options.dump_passes, frame.describe_shadows(view_of(0)));
     std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
     if (!messages.empty()) throw std::runtime_error("validation reported problems: " + gpu::describe(messages));
     CaptureOutputs out;
@@ -367,7 +373,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     const uint32_t index = slot_frame[slot.index];
     last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
     const bool warm_up = index == 0 && options.frames > 1;
-    const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), /*measured=*/!warm_up);
+    const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), frame.shadows().frame_stats(),
+                                             /*measured=*/!warm_up);
     if (options.progress)
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", std::min(index, options.frames - 1) + 1, options.frames, wall,
                    warm_up ? " (warm-up)" : index >= options.frames ? " (again)" : "");
@@ -376,7 +383,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   auto submit_frame = [&](uint32_t index) {
     renderer::FrameSlots::Slot& slot = slots.acquire(finished);
     slot_frame[slot.index] = index;
-    slot_clock[slot.index] = record_timed_frame(frame, *slot.executor, slot.cmd, view, slot.index);
+    slot_clock[slot.index] = record_timed_frame(frame, *slot.executor, slot.cmd, view_of(index), slot.index);
     slots.submit(slot);
   };
   std::optional<VolumeShadingRun> volume_run;
@@ -389,7 +396,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     // renders with nothing else in flight.
     if (volume_run) {
       slots.finish_all(finished);
-      volume_run->render_reference(comparison_cmd, view, /*measured=*/index > 0 || options.frames == 1,
+      volume_run->render_reference(comparison_cmd, view_of(index), /*measured=*/index > 0 || options.frames == 1,
                                    /*keep=*/index + 1 == options.frames);
     }
     submit_frame(index);
@@ -429,7 +436,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                                    {frame.hair_quality_results(), frame.hair_receiver_count()});
     out.quality = options.out_dir / "quality.json";
   }
-  if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view, timing_log);
+  if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view_of(options.frames - 1), timing_log);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());

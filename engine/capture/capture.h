@@ -30,6 +30,10 @@ struct CaptureOptions {
   bool validation = false;
   std::string device;  // see gpu::ContextDesc::device
   bool progress = true;  // progress lines on stderr
+  // --orbit DEGREES: frame i sees the scene from the camera turned i x DEGREES about its
+  // target (scene::orbited): a static scene under a moving camera, as in the viewer. The
+  // frames rendered again until the maps are finished keep the last frame's view.
+  float orbit_degrees = 0.0f;
 
   // Shadow overrides applied to every light (unset: the scene's own settings; cascades
   // only to directional lights, clusters not to point lights: ShadowOverrides::apply(Light&)).

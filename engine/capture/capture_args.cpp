@@ -19,6 +19,7 @@ const char* kUsage =
     "  --height N       image height (default 720)\n"
     "  --frames K       frames to render; timings over all but the first (default 5)\n"
     "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
+    "  --orbit DEGREES  turn the camera about its target by this much each frame (default 0)\n"
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
@@ -155,6 +156,11 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.frames = parse_count(arg, value());
   } else if (arg == "--frames-in-flight") {
     options.frames_in_flight = uint32_t(parse_in_range(arg, value(), 1, 3));
+  } else if (arg == "--orbit") {
+    const std::string text = value();
+    const std::optional<float> degrees = parse_number<float>(text);
+    if (!degrees || !(std::abs(*degrees) <= 90.0f)) usage_error("--orbit expects -90 to 90 degrees per frame, got '" + text + "'");
+    options.orbit_degrees = *degrees;
   } else if (arg == "--device") {
     options.device = value();
   } else if (arg == "--validation") {
@@ -285,6 +291,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.height != defaults.height, "--height", std::to_string(o.height));
   with_value(o.frames != defaults.frames, "--frames", std::to_string(o.frames));
   with_value(o.frames_in_flight != defaults.frames_in_flight, "--frames-in-flight", std::to_string(o.frames_in_flight));
+  with_value(o.orbit_degrees != defaults.orbit_degrees, "--orbit", exact_text(o.orbit_degrees));
   with_value(o.device != defaults.device, "--device", o.device);
   flag(o.validation, "--validation");
   flag(!o.progress, "--quiet");

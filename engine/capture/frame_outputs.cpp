@@ -6,6 +6,7 @@
 
 #include "capture/files.h"
 #include "capture/frame_report.h"
+#include "capture/pass_stages.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
 #include "gpu/vk_check.h"
@@ -74,7 +75,7 @@ FrameClock render_timed_frame(gpu::Context& ctx, renderer::SceneRenderer& render
 FrameTimingLog::FrameTimingLog(std::chrono::steady_clock::time_point origin) : origin_(origin) {}
 
 double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::vulkan::PassTiming>& passes,
-                                 bool measured) {
+                                 const std::vector<passes::LightShadowStats>& shadows, bool measured) {
   const double wall = ms_between(clock.start, std::chrono::steady_clock::now());
   const double start = ms_between(origin_, clock.start), built = ms_between(origin_, clock.built);
   const double recorded = ms_between(origin_, clock.recorded), completed = ms_between(origin_, clock.completed);
@@ -95,8 +96,9 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   }
   if (!measured) return wall;
 
-  double total = 0;
+  double total = 0, shadow = 0;
   for (const rg::vulkan::PassTiming& pass : passes) {
+    if (is_shadow_stage(pass_stage(pass.name))) shadow += pass.gpu_ms;
     auto [found, added] = pass_index_.emplace(pass.name, passes_.size());
     if (added) passes_.push_back({pass.name, pass.queue, {}, {}});
     PassSamples& samples = passes_[found->second];
@@ -108,6 +110,11 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   frame_gpu_ms_.push_back(total);
   frame_wall_ms_.push_back(wall);
   frame_submit_ms_.push_back(completed - recorded);
+  frame_shadow_gpu_ms_.push_back(shadow);
+  uint32_t pages_built = 0;
+  for (const passes::LightShadowStats& light : shadows)
+    if (light.pages) pages_built += light.pages->built;
+  frame_pages_built_.push_back(pages_built);
   return wall;
 }
 

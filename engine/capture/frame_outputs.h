@@ -59,10 +59,11 @@ class FrameTimingLog {
   // Trace times are in ms from `origin`.
   explicit FrameTimingLog(std::chrono::steady_clock::time_point origin = std::chrono::steady_clock::now());
 
-  // Logs a frame that just completed (its wall time ends now): always on the trace,
-  // in the statistics only when `measured` (warm-up frames are not). Returns the
-  // frame's wall time in ms.
-  double add_frame(const FrameClock& clock, const std::vector<rg::vulkan::PassTiming>& passes, bool measured);
+  // Logs a frame that just completed (its wall time ends now), with its shadow maps'
+  // figures (finish_frame()'s): always on the trace, in the statistics only when
+  // `measured` (warm-up frames are not). Returns the frame's wall time in ms.
+  double add_frame(const FrameClock& clock, const std::vector<rg::vulkan::PassTiming>& passes,
+                   const std::vector<passes::LightShadowStats>& shadows, bool measured);
 
   // Forgets every frame (the viewer keeps only the frames since the last change).
   void clear();
@@ -80,6 +81,9 @@ class FrameTimingLog {
   const std::vector<double>& frame_gpu_ms() const { return frame_gpu_ms_; }
   const std::vector<double>& frame_wall_ms() const { return frame_wall_ms_; }
   const std::vector<double>& frame_submit_ms() const { return frame_submit_ms_; }
+  // Per measured frame: the shadow passes' GPU ms (pass_stages.h), and the pages built.
+  const std::vector<double>& frame_shadow_gpu_ms() const { return frame_shadow_gpu_ms_; }
+  const std::vector<uint32_t>& frame_pages_built() const { return frame_pages_built_; }
   const TraceWriter& trace() const { return trace_; }
   uint32_t frames_logged() const { return frames_logged_; }
 
@@ -89,7 +93,8 @@ class FrameTimingLog {
   uint32_t frames_logged_ = 0;
   std::vector<PassSamples> passes_;
   std::map<std::string, size_t> pass_index_;
-  std::vector<double> frame_gpu_ms_, frame_wall_ms_, frame_submit_ms_;
+  std::vector<double> frame_gpu_ms_, frame_wall_ms_, frame_submit_ms_, frame_shadow_gpu_ms_;
+  std::vector<uint32_t> frame_pages_built_;
 };
 
 // Everything write_frame_outputs reads; the frame must have completed.

@@ -87,12 +87,16 @@ PassTiming pass_timing_from_json(const json& in) {
 }
 
 json to_json(const FrameSample& frame) {
-  return {{"gpu_ms", frame.gpu_ms}, {"wall_ms", frame.wall_ms}, {"submit_wall_ms", frame.submit_wall_ms}};
+  return {{"gpu_ms", frame.gpu_ms},
+          {"wall_ms", frame.wall_ms},
+          {"submit_wall_ms", frame.submit_wall_ms},
+          {"shadow_gpu_ms", frame.shadow_gpu_ms},
+          {"pages_built", frame.pages_built}};
 }
 
 FrameSample frame_sample_from_json(const json& in) {
-  return {value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"),
-          value_of<double>(in, "submit_wall_ms")};
+  return {value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"), value_of<double>(in, "submit_wall_ms"),
+          value_of<double>(in, "shadow_gpu_ms"), value_of<uint32_t>(in, "pages_built")};
 }
 
 // ---- memory.json ----
@@ -419,7 +423,8 @@ TimingReport timing_report(const FrameTimingLog& log) {
   report.frame_wall_ms = spread_of(log.frame_wall_ms());
   report.frame_submit_wall_ms = spread_of(log.frame_submit_ms());
   for (size_t i = 0; i < log.frame_gpu_ms().size(); ++i)
-    report.frames.push_back({log.frame_gpu_ms()[i], log.frame_wall_ms()[i], log.frame_submit_ms()[i]});
+    report.frames.push_back({log.frame_gpu_ms()[i], log.frame_wall_ms()[i], log.frame_submit_ms()[i],
+                             log.frame_shadow_gpu_ms()[i], log.frame_pages_built()[i]});
   return report;
 }
 
@@ -551,6 +556,7 @@ json to_json(const SettingsReport& s) {
           {"height", s.height},
           {"frames", s.frames},
           {"frames_in_flight", s.frames_in_flight},
+          {"orbit_degrees", s.orbit_degrees},
           {"validation", s.validation},
           {"volume_shading",
            {{"mode", scene::to_string(s.volume_shading.mode)},
@@ -574,6 +580,7 @@ SettingsReport settings_report_from_json(const json& in) {
   s.height = value_of<uint32_t>(in, "height");
   s.frames = value_of<uint32_t>(in, "frames");
   s.frames_in_flight = value_of<uint32_t>(in, "frames_in_flight");
+  s.orbit_degrees = value_of<float>(in, "orbit_degrees");
   s.validation = value_of<bool>(in, "validation");
   const json& volumes = member(in, "volume_shading");
   const std::string mode = value_of<std::string>(volumes, "mode");

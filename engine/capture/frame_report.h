@@ -45,6 +45,8 @@ struct FrameSample {
   double gpu_ms = 0;          // the passes' GPU times summed
   double wall_ms = 0;         // build, record, submit and wait
   double submit_wall_ms = 0;  // submit to completion on the CPU clock
+  double shadow_gpu_ms = 0;   // the shadow maps' passes (capture, sort, build, mips: pass_stages.h)
+  uint32_t pages_built = 0;   // paged maps' pages built, every light's summed
   bool operator==(const FrameSample&) const = default;
 };
 
@@ -158,6 +160,7 @@ struct SettingsReport {
   std::string camera;  // the camera's name as picked; its index when it has no name
   uint32_t width = 0, height = 0;
   uint32_t frames = 0, frames_in_flight = 0;
+  float orbit_degrees = 0.0f;  // --orbit: the camera turned this much per frame
   bool validation = false;
   scene::VolumeShading volume_shading;  // the scene's, with --volume-shading & co. applied
   bool compare_volume_shading = false;

@@ -61,6 +61,13 @@ class SceneRenderer {
   // Moves light `light` for the next frame declared (its position and direction; the
   // frames in flight keep theirs). Throws std::out_of_range for a light the scene lacks.
   void place_light(uint32_t light, const glm::vec3& position, const glm::vec3& direction);
+  // Mesh `mesh` (its index in the scene's meshes) as it now is: moved or deformed, with
+  // the vertex count it had. Waits for the device to idle, uploads it, and tells the
+  // shadow maps, which build again only the pages its old and new bounds overlap.
+  // Throws std::invalid_argument for another vertex count, or for bounds that leave
+  // those the lights were fitted to (set the scene again to fit them anew), and
+  // std::out_of_range for a mesh the scene lacks.
+  void update_mesh(uint32_t mesh, const scene::Mesh& now);
   void set_exposure(float exposure) { exposure_ = exposure; }
   // How the camera sees the volumes; set_scene() takes the scene's. Throws
   // std::invalid_argument for a divisor other than 1, 2, 4 or a step outside 0.125..4 voxels.
@@ -150,6 +157,8 @@ class SceneRenderer {
   std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
 
   std::vector<scene::Light> lights_;
+  scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)
+  std::vector<uint32_t> mesh_objects_;  // per scene mesh, its caster object (~0u: no triangles)
   passes::FrameBuffers light_buffers_;  // the GpuLights, per frame slot, written as a frame is declared
   uint32_t light_count_ = 0;
   uint32_t finished_slot_ = 0;  // of the last frame finished: where its results are

@@ -1,5 +1,6 @@
 #pragma once
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include <string>
 
@@ -14,5 +15,13 @@ struct Camera {
   float near_plane = 0.1f;
   float far_plane = 100.0f;
 };
+
+// The camera turned `radians` about its target, around its up axis (a turntable: what
+// the viewer's orbit does, and what `avsm-capture --orbit` does each frame).
+inline Camera orbited(const Camera& camera, float radians) {
+  Camera turned = camera;
+  turned.position = camera.target + glm::angleAxis(radians, glm::normalize(camera.up)) * (camera.position - camera.target);
+  return turned;
+}
 
 }  // namespace avsm::scene

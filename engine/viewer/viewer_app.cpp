@@ -554,7 +554,7 @@ void ViewerApp::scene_frame_finished(renderer::FrameSlots::Slot& slot) {
   // The screenshot's timings.json describes this frame alone.
   timing_log_.clear();
   const std::vector<rg::vulkan::PassTiming> timings = slot.executor->read_timings();
-  const double wall = timing_log_.add_frame(clock, timings, /*measured=*/true);
+  const double wall = timing_log_.add_frame(clock, timings, renderer.shadows().frame_stats(), /*measured=*/true);
   frame_stats_ = {frame_stats_.number + 1, wall, timings};
 
   // A capture that overflowed dropped segments; its buffers grew, so render again.

@@ -158,6 +158,21 @@ LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 pa
   return v;
 }
 
+UvRect light_footprint(const LightView& view, const scene::Bounds& box) {
+  if (box.empty()) return {};
+  UvRect rect;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                      (corner & 4) ? box.max.z : box.min.z);
+    const glm::vec4 clip = view.light_from_world * glm::vec4(p, 1.0f);
+    if (clip.w <= 1e-6f) return UvRect::whole();  // behind the eye: its projection is unbounded
+    const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+    rect.extend({uv, uv});
+  }
+  if (!rect.overlaps(UvRect::whole())) return {};
+  return {glm::max(rect.min, glm::vec2(0.0f)), glm::min(rect.max, glm::vec2(1.0f))};
+}
+
 LightView make_light_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution) {
   const scene::Bounds box = usable_bounds(casters);
   if (light.type == scene::LightType::point) return make_point_face_view(light, 0, casters, resolution);

@@ -11,6 +11,7 @@
 
 #include "scene/bounds.h"
 #include "passes/frame/view.h"
+#include "passes/shadows/uv_rect.h"
 #include "scene/light.h"
 
 namespace avsm::passes {
@@ -45,6 +46,11 @@ struct LightView {
 // Page `page` (in pages) of level `level` of a paged map whose level 0 is
 // `virtual_view` (its resolution the virtual one): a window of page_size texels.
 LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size);
+
+// What `box` covers of the map's uv square seen from the light, conservatively (the
+// rectangle around its corners' projections, clipped to the square): empty when it lies
+// beside the map; the whole square when part of it is behind a spot light's eye.
+UvRect light_footprint(const LightView& view, const scene::Bounds& box);
 
 // The camera's view between two distances along its axis: what a directional light's
 // map is fitted to (ShadowFit::view), one slice per cascade.

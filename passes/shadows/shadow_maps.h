@@ -27,6 +27,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "gpu/resources.h"
@@ -83,6 +84,18 @@ class ShadowMaps {
   // the next frame, without waiting for frames in flight: its maps are fitted again.
   // A clustered light keeps its clusters. Throws std::out_of_range for a light it lacks.
   void place_light(uint32_t light, const glm::vec3& position, const glm::vec3& direction);
+
+  // Casters changed inside these world bounds: a moved caster's old and new bounds, or
+  // the bounds of one that appeared, vanished or changed (a volume's density, a hair
+  // edit). The pages of paged maps that they overlap are built again when next asked
+  // for; every other page stays as it is. Dense maps are built every frame and need
+  // nothing. Returns the pages invalidated. The change must not take effect in a frame
+  // in flight (casters are read as static data: ShadowCasters).
+  uint32_t casters_changed(std::span<const scene::Bounds> world_bounds);
+  // Caster object `object` (of those set_scene()/set_lights() took) now lies in `bounds`:
+  // the pages its old and new bounds overlap are built again, and page builds cull it by
+  // its new bounds. Throws std::out_of_range for an object it lacks.
+  uint32_t caster_moved(uint32_t object, const scene::Bounds& bounds);
 
   // Declares this frame's shadow passes for every light's maps into frame slot `slot`,
   // whose previous frame must have completed; their persistent resources (the map
@@ -223,6 +236,7 @@ class ShadowMaps {
                                  uint64_t capacity, rg::BufferHandle counter, const ShadowCasters& casters) const;
   void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
   ShadowCasters casters_of(const MapState& map, const ShadowCasters& all) const;
+  ShadowCasters select_casters(const ShadowCasters& all, const std::vector<uint32_t>& objects) const;
   // shadow_maps_pages.cpp: paged maps (shadow.layout "paged").
   static bool is_paged(const LightState& light) { return light.light.shadow.layout == scene::ShadowLayout::paged; }
   uint32_t page_slots(const MapState& map) const;  // the pool's pages: the light's pool bytes over its maps
@@ -234,6 +248,10 @@ class ShadowMaps {
   rg::BufferHandle add_page_requests_clear(rg::Graph& graph, uint32_t slot) const;
   void add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
                        ShadowInputs& inputs);
+  // The caster objects a page build takes (the map's, overlapping the page), given each
+  // object's footprint on the map; all of the map's casters when there are no objects.
+  ShadowCasters page_casters(const MapState& map, const ShadowCasters& all, const std::vector<UvRect>& footprints,
+                             const PageKey& page) const;
   void finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats);
   // shadow_maps_finish.cpp: a completed frame's figures.
   FixedBuildStats fixed_build_stats(const MapState& map, uint32_t slot) const;

@@ -29,7 +29,7 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
     if (map.pages) {
-      add_page_builds(graph, map, casters_of(map, casters), slot, inputs);
+      add_page_builds(graph, map, casters, slot, inputs);
       continue;
     }
     const scene::ShadowSettings& settings = light.light.shadow;
@@ -119,13 +119,18 @@ void ShadowMaps::add_list_copy(rg::Graph& graph, const MapState& map, const Capt
 
 // The casters a map takes: all of them, or its cluster's.
 ShadowCasters ShadowMaps::casters_of(const MapState& map, const ShadowCasters& all) const {
-  if (!map.objects) return all;
+  return map.objects ? select_casters(all, *map.objects) : all;
+}
+
+// The casters of `objects` (indices into objects_) out of `all`.
+ShadowCasters ShadowMaps::select_casters(const ShadowCasters& all, const std::vector<uint32_t>& objects) const {
   ShadowCasters casters = all;
   casters.meshes.draws.clear();
   casters.strands.segment_count = 0;
   casters.volumes.volume_mask = 0;
   uint32_t first_segment = ~0u, end_segment = 0;
-  for (uint32_t object : *map.objects) {
+  bool unmasked_volume = false;  // volumes from kMaxClusteredVolumes on cast whatever the mask
+  for (uint32_t object : objects) {
     const CasterObject& o = objects_.at(object);
     switch (o.kind) {
       case CasterObject::Kind::mesh_draw:
@@ -137,15 +142,17 @@ ShadowCasters ShadowMaps::casters_of(const MapState& map, const ShadowCasters& a
         break;
       case CasterObject::Kind::volume:
         if (o.first < kMaxClusteredVolumes) casters.volumes.volume_mask |= 1u << o.first;
+        else unmasked_volume = true;
         break;
     }
   }
-  // A cluster's grooms are one range of segments (cluster_casters() keeps them contiguous).
+  // One range of segments: a cluster's grooms are contiguous (cluster_casters()); a
+  // page's grooms take the segments between them too, which cast nothing on it.
   if (end_segment > first_segment && first_segment < all.strands.segment_count) {
     casters.strands.first_segment = first_segment;
     casters.strands.segment_count = std::min(end_segment, all.strands.segment_count) - first_segment;
   }
-  if (casters.volumes.volume_mask == 0) casters.volumes.volume_count = 0;
+  if (casters.volumes.volume_mask == 0 && !unmasked_volume) casters.volumes.volume_count = 0;
   return casters;
 }
 

@@ -102,6 +102,9 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   declared.page_table = map.pages->table_words();
   const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
   const uint64_t bytes_per_slot = slot_bytes(settings);
+  std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
+  if (!declared.page_builds.empty())
+    for (uint32_t o = 0; o < objects_.size(); ++o) footprints[o] = light_footprint(map.view, objects_[o].bounds);
   const rg::ImportState after = map_state_after_frame();
   for (size_t i = 0; i < declared.page_builds.size(); ++i) {
     const PageBuild& page = declared.page_builds[i];
@@ -112,7 +115,8 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
         gpu::Buffer::region(map.page_counters[slot], i * page_counter_stride(), 16, prefix + " capture counter")));
     rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-    CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter, casters);
+    CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter,
+                                           page_casters(map, casters, footprints, page.key));
     const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
         atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
     rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
@@ -134,6 +138,41 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
         }
       })
       .table);
+}
+
+ShadowCasters ShadowMaps::page_casters(const MapState& map, const ShadowCasters& all,
+                                       const std::vector<UvRect>& footprints, const PageKey& page) const {
+  if (objects_.empty()) return casters_of(map, all);  // nothing to cull by (a host's casters)
+  // Widened by a texel of the page's level, as hair ribbons are (as invalidation does).
+  const UvRect window = map.pages->window(page, 1.0f);
+  std::vector<uint32_t> overlapping;
+  auto take = [&](uint32_t object) {
+    if (footprints[object].overlaps(window)) overlapping.push_back(object);
+  };
+  if (map.objects) {
+    for (uint32_t object : *map.objects) take(object);
+  } else {
+    for (uint32_t object = 0; object < objects_.size(); ++object) take(object);
+  }
+  return select_casters(all, overlapping);
+}
+
+uint32_t ShadowMaps::casters_changed(std::span<const scene::Bounds> world_bounds) {
+  uint32_t invalidated = 0;
+  for (MapState& map : maps_) {
+    if (!map.pages) continue;
+    std::vector<UvRect> footprints;
+    for (const scene::Bounds& bounds : world_bounds) footprints.push_back(light_footprint(map.view, bounds));
+    invalidated += map.pages->invalidate_overlapping(footprints);
+  }
+  return invalidated;
+}
+
+uint32_t ShadowMaps::caster_moved(uint32_t object, const scene::Bounds& bounds) {
+  CasterObject& moved = objects_.at(object);
+  const scene::Bounds both[2] = {moved.bounds, bounds};
+  moved.bounds = bounds;
+  return casters_changed(both);
 }
 
 // After the frame in `slot` completed: its page builds' capture figures (an overflowed

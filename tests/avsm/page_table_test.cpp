@@ -133,5 +133,37 @@ TEST(PageTableTest, TheLodBiasGrowsUnderOverflowAndShrinksWhenRequestsFitAgain) 
   EXPECT_EQ(table.lod_bias(), 0.0f);
 }
 
+// A change inside a rectangle of the map invalidates exactly the resident pages whose
+// windows (widened by a texel of their level) overlap it, at every level; the rest stay.
+TEST(PageTableTest, AChangeInvalidatesTheResidentPagesItOverlapsAtEveryLevel) {
+  PageTable table(256, 64, 32);  // levels of 4x4, 2x2 and 1 page
+  EXPECT_EQ(table.window({0, {1, 2}}).min, glm::vec2(0.25f, 0.5f));
+  EXPECT_EQ(table.window({0, {1, 2}}).max, glm::vec2(0.5f, 0.75f));
+  EXPECT_EQ(table.window({1, {0, 0}}, 2.0f).min, glm::vec2(-2.0f / 128.0f));
+  std::vector<uint32_t> all(table.entries());
+  for (uint32_t e = 0; e < table.entries(); ++e) all[e] = e;
+  table.add_requests(requests(table, all));
+  ASSERT_EQ(table.plan_builds(0).size(), table.entries());
+  // Inside level-0 page (1, 1), more than a texel from its edges: that page, level 1's
+  // (0, 0) and the root.
+  const UvRect inside{glm::vec2(0.30f), glm::vec2(0.45f)};
+  EXPECT_EQ(table.invalidate_overlapping(std::span(&inside, 1)), 3u);
+  for (uint32_t e = 0; e < table.entries(); ++e) {
+    const PageKey k = table.key(e);
+    const bool hit = (k.level == 0 && k.page == glm::uvec2(1, 1)) || (k.level == 1 && k.page == glm::uvec2(0, 0)) ||
+                     k.level == 2;
+    EXPECT_EQ(table.resident(e), !hit || k.level == 2) << "level " << k.level << " page " << k.page.x << "," << k.page.y;
+  }
+  table.add_requests(requests(table, all));
+  EXPECT_EQ(table.plan_builds(0).size(), 3u) << "the stale pages are built again";
+  EXPECT_EQ(table.stats().invalidated, 3u);
+  // Within a texel of level-0 page (1, 1)'s right edge: its neighbour (2, 1) too, and
+  // level 1's (1, 0); an empty rectangle invalidates nothing.
+  const UvRect edge{glm::vec2(0.49f, 0.30f), glm::vec2(0.498f, 0.31f)};
+  EXPECT_EQ(table.invalidate_overlapping(std::span(&edge, 1)), 5u);
+  const UvRect nothing;
+  EXPECT_EQ(table.invalidate_overlapping(std::span(&nothing, 1)), 0u);
+}
+
 }  // namespace page_table_test
 }  // namespace avsm::passes

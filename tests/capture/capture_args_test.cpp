@@ -29,6 +29,7 @@ CaptureOptions every_option_set() {
   o.height = 54;
   o.frames = 2;
   o.frames_in_flight = 1;
+  o.orbit_degrees = -2.5f;
   o.validation = true;
   o.device = "llvmpipe";
   o.progress = false;
@@ -91,6 +92,7 @@ TEST(CaptureArgs, BadFlagsNameThemselves) {
   EXPECT_EQ(usage_error_of({"--nodes", "7"}), "--nodes expects 4, 8, 12 or 16");
   EXPECT_EQ(usage_error_of({"--fit", "box"}), "--fit expects view or scene, got 'box'");
   EXPECT_EQ(usage_error_of({"--volume-step", "1x"}), "--volume-step expects a number of voxels, got '1x'");
+  EXPECT_EQ(usage_error_of({"--orbit", "120"}), "--orbit expects -90 to 90 degrees per frame, got '120'");
   EXPECT_EQ(usage_error_of({"--cascades", "2", "--clusters", "3"}),
             "--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
   CaptureOptions options;

@@ -33,7 +33,7 @@ TimingReport sample_timings() {
   t.frame_gpu_ms = {4.25, 5.0, 6.0};
   t.frame_wall_ms = {10.0, 11.0, 12.0};
   t.frame_submit_wall_ms = {5.0, 5.5, 6.5};
-  t.frames = {{4.25, 10.0, 5.0}, {5.0, 11.0, 5.5}, {6.0, 12.0, 6.5}};
+  t.frames = {{4.25, 10.0, 5.0, 1.5, 3}, {5.0, 11.0, 5.5, 0.5, 0}, {6.0, 12.0, 6.5, 0.25, 1}};
   return t;
 }
 
@@ -102,6 +102,7 @@ SettingsReport sample_settings() {
   s.height = 54;
   s.frames = 3;
   s.frames_in_flight = 1;
+  s.orbit_degrees = 1.5f;
   s.validation = true;
   s.volume_shading = {scene::VolumeShading::Mode::reference, 4, 0.5f};
   s.compare_volume_shading = true;

@@ -60,20 +60,47 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
   white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
 }
 
+namespace {
+
+// The mesh's vertices as the shaders read them, and their tangents (zero without).
+void append_vertices(const scene::Mesh& mesh, std::vector<GpuVertex>& vertices, std::vector<glm::vec4>& tangents) {
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0, 1, 0);
+    glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0);
+    const glm::vec3& p = mesh.positions[v];
+    vertices.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}});
+    tangents.push_back(v < mesh.tangents.size() ? mesh.tangents[v] : glm::vec4(0.0f));
+  }
+}
+
+}  // namespace
+
+void OpaquePass::update_mesh(uint32_t mesh, const scene::Mesh& now) {
+  const VertexRange range = mesh_vertices_.at(mesh);
+  if (now.positions.size() != range.count)
+    throw std::invalid_argument("mesh '" + now.name + "': " + std::to_string(now.positions.size()) +
+                                " vertices where the scene had " + std::to_string(range.count) +
+                                "; set the scene again to change its topology");
+  if (range.count == 0) return;
+  std::vector<GpuVertex> vertices;
+  std::vector<glm::vec4> tangents;
+  append_vertices(now, vertices, tangents);
+  gpu::upload_buffer(ctx_, vertices_, vertices.data(), vertices.size() * sizeof(GpuVertex),
+                     range.first * sizeof(GpuVertex));
+  gpu::upload_buffer(ctx_, tangents_, tangents.data(), tangents.size() * sizeof(glm::vec4),
+                     range.first * sizeof(glm::vec4));
+}
+
 void OpaquePass::set_scene(const scene::Scene& scene) {
   std::vector<GpuVertex> vertices;
   std::vector<glm::vec4> tangents;  // parallel to vertices
   std::vector<uint32_t> indices;
   draws_.clear();
+  mesh_vertices_.clear();
   for (const scene::Mesh& mesh : scene.meshes) {
     Draw draw{uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size()), mesh.material};
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0, 1, 0);
-      glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0);
-      const glm::vec3& p = mesh.positions[v];
-      vertices.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}});
-      tangents.push_back(v < mesh.tangents.size() ? mesh.tangents[v] : glm::vec4(0.0f));
-    }
+    mesh_vertices_.push_back({uint32_t(vertices.size()), uint32_t(mesh.positions.size())});
+    append_vertices(mesh, vertices, tangents);
     indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
     if (draw.index_count > 0) draws_.push_back(draw);
   }

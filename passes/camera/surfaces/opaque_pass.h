@@ -29,6 +29,10 @@ class OpaquePass {
 
   OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   void set_scene(const scene::Scene& scene);
+  // Mesh `mesh` of the scene set (its index in scene.meshes) as it now is: the same
+  // vertex count and triangles, moved or deformed. Uploads its vertices (waiting for the
+  // copy; no frame may be in flight). Throws std::invalid_argument for another count.
+  void update_mesh(uint32_t mesh, const scene::Mesh& now);
 
   struct Outputs {
     rg::TextureHandle color;  // written as ColorAttachment
@@ -59,6 +63,10 @@ class OpaquePass {
   std::vector<gpu::Image> textures_;
   gpu::Image white_;
   std::vector<Draw> draws_;
+  struct VertexRange {
+    uint32_t first, count;
+  };
+  std::vector<VertexRange> mesh_vertices_;  // per scene mesh, in vertices_ and tangents_
   std::vector<scene::Material> scene_materials_;  // their textures per draw, and their alpha as casters
 };
 

@@ -176,4 +176,23 @@ void PageTable::invalidate_all() {
   for (uint32_t e = 0; e < entries(); ++e) invalidate(e);
 }
 
+uint32_t PageTable::invalidate_overlapping(std::span<const UvRect> rects) {
+  uint32_t count = 0;
+  for (uint32_t e = 0; e < entries(); ++e) {
+    if (pages_[e].slot == kNoSlot) continue;
+    const UvRect page = window(key(e), 1.0f);
+    if (std::none_of(rects.begin(), rects.end(), [&](const UvRect& r) { return r.overlaps(page); })) continue;
+    invalidate(e);
+    ++count;
+  }
+  return count;
+}
+
+UvRect PageTable::window(const PageKey& key, float margin_texels) const {
+  const float raster = float(std::max(virtual_resolution_ >> key.level, page_size_));
+  const glm::vec2 first = glm::vec2(key.page * page_size_) - margin_texels;
+  const glm::vec2 end = glm::vec2((key.page + 1u) * page_size_) + margin_texels;
+  return {first / raster, end / raster};
+}
+
 }  // namespace avsm::passes

@@ -16,6 +16,8 @@
 // fit in about 85% of the pool; it shrinks back when they would fit again.
 #include <glm/vec2.hpp>
 
+#include "passes/shadows/uv_rect.h"
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -74,6 +76,12 @@ class PageTable {
   // root excepted, which is rebuilt first) and is built again when next requested.
   void invalidate(uint32_t entry);
   void invalidate_all();
+  // Invalidates every resident page whose window (widened by a texel of its level: hair
+  // ribbons are widened to a texel) overlaps one of `rects`; returns how many.
+  uint32_t invalidate_overlapping(std::span<const UvRect> rects);
+  // The part of the map's uv square that page `key` covers, widened by `margin_texels`
+  // texels of its level on every side.
+  UvRect window(const PageKey& key, float margin_texels = 0.0f) const;
 
   // The page table as the GPU reads it: a word per entry, 0 or slot + 1.
   const std::vector<uint32_t>& table_words() const { return table_; }
