@@ -84,6 +84,9 @@ void check_light(const Precondition& check, const Light& light, size_t index) {
   check.require(light.filter == ShadowFilter::point || light.filter == ShadowFilter::bilinear ||
                     light.filter == ShadowFilter::trilinear,
                 who + ": filter " + std::to_string(int(light.filter)) + " is not a ShadowFilter");
+  if (light.paged)
+    check.require(std::isfinite(light.page_pool_mib),
+                  who + ": page_pool_mib " + text(light.page_pool_mib) + " must be finite");
 }
 
 // A count of the API's (unsigned) as the scene light's int, without wrapping to negative.
@@ -111,6 +114,11 @@ scene::Light to_scene(const Light& light) {
   out.shadow.filter = to_scene(light.filter);
   out.shadow.sort = light.sort;
   out.shadow.build = light.fixed_memory_build ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists;
+  out.shadow.layout = light.paged ? scene::ShadowLayout::paged : scene::ShadowLayout::dense;
+  out.shadow.virtual_resolution = to_int(light.virtual_resolution);
+  out.shadow.page_size = to_int(light.page_size);
+  out.shadow.page_pool_mib = light.page_pool_mib;
+  out.shadow.page_builds_per_frame = to_int(light.page_builds_per_frame);
   return out;
 }
 
@@ -368,7 +376,7 @@ std::vector<LightStats> Shadows::finish_frame(uint32_t frame_slot) {
   for (const passes::LightShadowStats& s : impl_->maps.frame_stats())
     result.push_back({s.light, s.nodes, s.resolution, s.mip_levels, s.map_bytes, s.capture_bytes, s.capture_requested,
                       s.capture_capacity, s.overflowed, s.grew,
-                      s.fixed_build ? s.fixed_build->transient_bytes() : 0, s.maps});
+                      s.fixed_build ? s.fixed_build->transient_bytes() : 0, s.maps, s.pages});
   return result;
 }
 

@@ -37,27 +37,30 @@ ShadowLookupBuffers lookup_buffers(const ShadowLookupResources& lookup) {
     return range.buffer ? region(range) : whole(lookup.unused_buffer);
   };
   return {region(lookup.parameters), or_unused(lookup.atlas), or_unused(lookup.list_heads),
-          or_unused(lookup.list_nodes)};
+          or_unused(lookup.list_nodes), or_unused(lookup.page_request_bits)};
 }
 
-std::array<VkDescriptorSetLayoutBinding, 4> shadow_lookup_layout(const ShadowLookupBindings& bindings,
+std::array<VkDescriptorSetLayoutBinding, 5> shadow_lookup_layout(const ShadowLookupBindings& bindings,
                                                                  VkShaderStageFlags stages) {
-  const std::set<uint32_t> distinct{bindings.parameters, bindings.atlas, bindings.list_heads, bindings.list_nodes};
-  if (distinct.size() != 4)
+  const std::set<uint32_t> distinct{bindings.parameters, bindings.atlas, bindings.list_heads, bindings.list_nodes,
+                                    bindings.page_requests};
+  if (distinct.size() != 5)
     throw std::invalid_argument("avsm::shadow_lookup_layout: bindings " + std::to_string(bindings.parameters) + ", " +
                                 std::to_string(bindings.atlas) + ", " + std::to_string(bindings.list_heads) + ", " +
-                                std::to_string(bindings.list_nodes) +
-                                " (parameters, atlas, list_heads, list_nodes) must be four different numbers");
+                                std::to_string(bindings.list_nodes) + ", " + std::to_string(bindings.page_requests) +
+                                " (parameters, atlas, list_heads, list_nodes, page_requests) must be five different "
+                                "numbers");
   if (stages == 0)
     throw std::invalid_argument("avsm::shadow_lookup_layout: stages is 0; give the stages of the shaders that "
                                 "include common/shadow_lookup.glsl");
   const auto entry = [&](uint32_t binding) {
     return VkDescriptorSetLayoutBinding{binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
   };
-  return {entry(bindings.parameters), entry(bindings.atlas), entry(bindings.list_heads), entry(bindings.list_nodes)};
+  return {entry(bindings.parameters), entry(bindings.atlas), entry(bindings.list_heads), entry(bindings.list_nodes),
+          entry(bindings.page_requests)};
 }
 
-std::array<VkWriteDescriptorSet, 4> ShadowLookupBuffers::writes(VkDescriptorSet set,
+std::array<VkWriteDescriptorSet, 5> ShadowLookupBuffers::writes(VkDescriptorSet set,
                                                                 const ShadowLookupBindings& bindings) const {
   const auto write = [&](uint32_t binding, const VkDescriptorBufferInfo& info) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -69,7 +72,8 @@ std::array<VkWriteDescriptorSet, 4> ShadowLookupBuffers::writes(VkDescriptorSet 
     return w;
   };
   return {write(bindings.parameters, parameters), write(bindings.atlas, atlas),
-          write(bindings.list_heads, list_heads), write(bindings.list_nodes, list_nodes)};
+          write(bindings.list_heads, list_heads), write(bindings.list_nodes, list_nodes),
+          write(bindings.page_requests, page_requests)};
 }
 
 // One executor per frame slot: an executor's transients belong to the frame it last
@@ -115,8 +119,9 @@ ShadowLookupBuffers Shadows::record(VkCommandBuffer cmd, const ShadowFrame& fram
   gpu::memory_barrier(cmd, {frame.casters_written.stages | frame.lookup_read_stages, frame.casters_written.access},
                       {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT});
   recorder_->executor(frame.frame_slot).record(graph, cmd);
+  // (Paged lights: the lookups also write the request bits the frame cleared.)
   gpu::memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
-                      {frame.lookup_read_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT});
+                      {frame.lookup_read_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
   return lookup_buffers(list.lookup);
 }
 

@@ -90,6 +90,10 @@ ShadowInputs inputs_of(const ShadowLookupResources& lookup, const std::vector<De
   inputs.atlas = range(lookup.atlas);
   inputs.list_heads = range(lookup.list_heads);
   inputs.list_nodes = range(lookup.list_nodes);
+  if (lookup.page_requests != kNoPassResource) {
+    inputs.page_requests = declared.at(lookup.page_requests).buffer;
+    inputs.page_request_bits = range(lookup.page_request_bits);
+  }
   inputs.unused_buffer = lookup.unused_buffer;
   inputs.frame_slot = lookup.frame_slot;
   return inputs;
@@ -143,6 +147,8 @@ ShadowInputs add_to_graph(rg::Graph& graph, const ShadowPassList& list) {
   for (uint32_t index : list.lookup.maps) declared_persistent(graph, list, declared, index);
   for (uint32_t index : list.lookup.lists) declared_persistent(graph, list, declared, index);
   if (list.lookup.records != kNoPassResource) declared_persistent(graph, list, declared, list.lookup.records);
+  if (list.lookup.page_requests != kNoPassResource)
+    declared_persistent(graph, list, declared, list.lookup.page_requests);
   return inputs_of(list.lookup, declared);
 }
 

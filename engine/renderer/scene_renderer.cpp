@@ -201,7 +201,7 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (hair_quality_) hair_quality_->add_to_graph(graph, opaque.depth, frame);
   if (probes_) probes_->add_to_graph(graph, shadows);
   if (texel_curves_) texel_curves_->add_to_graph(graph, shadows);
-  if (light_images_) light_images_->add_to_graph(graph, shadows);
+  if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
   return graph;
 }
 

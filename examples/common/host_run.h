@@ -34,6 +34,7 @@ struct Options {
   bool validation = false, check = false, shadows = true;
   bool fixed_memory_build = false;  // build the map straight from the casters (avsm::Light)
   bool point_light = false;         // a point light (a cube of six maps) instead of the sun
+  bool paged = false;               // a paged map: pages built as the shading asks for them
 };
 
 inline Options parse_options(int argc, char** argv) {
@@ -49,9 +50,10 @@ inline Options parse_options(int argc, char** argv) {
     else if (arg == "--no-shadows") options.shadows = false;
     else if (arg == "--fixed-memory-build") options.fixed_memory_build = true;
     else if (arg == "--point-light") options.point_light = true;
+    else if (arg == "--paged") options.paged = true;
     else throw std::invalid_argument("unknown option '" + arg +
                                      "' (--out DIR --size N --validation --check --no-shadows --fixed-memory-build "
-                                     "--point-light)");
+                                     "--point-light --paged)");
   }
   g_point_light = options.point_light;
   return options;
@@ -71,6 +73,12 @@ inline avsm::Light make_light(const Options& options) {
   light.nodes = 8;
   light.resolution = 256;
   light.fixed_memory_build = options.fixed_memory_build;
+  if (options.paged) {  // a 4096^2 virtual map in 64^2 pages, of which the shading asks for a few
+    light.paged = true;
+    light.virtual_resolution = 4096;
+    light.page_size = 64;
+    light.page_pool_mib = 8.0f;
+  }
   return light;
 }
 
@@ -95,6 +103,11 @@ inline void print_stats(int frame, const std::vector<avsm::LightStats>& stats) {
                 "%llu bytes of fixed build\n", frame, s.name.c_str(), s.maps, s.nodes, s.resolution, s.resolution,
                 (unsigned long long)s.segments_captured, (unsigned long long)s.segment_capacity,
                 s.overflowed ? ", overflowed" : "", (unsigned long long)s.fixed_build_bytes);
+  for (const avsm::LightStats& s : stats)
+    if (s.pages)
+      std::printf("frame %d light '%s': pages asked for %u, resident %u of %u, built %u, pending %u\n", frame,
+                  s.name.c_str(), s.pages->requested, s.pages->resident, s.pages->slots, s.pages->built,
+                  s.pages->pending);
 }
 
 // Writes ground.png, checks the picture (--check) and counts the engine's validation

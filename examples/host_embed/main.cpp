@@ -89,25 +89,29 @@ class GroundShading {
     image_ = avsm::gpu::Image::create(ctx, desc);
   }
 
-  // The pass reads the maps (declare_reads) and writes the ground image, which ends the
-  // frame ready to be copied out.
+  // The pass reads the maps (declare_reads), asks paged maps for the pages it reads
+  // (declare_page_requests) and writes the ground image, which ends the frame ready to
+  // be copied out.
   void add_to_graph(rg::Graph& graph, const avsm::ShadowInputs& shadows) {
     const uint32_t size = image_.desc().width;
     rg::TextureHandle image = rg::vulkan::import(graph, "host ground image", image_, rg::ImportState::none(),
                                                  rg::ImportState::of(rg::Usage::TransferSrc));
     struct Data {
       rg::TextureHandle image;
+      rg::BufferHandle page_requests;
     };
     graph.add_pass<Data>("host ground shading", rg::QueueType::Compute,
         [&](rg::PassBuilder& b, Data& d) {
           d.image = b.write(image, rg::Usage::StorageWrite);
           shadows.declare_reads(b);
+          d.page_requests = shadows.declare_page_requests(b);
         },
         [this, shadows, size](const Data& d, rg::PassContext& c) {
           pipeline_.bind(c.cmd());
           avsm::gpu::Bindings bindings(ctx_, pipeline_);
           bindings.image("ground_image", c.view(d.image), c.layout(d.image));
           shadows.bind(bindings, c);
+          shadows.bind_page_requests(bindings, c, d.page_requests);
           bindings.push(c.cmd());
           pipeline_.push_constants(c.cmd(), ground_push());
           pipeline_.dispatch_threads(c.cmd(), size, size);
@@ -150,7 +154,8 @@ int run(const Options& options) {
     const auto finished = [&](const HostFrames::Slot& slot) { print_stats(slot.frame, shadows.finish_frame(slot.index)); };
     const avsm::Camera camera = make_camera(options);
     // Three frames, two in flight: frame 1 is recorded while frame 0 runs, frame 2 reuses
-    // frame 0's slot once its fence signalled (and a grown capture buffer, had it overflowed).
+    // frame 0's slot once its fence signalled (and a grown capture buffer, had it
+    // overflowed; a paged map's pages that frame 0's shading asked for).
     constexpr int kFrames = 3;
     for (int frame = 0; frame < kFrames; ++frame) {
       HostFrames::Slot& slot = frames.acquire(frame, finished);

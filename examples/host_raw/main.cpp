@@ -33,7 +33,8 @@ using avsm::shared::GroundPush;
 
 // Where the shader has the lookup's buffers (shaders/ground_shading.comp's macros).
 constexpr uint32_t kLookupSet = 1;
-constexpr avsm::ShadowLookupBindings kLookupBindings{/*parameters=*/3, /*atlas=*/0, /*list_heads=*/5, /*list_nodes=*/1};
+constexpr avsm::ShadowLookupBindings kLookupBindings{/*parameters=*/3, /*atlas=*/0, /*list_heads=*/5, /*list_nodes=*/1,
+                                                     /*page_requests=*/2};
 
 // ---------------------------------------------------------------------------------------
 // The host's own memory: buffers in host-visible memory (filled and read through a
@@ -169,9 +170,10 @@ class GroundShading {
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {size_, size_, 1};
     vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1, &copy);
+    // The picture, and the page requests the shading wrote (finish_frame() reads them).
     VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
     to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
@@ -319,16 +321,19 @@ int run(const Options& options) {
     frame.camera = make_camera(options);
     frame.casters = casters.views;  // written through mapped memory before the submission: already visible
     frame.lookup_read_stages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;  // only the ground shading reads the shadows
-    // Two frames: the second reuses what the first set up (the plan, the transients).
+    // Two frames: the second reuses what the first set up (the plan, the transients). A
+    // paged map builds in its second frame the pages its first frame's shading asked
+    // for; a third shows that nothing more is asked for.
+    const int frame_count = options.paged ? 3 : 2;
     const auto finished = [&](const HostFrames::Slot& slot) { print_stats(slot.frame, shadows.finish_frame(slot.index)); };
-    for (int n = 0; n < 2; ++n) {
+    for (int n = 0; n < frame_count; ++n) {
       HostFrames::Slot& slot = frames.acquire(n, finished);
       frame.frame_slot = slot.index;
       frames.submit(slot, [&](VkCommandBuffer cmd) {
         ground.record(cmd, options.shadows ? shadows.record(cmd, frame) : avsm::lookup_buffers(shadows.unshadowed_lookup()));
       });
     }
-    frames.finish_all(2, finished);
+    frames.finish_all(frame_count, finished);
     failures += report_picture(ground.picture(), options, context);
   }
   return failures + report_validation(host, options);

@@ -43,6 +43,7 @@ struct ShadowInputs {
   // Paged maps' request bits (shaders/shared/pages.h), cleared by the frame: the one pass
   // whose receivers ask for pages (the opaque pass) writes them; invalid without paged maps.
   rg::BufferHandle page_requests;
+  gpu::BufferRange page_request_bits;  // its bytes (this frame slot's), for a host's descriptor
   // The frame slot the graph records into (passes/frame/frames_in_flight.h): passes with a
   // buffer per frame in flight (readbacks) write this slot's.
   uint32_t frame_slot = 0;

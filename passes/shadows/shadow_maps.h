@@ -147,6 +147,10 @@ class ShadowMaps {
   bool is_paged(uint32_t light) const { return is_paged(lights_.at(light)); }
   // Its pages' figures as the last finished frame left them (summed over a point light's faces).
   const PageTable* page_table(uint32_t map) const { return maps_.at(map).pages.get(); }
+  // Counts the frames declared that change light `light`'s maps: every frame for dense
+  // maps (rebuilt each frame), only frames that build pages or change the page table for
+  // paged ones. What reads a map may skip a frame whose revision it has already read.
+  uint64_t map_revision(uint32_t light) const;
   bool has_reference() const { return options_.keep_reference; }
   // Bytes of the one buffer every map lives in.
   uint64_t atlas_bytes() const { return atlas_ ? atlas_.size() : 0; }
@@ -202,6 +206,8 @@ class ShadowMaps {
     uint64_t page_pool_offset = 0;
     uint32_t page_requests_offset = shared::kNoPageRequests;
     FrameBuffers page_counters;
+    uint64_t revision = 0;                 // frames declared that changed it (map_revision())
+    std::vector<uint32_t> declared_table;  // paged: the page table the last frame declared
   };
   // Maps start on this many bytes in the atlas: above every device's storage buffer offset
   // alignment (the mips pass binds windows of a map at aligned offsets).

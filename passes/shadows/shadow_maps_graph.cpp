@@ -25,13 +25,17 @@ ShadowInputs ShadowMaps::add_to_graph(rg::Graph& graph, const View& camera, cons
   inputs.atlas = atlas_ ? gpu::BufferRange(atlas_) : gpu::BufferRange();
   inputs.list_heads = list_heads_ ? gpu::BufferRange(list_heads_) : gpu::BufferRange();
   inputs.list_nodes = list_nodes_ ? gpu::BufferRange(list_nodes_) : gpu::BufferRange();
-  if (page_requests_) inputs.page_requests = add_page_requests_clear(graph, slot);
+  if (page_requests_) {
+    inputs.page_requests = add_page_requests_clear(graph, slot);
+    inputs.page_request_bits = page_requests_[slot];
+  }
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
     if (map.pages) {
       add_page_builds(graph, map, casters, slot, inputs);
       continue;
     }
+    ++map.revision;  // a dense map is built every frame
     const scene::ShadowSettings& settings = light.light.shadow;
     const ShadowCasters map_casters = casters_of(map, casters);
     const bool fixed = settings.build == scene::ShadowBuild::fixed;

@@ -111,7 +111,12 @@ struct ShadowLookupResources {
   std::vector<uint32_t> maps;          // every map the frame builds (regions of `atlas`)
   std::vector<uint32_t> lists;         // the looked-up capture lists (regions of list_heads/nodes)
   PassBufferRange parameters, atlas, list_heads, list_nodes;
-  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists
+  // Paged maps' request bits, cleared by the frame, which the lookups that ask for pages
+  // write (shaders/common/shadow_lookup.glsl, AVSM_SHADOW_PAGE_REQUESTS_BINDING) and
+  // finish_frame() reads; kNoPassResource and no buffer without paged maps.
+  uint32_t page_requests = kNoPassResource;
+  PassBufferRange page_request_bits;
+  VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas, no lists or no page requests
   uint32_t frame_slot = 0;
 };
 

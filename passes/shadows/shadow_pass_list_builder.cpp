@@ -195,6 +195,10 @@ ShadowLookupResources lookup_of(const ShadowInputs& inputs) {
   lookup.atlas = range(inputs.atlas);
   lookup.list_heads = range(inputs.list_heads);
   lookup.list_nodes = range(inputs.list_nodes);
+  if (inputs.page_requests.valid()) {
+    lookup.page_requests = inputs.page_requests.index;
+    lookup.page_request_bits = range(inputs.page_request_bits);
+  }
   lookup.unused_buffer = inputs.unused_buffer;
   lookup.frame_slot = inputs.frame_slot;
   return lookup;

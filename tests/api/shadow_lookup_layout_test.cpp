@@ -40,13 +40,15 @@ const gpu::DescriptorBinding& named(const std::vector<gpu::DescriptorBinding>& b
   throw std::runtime_error("no binding " + name);
 }
 
-// The shader's four blocks are where `expected` says, in `set`, and nothing else is.
+// The shader's blocks (four, and the page requests where it asks for pages) are where
+// `expected` says, in `set`, and nothing else is.
 void expect_layout(const std::vector<gpu::DescriptorBinding>& reflected, uint32_t set,
-                   const ShadowLookupBindings& expected) {
-  ASSERT_EQ(reflected.size(), 4u);
+                   const ShadowLookupBindings& expected, bool asks_for_pages) {
+  ASSERT_EQ(reflected.size(), asks_for_pages ? 5u : 4u);
   const auto layout = shadow_lookup_layout(expected, VK_SHADER_STAGE_COMPUTE_BIT);
-  const char* blocks[4] = {"ShadowParameters", "ShadowMapAtlas", "ShadowListHeads", "ShadowListNodes"};
-  for (int i = 0; i < 4; ++i) {
+  const char* blocks[5] = {"ShadowParameters", "ShadowMapAtlas", "ShadowListHeads", "ShadowListNodes",
+                           "ShadowPageRequests"};
+  for (int i = 0; i < (asks_for_pages ? 5 : 4); ++i) {
     const gpu::DescriptorBinding& b = named(reflected, blocks[i]);
     EXPECT_EQ(b.set, set) << blocks[i];
     EXPECT_EQ(b.binding, layout[i].binding) << blocks[i];
@@ -60,12 +62,16 @@ void expect_layout(const std::vector<gpu::DescriptorBinding>& reflected, uint32_
 TEST(ShadowLookupLayout, HostChosenSetAndBindingsMatchTheLayout) {
   const std::vector<gpu::DescriptorBinding> reflected = lookup_bindings(
       "#define AVSM_SHADOW_SET 2\n#define AVSM_SHADOW_PARAMETERS_BINDING 7\n#define AVSM_SHADOW_ATLAS_BINDING 2\n"
-      "#define AVSM_SHADOW_LIST_HEADS_BINDING 9\n#define AVSM_SHADOW_LIST_NODES_BINDING 4\n");
-  expect_layout(reflected, 2, {7, 2, 9, 4});
+      "#define AVSM_SHADOW_LIST_HEADS_BINDING 9\n#define AVSM_SHADOW_LIST_NODES_BINDING 4\n"
+      "#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 5\n");
+  expect_layout(reflected, 2, {7, 2, 9, 4, 5}, /*asks_for_pages=*/true);
 }
 
 TEST(ShadowLookupLayout, OneBindingMeansFourConsecutiveInSetZero) {
-  expect_layout(lookup_bindings("#define AVSM_SHADOW_BINDING 4\n"), 0, ShadowLookupBindings::consecutive(4));
+  // The layout's fifth entry (the page requests, at 8) is one this shader leaves unused.
+  expect_layout(lookup_bindings("#define AVSM_SHADOW_BINDING 4\n"), 0, ShadowLookupBindings::consecutive(4),
+                /*asks_for_pages=*/false);
+  EXPECT_EQ(ShadowLookupBindings::consecutive(4).page_requests, 8u);
 }
 
 TEST(ShadowLookupLayout, MissingBindingsAreACompileErrorThatSaysWhatToDefine) {
@@ -85,6 +91,7 @@ TEST(ShadowLookupLayout, RejectsSharedNumbersAndNoStages) {
     EXPECT_NE(std::string(e.what()).find("avsm::shadow_lookup_layout: bindings 1, 2, 1, 3"), std::string::npos)
         << e.what();
   }
+  EXPECT_THROW(shadow_lookup_layout({0, 1, 2, 3, 3}, VK_SHADER_STAGE_COMPUTE_BIT), std::invalid_argument);
   try {
     shadow_lookup_layout({}, 0);
     FAIL() << "accepted no stages";
@@ -99,11 +106,13 @@ TEST(ShadowLookupLayout, WritesPutEachBufferAtItsBinding) {
   buffers.atlas.buffer = (VkBuffer)uintptr_t(0x20);
   buffers.list_heads.buffer = (VkBuffer)uintptr_t(0x30);
   buffers.list_nodes.buffer = (VkBuffer)uintptr_t(0x40);
+  buffers.page_requests.buffer = (VkBuffer)uintptr_t(0x50);
   const VkDescriptorSet set = (VkDescriptorSet)uintptr_t(0x99);
-  const auto writes = buffers.writes(set, {3, 0, 5, 1});
-  const uint32_t bindings[4] = {3, 0, 5, 1};
-  const VkDescriptorBufferInfo* infos[4] = {&buffers.parameters, &buffers.atlas, &buffers.list_heads, &buffers.list_nodes};
-  for (int i = 0; i < 4; ++i) {
+  const auto writes = buffers.writes(set, {3, 0, 5, 1, 2});
+  const uint32_t bindings[5] = {3, 0, 5, 1, 2};
+  const VkDescriptorBufferInfo* infos[5] = {&buffers.parameters, &buffers.atlas, &buffers.list_heads,
+                                            &buffers.list_nodes, &buffers.page_requests};
+  for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(writes[i].sType, VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     EXPECT_EQ(writes[i].dstSet, set);
     EXPECT_EQ(writes[i].dstBinding, bindings[i]);

@@ -14,6 +14,7 @@ ShadowDebugPass::ShadowDebugPass(gpu::Context& ctx, const gpu::ShaderLibrary& sh
 
 void ShadowDebugPass::set_lights(const ShadowMaps& shadows) {
   images_.clear();
+  drawn_revisions_.assign(shadows.light_count(), ~uint64_t(0));  // none drawn yet
   for (uint32_t light = 0; light < shadows.light_count(); ++light) {
     gpu::ImageDesc desc;
     // A paged map's picture is of its virtual map at kPagedPictureSize, through its pages.
@@ -26,8 +27,11 @@ void ShadowDebugPass::set_lights(const ShadowMaps& shadows) {
   }
 }
 
-void ShadowDebugPass::add_to_graph(rg::Graph& graph, const ShadowInputs& inputs) {
+void ShadowDebugPass::add_to_graph(rg::Graph& graph, const ShadowInputs& inputs, const ShadowMaps& maps) {
   for (uint32_t light = 0; light < images_.size(); ++light) {
+    const uint64_t revision = maps.map_revision(light);
+    if (revision == drawn_revisions_[light]) continue;
+    drawn_revisions_[light] = revision;
     gpu::Image& image = images_[light];
     const std::string name = "light " + std::to_string(light) + " debug image";
     // Kept from frame to frame (read back, copied by the viewer): waits for the previous frame's readers.

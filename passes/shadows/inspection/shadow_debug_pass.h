@@ -27,14 +27,17 @@ class ShadowDebugPass {
   ShadowDebugPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   // One image per light of `shadows`, at its map resolution.
   void set_lights(const ShadowMaps& shadows);
-  // Adds "light <i> debug image" for every light; images in kOutputLayout after the frame.
-  void add_to_graph(rg::Graph& graph, const ShadowInputs& inputs);
+  // Adds "light <i> debug image" for every light whose maps changed since its picture
+  // was drawn (ShadowMaps::map_revision(): a paged map that built nothing keeps its
+  // picture); images in kOutputLayout after the frame.
+  void add_to_graph(rg::Graph& graph, const ShadowInputs& inputs, const ShadowMaps& maps);
   const std::vector<gpu::Image>& images() const { return images_; }
 
  private:
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   std::vector<gpu::Image> images_;
+  std::vector<uint64_t> drawn_revisions_;  // per light: the map revision its picture shows
 };
 
 }  // namespace avsm::passes

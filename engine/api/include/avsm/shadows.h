@@ -29,12 +29,14 @@
 //
 // In the shading pass's GLSL (include directory: ShaderLocation::glsl_include_dir()):
 //   #define AVSM_SHADOW_BINDING 4                  // any 4 free bindings
+//   #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 8    // paged lights: where the lookups ask for pages
 //   #include "common/shadow_lookup.glsl"
 //   float t = surface_light_transmittance(light_index, p, normal, to_light);  // surfaces
 //   float t = light_transmittance(light_index, p);                            // volumes, hair
 // The shader is the host's: compile it with compile_glsl() or with glslangValidator and
 // -I <glsl_include_dir>. Its four buffers are ShadowLookupResources' parameters, atlas,
-// list_heads and list_nodes (unused_buffer where one is absent).
+// list_heads and list_nodes (unused_buffer where one is absent); with paged lights a
+// fifth, page_request_bits, which the lookups write (declare it as a storage write).
 //
 // Preconditions: every function below says what must hold of its arguments. set_lights()
 // and pass_list() check all of it before they change anything, and a violation throws
@@ -51,10 +53,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "passes/shadows/shadow_casters.h"
+#include "passes/shadows/pages/page_table.h"
 #include "passes/shadows/shadow_clusters.h"
 #include "passes/shadows/shadow_pass_list.h"
 #include "scene/bounds.h"
@@ -132,12 +136,26 @@ struct Light {
   // Build the map straight from the casters, in fixed memory (no capture lists;
   // volumes need their density atlas): see docs/shadows.md, "The fixed-memory build".
   bool fixed_memory_build = false;
+  // Paged (docs/shadows.md, "Paged maps"): instead of one map of `resolution`, a virtual
+  // map of virtual_resolution^2 texels (a power of two, 256 to 16384) in pages of
+  // page_size^2 (32, 64 or 128) held in a pool of page_pool_mib, of which only the pages
+  // the lookups ask for are built, and kept from frame to frame. The shading pass must
+  // ask (AVSM_SHADOW_PAGE_REQUESTS_BINDING, ShadowLookupBuffers::page_requests); pages
+  // arrive a frame after they are asked for, at most page_builds_per_frame of them per
+  // frame (0: no limit). AVSM from capture lists only, no cascades or clusters, and
+  // directional lights fitted around the casters (not fit_to_view).
+  bool paged = false;
+  uint32_t virtual_resolution = 16384;
+  uint32_t page_size = 64;
+  float page_pool_mib = 32.0f;
+  uint32_t page_builds_per_frame = 0;
 
   bool operator==(const Light&) const = default;
 };
 
-// The camera the host shades from; only trilinear filtering uses it (a pixel's
-// footprint picks the map's mip level). Every number must be finite.
+// The camera the host shades from; trilinear filtering and paged lights use it (a
+// pixel's footprint picks the map's mip level, or the page level it asks for). Every
+// number must be finite.
 struct Camera {
   glm::vec3 position{0.0f};
   float vertical_fov_radians = 1.0f;  // in (0, pi)
@@ -161,6 +179,9 @@ struct LightStats {
   bool grew = false;                // the capture buffer grew: the next frame fits
   uint64_t fixed_build_bytes = 0;   // fixed build: its depth image and hair bins this frame
   uint32_t maps = 1;                // point: 6 faces; cascades; clusters
+  // Paged lights: pages asked for, resident, built, invalidated, evicted, pending (asked
+  // for and served by a coarser level this frame) and the pool's size.
+  std::optional<passes::PageStats> pages;
 };
 
 // What clustered maps group: one caster's bounds and which draws, strand segments or
@@ -171,32 +192,41 @@ using passes::CasterObject;
 // Your command buffer and your descriptor sets: plain Vulkan values, no rendergraph type.
 // (Shadows::record() below records a frame; docs/embedding.md, "Your command buffer: record()".)
 
-// Where the host's shader has the lookup's four storage buffers (common/shadow_lookup.glsl:
-// AVSM_SHADOW_PARAMETERS_BINDING, _ATLAS_, _LIST_HEADS_, _LIST_NODES_BINDING, in the set
-// AVSM_SHADOW_SET). Any four distinct numbers of one set.
+// Where the host's shader has the lookup's storage buffers (common/shadow_lookup.glsl:
+// AVSM_SHADOW_PARAMETERS_BINDING, _ATLAS_, _LIST_HEADS_, _LIST_NODES_BINDING, and
+// AVSM_SHADOW_PAGE_REQUESTS_BINDING where the lookups ask for paged maps' pages, in the
+// set AVSM_SHADOW_SET). Five distinct numbers of one set; a shader without the page
+// requests leaves its binding unused.
 struct ShadowLookupBindings {
-  uint32_t parameters = 0, atlas = 1, list_heads = 2, list_nodes = 3;
-  // first, first + 1, first + 2, first + 3: what #define AVSM_SHADOW_BINDING first means.
-  static ShadowLookupBindings consecutive(uint32_t first) { return {first, first + 1, first + 2, first + 3}; }
+  uint32_t parameters = 0, atlas = 1, list_heads = 2, list_nodes = 3, page_requests = 4;
+  // first .. first + 3: what #define AVSM_SHADOW_BINDING first means; the page requests
+  // at first + 4 (#define AVSM_SHADOW_PAGE_REQUESTS_BINDING to it).
+  static ShadowLookupBindings consecutive(uint32_t first) {
+    return {first, first + 1, first + 2, first + 3, first + 4};
+  }
 };
 
 // The entries the lookup needs in the host's VkDescriptorSetLayout (ordinary or push
 // descriptor): at each of `bindings`, one VK_DESCRIPTOR_TYPE_STORAGE_BUFFER visible to
 // `stages` (the stages of the shaders that include the lookup), no immutable samplers.
 // std::invalid_argument when two bindings share a number or `stages` is 0.
-std::array<VkDescriptorSetLayoutBinding, 4> shadow_lookup_layout(const ShadowLookupBindings& bindings,
+std::array<VkDescriptorSetLayoutBinding, 5> shadow_lookup_layout(const ShadowLookupBindings& bindings,
                                                                  VkShaderStageFlags stages);
 
-// What the host writes at those bindings: the lookup's four buffer ranges (offset and
-// size as the lookup gives them; unused_buffer whole where a range is absent).
+// What the host writes at those bindings: the lookup's buffer ranges (offset and size
+// as the lookup gives them; unused_buffer whole where a range is absent).
 // They change when lights change and from one frame slot to the next, so write them
 // after every record() (into the set of that frame slot).
+// page_requests: the paged lights' request bits, cleared by the frame's shadow work;
+// the lookups that ask for pages write them, and finish_frame() reads them on the CPU.
+// After those lookups the host makes their writes visible to the host (a barrier from
+// their stages' SHADER_STORAGE_WRITE to HOST / HOST_READ) before the frame's fence.
 struct ShadowLookupBuffers {
-  VkDescriptorBufferInfo parameters{}, atlas{}, list_heads{}, list_nodes{};
-  // Four STORAGE_BUFFER writes into `set` at `bindings`, for vkUpdateDescriptorSets (or
+  VkDescriptorBufferInfo parameters{}, atlas{}, list_heads{}, list_nodes{}, page_requests{};
+  // Five STORAGE_BUFFER writes into `set` at `bindings`, for vkUpdateDescriptorSets (or
   // vkCmdPushDescriptorSetKHR, which ignores dstSet). They point into this object: keep
   // it alive until the call.
-  std::array<VkWriteDescriptorSet, 4> writes(VkDescriptorSet set, const ShadowLookupBindings& bindings) const;
+  std::array<VkWriteDescriptorSet, 5> writes(VkDescriptorSet set, const ShadowLookupBindings& bindings) const;
 };
 
 // The buffers to write for `lookup` (a pass list's, or Shadows::unshadowed_lookup()).
