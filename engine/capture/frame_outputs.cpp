@@ -96,9 +96,10 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   }
   if (!measured) return wall;
 
-  double total = 0, shadow = 0;
+  double total = 0, shadow = 0, inspection = 0;
   for (const rg::vulkan::PassTiming& pass : passes) {
     if (is_shadow_stage(pass_stage(pass.name))) shadow += pass.gpu_ms;
+    if (is_inspection_pass(pass.name)) inspection += pass.gpu_ms;
     auto [found, added] = pass_index_.emplace(pass.name, passes_.size());
     if (added) passes_.push_back({pass.name, pass.queue, {}, {}});
     PassSamples& samples = passes_[found->second];
@@ -111,6 +112,7 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   frame_wall_ms_.push_back(wall);
   frame_submit_ms_.push_back(completed - recorded);
   frame_shadow_gpu_ms_.push_back(shadow);
+  frame_inspection_gpu_ms_.push_back(inspection);
   uint32_t pages_built = 0;
   for (const passes::LightShadowStats& light : shadows)
     if (light.pages) pages_built += light.pages->built;

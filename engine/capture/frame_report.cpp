@@ -91,12 +91,14 @@ json to_json(const FrameSample& frame) {
           {"wall_ms", frame.wall_ms},
           {"submit_wall_ms", frame.submit_wall_ms},
           {"shadow_gpu_ms", frame.shadow_gpu_ms},
+          {"inspection_gpu_ms", frame.inspection_gpu_ms},
           {"pages_built", frame.pages_built}};
 }
 
 FrameSample frame_sample_from_json(const json& in) {
   return {value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"), value_of<double>(in, "submit_wall_ms"),
-          value_of<double>(in, "shadow_gpu_ms"), value_of<uint32_t>(in, "pages_built")};
+          value_of<double>(in, "shadow_gpu_ms"), value_of<double>(in, "inspection_gpu_ms"),
+          value_of<uint32_t>(in, "pages_built")};
 }
 
 // ---- memory.json ----
@@ -424,7 +426,7 @@ TimingReport timing_report(const FrameTimingLog& log) {
   report.frame_submit_wall_ms = spread_of(log.frame_submit_ms());
   for (size_t i = 0; i < log.frame_gpu_ms().size(); ++i)
     report.frames.push_back({log.frame_gpu_ms()[i], log.frame_wall_ms()[i], log.frame_submit_ms()[i],
-                             log.frame_shadow_gpu_ms()[i], log.frame_pages_built()[i]});
+                             log.frame_shadow_gpu_ms()[i], log.frame_inspection_gpu_ms()[i], log.frame_pages_built()[i]});
   return report;
 }
 

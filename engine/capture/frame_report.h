@@ -46,6 +46,7 @@ struct FrameSample {
   double wall_ms = 0;         // build, record, submit and wait
   double submit_wall_ms = 0;  // submit to completion on the CPU clock
   double shadow_gpu_ms = 0;   // the shadow maps' passes (capture, sort, build, mips: pass_stages.h)
+  double inspection_gpu_ms = 0;  // passes that only show or measure the frame (is_inspection_pass())
   uint32_t pages_built = 0;   // paged maps' pages built, every light's summed
   bool operator==(const FrameSample&) const = default;
 };

@@ -49,6 +49,11 @@ std::string_view to_string(PassStage stage) {
   return "other";
 }
 
+bool is_inspection_pass(std::string_view name) {
+  return name.ends_with(" debug image") || starts_with(name, "shadow probes") ||
+         starts_with(name, "shadow texel curves") || starts_with(name, "shadow quality");
+}
+
 bool is_shadow_stage(PassStage stage) {
   return stage == PassStage::shadow_capture || stage == PassStage::sort || stage == PassStage::build ||
          stage == PassStage::mips;

@@ -27,6 +27,9 @@ PassStage pass_stage(std::string_view pass_name);
 std::string_view to_string(PassStage stage);
 // The shadow maps' own stages: capture, sort, build and mips.
 bool is_shadow_stage(PassStage stage);
+// A pass that only shows or measures the frame (light pictures, shadow probes, texel
+// curves, quality): what a capture or the viewer adds to the frame a renderer draws.
+bool is_inspection_pass(std::string_view pass_name);
 
 // Per stage (indexed as kPassStages), its passes' median GPU ms summed.
 using StageTimes = std::array<double, kPassStageCount>;
