@@ -187,12 +187,12 @@ float cube_face_tangent(uint32_t resolution) {
 }
 
 LightView make_point_face_view(const scene::Light& light, uint32_t face, const scene::Bounds& casters,
-                               uint32_t resolution) {
+                               uint32_t resolution, uint32_t guard_resolution) {
   // +x -x +y -y +z -z, as shadow_cube_face() in shaders/common/shadow_lookup.glsl numbers them.
   static const std::array<glm::vec3, 6> kAxes = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
                                                  glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
   const glm::vec3 axis = kAxes.at(face);
-  const float t = cube_face_tangent(resolution);
+  const float t = cube_face_tangent(guard_resolution != 0 ? guard_resolution : resolution);
   const LightView v = perspective_view(light.position, axis, up_vector_for(axis), glm::vec2(-t), glm::vec2(t),
                                        usable_bounds(casters), light.range);
   return finish_view(v, resolution);

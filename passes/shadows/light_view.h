@@ -80,9 +80,12 @@ inline constexpr uint32_t kCubeGuardTexels = 4;
 // tan(half the face's field of view) for faces of `resolution` texels.
 float cube_face_tangent(uint32_t resolution);
 // A point light's face `face` (+x -x +y -y +z -z): a square frustum from the light
-// along that axis out to the casters (and the light's range, when it has one).
+// along that axis out to the casters (and the light's range, when it has one), with
+// kCubeGuardTexels of `guard_resolution` texels (0: of `resolution`) beyond 90 degrees.
+// A paged face keeps them at its coarsest level (one page), so that every level's
+// filtered lookups next to the face's edge stay on it.
 LightView make_point_face_view(const scene::Light& light, uint32_t face, const scene::Bounds& casters,
-                               uint32_t resolution);
+                               uint32_t resolution, uint32_t guard_resolution = 0);
 
 // Camera distances where each of `count` cascades over [near, far] ends (the practical
 // split scheme: half logarithmic, half uniform).

@@ -190,12 +190,11 @@ uint32_t ShadowMaps::caster_moved(uint32_t object, const scene::Bounds& bounds) 
 // page is built again with more room), and its receivers' requests for the next frame.
 void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats) {
   const DeclaredMap& declared = map.declared[slot];
-  uint64_t requested_segments = 0, most = 0;
+  uint64_t most = 0;
   bool overflowed = false;
   for (size_t i = 0; i < declared.page_builds.size(); ++i) {
     uint32_t counter = 0;
     std::memcpy(&counter, static_cast<const char*>(map.page_counters[slot].mapped()) + i * page_counter_stride(), 4);
-    requested_segments += counter;
     most = std::max<uint64_t>(most, counter);
     if (counter <= declared.capacity) continue;
     overflowed = true;
@@ -218,7 +217,7 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
   }
   const uint64_t texels = uint64_t(declared.map_state.layout.resolution) * declared.map_state.layout.resolution;
   stats.capture_capacity = declared.capacity;
-  stats.capture_requested = requested_segments;
+  stats.capture_requested = most;  // of the largest page build, against one page build's capacity
   stats.capture_bytes = declared.page_builds.empty() ? 0 : declared.capacity * kCaptureSegmentBytes + texels * 4;
   stats.overflowed = overflowed;
   stats.next_capture_capacity = map.capacity;
