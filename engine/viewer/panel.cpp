@@ -373,6 +373,23 @@ void Panel::draw_timings(const PanelView& view) {
   ImGui::Text("total %.2f ms GPU", view.frame.gpu_ms());
 }
 
+namespace {
+
+// A paged light's pool: a bar of the pages asked for over its slots (the demand, which
+// the bias keeps under about 85%; pages nobody asks for stay resident until their slot
+// is needed, so the resident count alone fills up), and the frame's page figures
+// (memory.json's "pages").
+void draw_page_pool(const passes::PageStats& p) {
+  const std::string label = std::to_string(p.requested) + " asked for, " + std::to_string(p.resident) +
+                            " resident of " + std::to_string(p.slots) + " pages";
+  ImGui::ProgressBar(p.slots > 0 ? std::min(float(p.requested) / float(p.slots), 1.0f) : 0.0f, ImVec2(-1, 0),
+                     label.c_str());
+  ImGui::Text("  pages built %u, invalidated %u, evicted %u, pending %u; bias %.2f%s", p.built, p.invalidated,
+              p.evicted, p.pending, p.lod_bias, p.unserved > 0 ? " (pool full: coarser levels serve)" : "");
+}
+
+}  // namespace
+
 // The figures memory.json and report.html show, from the same report types.
 void Panel::draw_memory(const PanelView& view) {
   const capture::MemoryReport memory =
@@ -391,6 +408,7 @@ void Panel::draw_memory(const PanelView& view) {
                   !light.dsm_pool->overflowed     ? ""
                   : light.dsm_pool->held_by_budget ? " (overflowed: the budget keeps its size)"
                                                    : " (overflowed: pool grows)");
+    if (light.pages) draw_page_pool(*light.pages);
   }
 }
 
