@@ -1,6 +1,7 @@
 #include "passes/shadows/pages/page_table.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +17,8 @@ constexpr float kPoolHigh = 0.85f;
 // which stays under kPoolHigh, so the bias does not swing back and forth.
 constexpr float kPoolLow = 0.55f;
 constexpr float kBiasStep = 0.25f;
+// Where a grown bias aims: between kPoolLow and kPoolHigh.
+constexpr float kPoolTarget = 0.7f;
 constexpr float kMaxBias = 8.0f;
 
 bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
@@ -84,10 +87,18 @@ bool PageTable::has_pending_requests() const {
 
 void PageTable::adapt_lod_bias() {
   const float share = float(stats_.requested) / float(slots_);
-  if (share > kPoolHigh || stats_.unserved > 0)
+  if (share > kPoolHigh) {
+    // Requests fall about 4x per level (2x per side), so the bias that brings them to
+    // kPoolTarget is log4 of the excess: one frame's jump, in whole steps, rather than
+    // a step a frame (each of which would rebuild the pages it moves).
+    const float levels = std::log(share / kPoolTarget) / std::log(4.0f);
+    const float step = std::max(kBiasStep, std::ceil(levels / kBiasStep) * kBiasStep);
+    lod_bias_ = std::min(lod_bias_ + step, kMaxBias);
+  } else if (stats_.unserved > 0) {
     lod_bias_ = std::min(lod_bias_ + kBiasStep, kMaxBias);
-  else if (share < kPoolLow)
+  } else if (share < kPoolLow) {
     lod_bias_ = std::max(lod_bias_ - kBiasStep, 0.0f);
+  }
 }
 
 bool PageTable::needs_build(uint32_t entry) const {
