@@ -96,9 +96,13 @@ json to_json(const FrameSample& frame) {
 }
 
 FrameSample frame_sample_from_json(const json& in) {
-  return {value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"), value_of<double>(in, "submit_wall_ms"),
-          value_of<double>(in, "shadow_gpu_ms"), value_of<double>(in, "inspection_gpu_ms"),
-          value_of<uint32_t>(in, "pages_built")};
+  FrameSample frame{value_of<double>(in, "gpu_ms"), value_of<double>(in, "wall_ms"),
+                    value_of<double>(in, "submit_wall_ms")};
+  // 0 in reports written before they were recorded (a baseline from an older build).
+  if (in.contains("shadow_gpu_ms")) frame.shadow_gpu_ms = value_of<double>(in, "shadow_gpu_ms");
+  if (in.contains("inspection_gpu_ms")) frame.inspection_gpu_ms = value_of<double>(in, "inspection_gpu_ms");
+  if (in.contains("pages_built")) frame.pages_built = value_of<uint32_t>(in, "pages_built");
+  return frame;
 }
 
 // ---- memory.json ----
@@ -582,7 +586,7 @@ SettingsReport settings_report_from_json(const json& in) {
   s.height = value_of<uint32_t>(in, "height");
   s.frames = value_of<uint32_t>(in, "frames");
   s.frames_in_flight = value_of<uint32_t>(in, "frames_in_flight");
-  s.orbit_degrees = value_of<float>(in, "orbit_degrees");
+  if (in.contains("orbit_degrees")) s.orbit_degrees = value_of<float>(in, "orbit_degrees");  // 0 before it was recorded
   s.validation = value_of<bool>(in, "validation");
   const json& volumes = member(in, "volume_shading");
   const std::string mode = value_of<std::string>(volumes, "mode");

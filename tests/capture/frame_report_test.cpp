@@ -250,6 +250,22 @@ TEST(FrameReport, OlderTimingsHaveNoCpuDevice) {
   EXPECT_FALSE(timing_report_from_json(timings).cpu_device);
 }
 
+// Frames written before the per-frame shadow, inspection and page figures were recorded
+// (a baseline from an older build) read them as 0; settings without an orbit, as none.
+TEST(FrameReport, OlderReportsHaveNoPerFrameFiguresOrOrbit) {
+  nlohmann::json timings = to_json(sample_timings());
+  for (nlohmann::json& frame : timings["frames"])
+    for (const char* key : {"shadow_gpu_ms", "inspection_gpu_ms", "pages_built"}) frame.erase(key);
+  const TimingReport old = timing_report_from_json(timings);
+  ASSERT_EQ(old.frames.size(), sample_timings().frames.size());
+  EXPECT_EQ(old.frames[0].gpu_ms, sample_timings().frames[0].gpu_ms);
+  EXPECT_EQ(old.frames[0].shadow_gpu_ms, 0.0);
+  EXPECT_EQ(old.frames[0].pages_built, 0u);
+  nlohmann::json settings = to_json(sample_settings());
+  settings.erase("orbit_degrees");
+  EXPECT_EQ(settings_report_from_json(settings).orbit_degrees, 0.0f);
+}
+
 TEST(FrameReport, ABrokenFileIsNamedWithItsKey) {
   const fs::path dir = fresh_folder("broken");
   nlohmann::json timings = to_json(sample_timings());
