@@ -50,9 +50,7 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   lights_ = scene.lights;
   light_count_ = uint32_t(scene.lights.size());
   fitted_bounds_ = scene.bounds;
-  mesh_objects_.clear();
-  uint32_t object = 0;  // meshes with triangles come first among the caster objects (scene_caster_objects())
-  for (const scene::Mesh& mesh : scene.meshes) mesh_objects_.push_back(mesh.indices.empty() ? ~0u : object++);
+  mesh_objects_ = passes::mesh_caster_objects(scene);
   // At least one entry, which lights nothing, so that a scene without lights binds something.
   light_buffers_.create(ctx_, {std::max<uint64_t>(light_count_, 1) * sizeof(passes::GpuLight),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "scene lights"});
@@ -123,15 +121,13 @@ void SceneRenderer::place_light(uint32_t light, const glm::vec3& position, const
 
 void SceneRenderer::update_mesh(uint32_t mesh, const scene::Mesh& now) {
   const uint32_t object = mesh_objects_.at(mesh);
-  scene::Bounds within = fitted_bounds_;
-  within.extend(now.bounds);
-  if (within.min != fitted_bounds_.min || within.max != fitted_bounds_.max)
+  if (!fitted_bounds_.contains(now.bounds))
     throw std::invalid_argument("mesh '" + now.name +
                                 "' moved outside the bounds the shadow maps were fitted to; set the scene again "
                                 "to fit them anew");
   vkDeviceWaitIdle(ctx_.device());  // frames in flight read the vertices as static data
   opaque_.update_mesh(mesh, now);
-  if (object != ~0u) shadows_.caster_moved(object, now.bounds);
+  if (object != passes::kNoCasterObject) shadows_.caster_moved(object, now.bounds);
 }
 
 // The slot's previous frame has completed: nothing reads its copy any more.

@@ -158,7 +158,7 @@ class SceneRenderer {
 
   std::vector<scene::Light> lights_;
   scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)
-  std::vector<uint32_t> mesh_objects_;  // per scene mesh, its caster object (~0u: no triangles)
+  std::vector<uint32_t> mesh_objects_;  // per scene mesh, its caster object (passes::mesh_caster_objects())
   passes::FrameBuffers light_buffers_;  // the GpuLights, per frame slot, written as a frame is declared
   uint32_t light_count_ = 0;
   uint32_t finished_slot_ = 0;  // of the last frame finished: where its results are

@@ -26,17 +26,18 @@ struct Bounds {
   bool contains(const glm::vec3& point) const {
     return glm::all(glm::lessThanEqual(min, point)) && glm::all(glm::lessThanEqual(point, max));
   }
+  bool contains(const Bounds& other) const { return other.empty() || (contains(other.min) && contains(other.max)); }
+  // Corner i of 8: bit 0 picks max.x over min.x, bit 1 max.y, bit 2 max.z.
+  glm::vec3 corner(int i) const {
+    return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+  }
 };
 
 // The box around the eight transformed corners of `box`.
 inline Bounds transform_bounds(const Bounds& box, const glm::mat4& transform) {
   Bounds result;
   if (box.empty()) return result;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
-                      (corner & 4) ? box.max.z : box.min.z);
-    result.extend(glm::vec3(transform * glm::vec4(p, 1.0f)));
-  }
+  for (int corner = 0; corner < 8; ++corner) result.extend(glm::vec3(transform * glm::vec4(box.corner(corner), 1.0f)));
   return result;
 }
 

@@ -162,9 +162,7 @@ UvRect light_footprint(const LightView& view, const scene::Bounds& box) {
   if (box.empty()) return {};
   UvRect rect;
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
-                      (corner & 4) ? box.max.z : box.min.z);
-    const glm::vec4 clip = view.light_from_world * glm::vec4(p, 1.0f);
+    const glm::vec4 clip = view.light_from_world * glm::vec4(box.corner(corner), 1.0f);
     if (clip.w <= 1e-6f) return UvRect::whole();  // behind the eye: its projection is unbounded
     const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
     rect.extend({uv, uv});

@@ -50,13 +50,19 @@ float distance(const Extent& a, const Extent& b) {
 
 }  // namespace
 
+std::vector<uint32_t> mesh_caster_objects(const scene::Scene& scene) {
+  std::vector<uint32_t> objects;
+  uint32_t draw = 0;  // OpaquePass draws only meshes with triangles; they come first among the objects
+  for (const scene::Mesh& mesh : scene.meshes) objects.push_back(mesh.indices.empty() ? kNoCasterObject : draw++);
+  return objects;
+}
+
 std::vector<CasterObject> scene_caster_objects(const scene::Scene& scene) {
   std::vector<CasterObject> objects;
-  uint32_t draw = 0;
-  for (const scene::Mesh& mesh : scene.meshes) {
-    if (mesh.indices.empty()) continue;  // OpaquePass draws only meshes with triangles
-    objects.push_back({CasterObject::Kind::mesh_draw, draw++, 1, mesh.bounds, mesh.name});
-  }
+  const std::vector<uint32_t> mesh_objects = mesh_caster_objects(scene);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (mesh_objects[m] != kNoCasterObject)
+      objects.push_back({CasterObject::Kind::mesh_draw, mesh_objects[m], 1, scene.meshes[m].bounds, scene.meshes[m].name});
   uint32_t segment = 0;
   for (const scene::HairGroom& groom : scene.hair) {
     uint32_t segments = 0;

@@ -27,6 +27,10 @@ struct CasterObject {
 // The casters of a loaded scene in the order the camera passes hand them to the shadow
 // maps (OpaquePass::casters(), HairPass::casters(), VolumePass::casters()).
 std::vector<CasterObject> scene_caster_objects(const scene::Scene& scene);
+// Per scene mesh, the index of its object among scene_caster_objects(), or
+// kNoCasterObject for a mesh without triangles (it casts nothing).
+inline constexpr uint32_t kNoCasterObject = ~0u;
+std::vector<uint32_t> mesh_caster_objects(const scene::Scene& scene);
 
 struct CasterCluster {
   std::vector<uint32_t> objects;  // indices into the objects given

@@ -206,8 +206,7 @@ class ShadowMaps {
     uint64_t page_pool_offset = 0;
     uint32_t page_requests_offset = shared::kNoPageRequests;
     FrameBuffers page_counters;
-    uint64_t revision = 0;                 // frames declared that changed it (map_revision())
-    std::vector<uint32_t> declared_table;  // paged: the page table the last frame declared
+    uint64_t revision = 0;  // dense: frames declared, each of which builds it (map_revision())
   };
   // Maps start on this many bytes in the atlas: above every device's storage buffer offset
   // alignment (the mips pass binds windows of a map at aligned offsets).

@@ -100,10 +100,6 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   declared.page_builds = map.pages->plan_builds(budget);
   declared.pages = map.pages->stats();
   declared.page_table = map.pages->table_words();
-  if (!declared.page_builds.empty() || declared.page_table != map.declared_table) {
-    ++map.revision;
-    map.declared_table = declared.page_table;
-  }
   const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
   const uint64_t bytes_per_slot = slot_bytes(settings);
   std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
@@ -164,7 +160,8 @@ ShadowCasters ShadowMaps::page_casters(const MapState& map, const ShadowCasters&
 uint64_t ShadowMaps::map_revision(uint32_t light) const {
   const LightState& state = lights_.at(light);
   uint64_t revision = 0;
-  for (uint32_t m = state.first_map; m < state.first_map + state.map_count; ++m) revision += maps_[m].revision;
+  for (uint32_t m = state.first_map; m < state.first_map + state.map_count; ++m)
+    revision += maps_[m].pages ? maps_[m].pages->revision() : maps_[m].revision;
   return revision;
 }
 

@@ -167,5 +167,25 @@ TEST(PageTableTest, AChangeInvalidatesTheResidentPagesItOverlapsAtEveryLevel) {
   EXPECT_EQ(table.invalidate_overlapping(std::span(&nothing, 1)), 0u);
 }
 
+// The revision moves with every build and table change, and stays while a frame
+// changes nothing (what lets the light pictures skip a converged map).
+TEST(PageTableTest, TheRevisionMovesOnlyWhenTheMapChanges) {
+  PageTable table(256, 64, 32);
+  const uint32_t page = table.entry({0, {1, 1}});
+  table.add_requests(requests(table, {page}));
+  table.plan_builds(0);  // the root and the page
+  const uint64_t built = table.revision();
+  EXPECT_GT(built, 0u);
+  table.add_requests(requests(table, {page}));
+  EXPECT_TRUE(table.plan_builds(0).empty());
+  EXPECT_EQ(table.revision(), built) << "nothing built, nothing moved";
+  table.invalidate(page);
+  EXPECT_GT(table.revision(), built) << "the page left the table";
+  const uint64_t invalidated = table.revision();
+  table.add_requests(requests(table, {page}));
+  EXPECT_EQ(table.plan_builds(0).size(), 1u);
+  EXPECT_GT(table.revision(), invalidated);
+}
+
 }  // namespace page_table_test
 }  // namespace avsm::passes

@@ -110,6 +110,7 @@ void PageTable::assign(uint32_t entry, uint32_t slot) {
   pages_[entry].slot = slot;
   slot_owner_[slot] = entry;
   table_[entry] = slot + 1;
+  ++revision_;
 }
 
 void PageTable::release(uint32_t entry) {
@@ -118,6 +119,7 @@ void PageTable::release(uint32_t entry) {
   page.slot = kNoSlot;
   page.current = false;
   table_[entry] = shared::kPageAbsent;
+  ++revision_;
 }
 
 std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
@@ -166,6 +168,7 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
     if (page.requested && (page.slot == kNoSlot || !page.current)) ++stats.pending;
   }
   stats.built = uint32_t(builds.size());
+  if (!builds.empty()) ++revision_;  // pages rebuilt in their slots change the map, not the table
   stats.lod_bias = lod_bias_;
   stats_ = stats;
   return builds;

@@ -92,6 +92,9 @@ class PageTable {
   // Every requested page is resident and current: a capture may write the frame.
   bool converged() const { return stats_.pending == 0 && stats_.unserved == 0; }
   const PageStats& stats() const { return stats_; }
+  // Counts the changes to the table and the builds planned: what reads the map may skip
+  // a revision it has already read.
+  uint64_t revision() const { return revision_; }
   float lod_bias() const { return lod_bias_; }
 
  private:
@@ -116,6 +119,7 @@ class PageTable {
   std::vector<uint32_t> slot_owner_;  // entry per slot, or kNoSlot
   uint64_t request_clock_ = 0;
   uint32_t invalidated_since_plan_ = 0;
+  uint64_t revision_ = 0;
   float lod_bias_ = 0.0f;
   uint32_t required_level_ = ~0u;
   PageStats stats_;
