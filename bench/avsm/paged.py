@@ -17,9 +17,16 @@ Then the viewer's case: the camera orbits the static scene (avsm-capture --orbit
 default 2 degrees a frame). Per frame after the first ones have converged: GPU ms, the
 shadow passes' ms, and the pages built against those resident.
 
+Last, resolution matching at --match-width x --match-height (1280x720), measured by the
+engine (avsm-capture --measure-resolution, capture/resolution.h): the share of lit
+receiver pixels whose texel is at most 1.5 screen pixels wide at its widest, the median
+and 95th percentile widths, and the resident texels against the lit receiver pixels
+(summed over the lights), for today's default, the paged default pool and the largest
+pools lavapipe's 128 MiB storage range holds for two lights.
+
 usage: bench/avsm/paged.py [--build DIR] [--width W] [--height H] [--rounds R]
                            [--page-size P] [--virtual-res V] [--orbit DEGREES]
-                           [--orbit-frames K]
+                           [--orbit-frames K] [--match-width W] [--match-height H]
 """
 import argparse
 import json
@@ -73,6 +80,43 @@ def mean_abs_error(compare, base, new):
     return float(found.group(1)) * 255.0 if found else 0.0
 
 
+def resolution_figures(tool, scene, out, width, height, flags):
+    """One converged frame's resolution.json and page figures (avsm-capture --measure-resolution)."""
+    subprocess.run([tool, "--scene", scene, "--out", out, "--width", str(width), "--height", str(height),
+                    "--frames", "1", "--quiet", "--measure-resolution"] + flags, check=True, capture_output=True)
+    resolution = json.load(open(os.path.join(out, "resolution.json")))
+    memory = json.load(open(os.path.join(out, "memory.json")))
+    pages = [l["pages"] for l in memory["lights"] if "pages" in l]
+    return resolution, pages
+
+
+def print_resolution(tool, scene, work, args):
+    paged = configs(args)[3][1]
+    rows = [("dense 256 gaussian r2", []), ("paged, 32 MiB pools", paged),
+            ("paged, 56 MiB pools", paged + ["--page-pool-mib", "56"])]
+    print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
+          f"= the widest a texel of the level read is on screen (pixels); resident texels over lit receiver pixels "
+          f"summed over the lights")
+    print(f"   {'configuration':<24}{'matched':>9}{'median':>8}{'p95':>7}{'resident/lit':>14}   per light: "
+          f"matched, median px, LOD bias, pages asked / resident of slots")
+    for i, (name, flags) in enumerate(rows):
+        resolution, pages = resolution_figures(tool, scene, os.path.join(work, f"resolution_{i}"), args.match_width,
+                                               args.match_height, flags)
+        lights = resolution["lights"]
+        receivers = resolution["receivers"]
+        page_texels = args.page_size * args.page_size
+        resident = sum(p["resident"] for p in pages) * page_texels
+        ratio = f"{resident / receivers:>14.2f}" if pages and receivers else f"{'-':>14}"
+        per_light = "  ".join(
+            f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
+            + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
+            for l, p in zip(lights, pages or [None] * len(lights)))
+        print(f"   {name:<24}{100 * resolution['matched_fraction']:>8.1f}%"
+              f"{statistics.median(l['median_texel_pixels'] for l in lights):>8.2f}"
+              f"{max(l['p95_texel_pixels'] for l in lights):>7.2f}{ratio}   {per_light}")
+    print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -83,6 +127,8 @@ def main():
     parser.add_argument("--virtual-res", type=int, default=16384)
     parser.add_argument("--orbit", type=float, default=2.0)
     parser.add_argument("--orbit-frames", type=int, default=10)
+    parser.add_argument("--match-width", type=int, default=1280)
+    parser.add_argument("--match-height", type=int, default=720)
     args = parser.parse_args()
     tool = os.path.join(args.build, "tools", "avsm-capture")
     compare = os.path.join(args.build, "tools", "avsm-compare")
@@ -136,6 +182,8 @@ def main():
         print(f"   {name:<24}{frame:>10.1f}{frame / orbit_today:>9.2f}{shadow:>9.1f}{shadow / dense_rebuild:>9.2f}"
               f"{built:>8.0f}{max(o['most built'] for o in xs):>6}{resident:>10}{share}")
     print("   x dense: the shadow passes against the dense 256 bilinear full rebuild in the same run")
+    with tempfile.TemporaryDirectory() as work:
+        print_resolution(tool, scene, work, args)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@
 #include "capture/frame_outputs.h"
 #include "capture/pass_list_json.h"
 #include "capture/quality.h"
+#include "capture/resolution.h"
 #include "capture/report.h"
 #include "capture/volume_comparison.h"
 #include "gpu/context.h"
@@ -104,14 +105,17 @@ ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>
 
 // What a completed frame lost of its shadowing (LightShadowStats::lost_shadowing), and
 // whether what it lacked grew for the next frame, so that rendering again does better.
+// `settling`: a paged map's requests moved its pool's LOD bias, so the next frame reads
+// other levels (finer ones, once the first frame's overflow is behind it).
 struct ShadowLoss {
-  bool lost = false, grew = false;
+  bool lost = false, grew = false, settling = false;
 };
 
 // Warns about every light whose frame lost shadowing.
 ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   ShadowLoss loss;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
+    loss.settling = loss.settling || (light.pages && light.pages->settling);
     if (!light.lost_shadowing()) continue;
     loss.lost = true;
     loss.grew = loss.grew || light.grew;
@@ -335,6 +339,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   report_blend_casters_in_fixed_builds(scene);
   if (!probe_points.empty()) frame.set_probes(probe_points);
   if (options.compare_to_uncompressed) frame.enable_quality();
+  if (options.measure_resolution) frame.enable_resolution_figures();
   if (!plots.empty()) frame.set_texel_samples(texel_curve_samples(plots, frame.shadows().light_views()));
   // Frame `index`'s view: the camera turned by --orbit per frame; frames rendered again
   // keep the last frame's.
@@ -413,9 +418,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // after it, so the last frame is rendered again until its maps are finished, while
   // something still grows; if they never are, the capture fails naming the lights.
   uint32_t frames_again = 0;
-  for (; last_loss.lost && last_loss.grew && frames_again < kMaxFramesAgain; ++frames_again) {
+  // A paged map's bias settling is waited for too (it only makes the frame finer), but a
+  // frame written while it still moves is not an error.
+  for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && frames_again < kMaxFramesAgain; ++frames_again) {
     if (options.progress)
-      std::fprintf(stderr, "frame %u: shadow maps unfinished, buffers grown or pages asked for: rendering it again\n",
+      std::fprintf(stderr, "frame %u: shadow maps unfinished (buffers grown, pages asked for, a page bias settling): rendering it again\n",
                    options.frames);
     submit_frame(options.frames + frames_again);
     slots.finish_all(finished);
@@ -435,6 +442,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     report.quality = write_quality(options.out_dir, scene, frame.quality_results(), options.width, options.height,
                                    {frame.hair_quality_results(), frame.hair_receiver_count()});
     out.quality = options.out_dir / "quality.json";
+  }
+  if (options.measure_resolution) {
+    report.resolution = write_resolution(options.out_dir, scene, frame.resolution_results(), options.width,
+                                         options.height);
+    out.resolution = options.out_dir / "resolution.json";
   }
   if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view_of(options.frames - 1), timing_log);
   if (!plots.empty())

@@ -57,6 +57,9 @@ struct CaptureOptions {
   // and measure the technique against it at the receivers the camera sees: writes
   // quality.json and light<i>_error.png (capture/quality.h).
   bool compare_to_uncompressed = false;
+  // --measure-resolution: per light, how wide on screen the texels are that the
+  // surfaces' lookups read: resolution.json and light<i>_resolution.png (capture/resolution.h).
+  bool measure_resolution = false;
   // --plot-texel LIGHT:X,Y (parse_texel_plot()): curve_<light index>_<x>_<y>.svg each,
   // the texel's curve for the technique over the exact one. Also keeps the reference.
   std::vector<TexelPlot> plot_texels;
@@ -72,6 +75,7 @@ struct CaptureOutputs {
   std::filesystem::path exr;
   std::filesystem::path timings;
   std::filesystem::path quality;               // empty without --compare-to
+  std::filesystem::path resolution;            // empty without --measure-resolution
   std::filesystem::path volume_quality;        // empty without --compare-volume-shading
   std::vector<std::filesystem::path> curves;   // --plot-texel
   std::filesystem::path pass_list;             // --dump-passes (then nothing else is written)

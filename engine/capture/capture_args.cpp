@@ -63,6 +63,9 @@ const char* kUsage =
     "shadow quality against the exact reference (keeps every light's capture lists):\n"
     "  --compare-to uncompressed   per light, |T - T_exact| at the surfaces and smoke the\n"
     "                   camera sees: quality.json and light<i>_error.png (error x4)\n"
+    "  --measure-resolution  per light, how wide on screen the texels that the surfaces' lookups\n"
+    "                   read are (at most 1.5 pixels: matched): resolution.json and\n"
+    "                   light<i>_resolution.png\n"
     "  --plot-texel LIGHT:X,Y      (repeatable) LIGHT: index or name; X,Y: level-0 texel\n"
     "                   (y = 0 at the bottom of light<i>_transmittance.png): writes\n"
     "                   curve_<light index>_<x>_<y>.svg, the technique's curve over the exact one\n"
@@ -243,6 +246,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     if (name != "uncompressed")
       usage_error("--compare-to expects uncompressed (the exact reference), got '" + name + "'");
     options.compare_to_uncompressed = true;
+  } else if (arg == "--measure-resolution") {
+    options.measure_resolution = true;
   } else if (arg == "--plot-texel") {
     const std::string spec = value();
     std::optional<TexelPlot> plot = parse_texel_plot(spec);
@@ -323,6 +328,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.exponential_interpolation, "--interpolation", "exponential");
   with_value(!o.probe_file.empty(), "--probe", o.probe_file.string());
   with_value(o.compare_to_uncompressed, "--compare-to", "uncompressed");
+  flag(o.measure_resolution, "--measure-resolution");
   for (const TexelPlot& plot : o.plot_texels) with_value(true, "--plot-texel", plot.spec);
   with_value(!o.dump_passes.empty(), "--dump-passes", o.dump_passes.string());
   return args;

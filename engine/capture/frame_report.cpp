@@ -529,6 +529,58 @@ QualityReport quality_report_from_json(const json& in) {
           array_of<LightQuality>(in, "lights", light_quality_from_json)};
 }
 
+// ---- resolution.json ----
+
+json to_json(const LightResolution& r, size_t index) {
+  return {
+      {"light", r.light},
+      {"index", index},
+      {"paged", r.paged},
+      {"receivers", r.receivers},
+      {"matched", r.matched},
+      {"matched_fraction", r.matched_fraction()},
+      {"median_texel_pixels", r.median_texel_pixels},
+      {"p95_texel_pixels", r.p95_texel_pixels},
+      {"receivers_per_level", r.levels},
+      {"image", resolution_image_name(index)},
+  };
+}
+
+LightResolution light_resolution_from_json(const json& in) {
+  LightResolution r;
+  r.light = value_of<std::string>(in, "light");
+  r.paged = value_of<bool>(in, "paged");
+  r.receivers = value_of<uint64_t>(in, "receivers");
+  r.matched = value_of<uint64_t>(in, "matched");
+  r.median_texel_pixels = value_of<double>(in, "median_texel_pixels");
+  r.p95_texel_pixels = value_of<double>(in, "p95_texel_pixels");
+  r.levels = value_of<std::vector<uint64_t>>(in, "receivers_per_level");
+  return r;
+}
+
+json to_json(const ResolutionReport& r) {
+  json lights = json::array();
+  for (size_t i = 0; i < r.lights.size(); ++i) lights.push_back(to_json(r.lights[i], i));
+  return {
+      {"texel_pixels",
+       "the widest a texel of the level a surface lookup reads is on screen, in pixels, at each camera pixel's "
+       "opaque surface the light reaches (trilinear: the blended level)"},
+      {"matched_texel_pixels", kMatchedTexelPixels},
+      {"image_colours", kResolutionImageColours},
+      {"width", r.width},
+      {"height", r.height},
+      {"receivers", r.receivers()},
+      {"matched", r.matched()},
+      {"matched_fraction", r.matched_fraction()},
+      {"lights", lights},
+  };
+}
+
+ResolutionReport resolution_report_from_json(const json& in) {
+  return {value_of<uint32_t>(in, "width"), value_of<uint32_t>(in, "height"),
+          array_of<LightResolution>(in, "lights", light_resolution_from_json)};
+}
+
 json to_json(const ProbeReport& p) {
   json points = json::array(), lights = json::array();
   for (const glm::vec3& point : p.points) points.push_back(vec3_json(point));
@@ -615,6 +667,8 @@ FrameReport read_frame_report(const fs::path& out_dir) {
   std::error_code ec;
   if (fs::is_regular_file(out_dir / "quality.json", ec))
     report.quality = read_report_file(out_dir / "quality.json", quality_report_from_json);
+  if (fs::is_regular_file(out_dir / "resolution.json", ec))
+    report.resolution = read_report_file(out_dir / "resolution.json", resolution_report_from_json);
   if (fs::is_regular_file(out_dir / "probes.json", ec))
     report.probes = read_report_file(out_dir / "probes.json", probe_report_from_json);
   if (fs::is_regular_file(out_dir / "settings.json", ec))

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "capture/quality.h"
+#include "capture/resolution.h"
 #include "passes/shadows/shadow_stats.h"
 #include "scene/bounds.h"
 #include "scene/light.h"
@@ -125,6 +126,10 @@ PlanSummary plan_summary(const rg::CompiledPlan& plan);
 
 // QualityReport: capture/quality.h.
 
+// ---- resolution.json (--measure-resolution) ----
+
+// ResolutionReport: capture/resolution.h.
+
 // ---- probes.json (--probe) ----
 
 struct ProbeLight {
@@ -187,6 +192,7 @@ struct FrameReport {
   std::string plan_dot;  // CompiledPlan::to_dot()
   std::optional<QualityReport> quality;
   std::optional<ProbeReport> probes;
+  std::optional<ResolutionReport> resolution;  // --measure-resolution
   // settings.json: written by avsm-capture (not by the viewer's screenshots); absent in
   // capture folders written before it existed.
   std::optional<SettingsReport> settings;
@@ -195,17 +201,19 @@ struct FrameReport {
 nlohmann::json to_json(const TimingReport& timings);
 nlohmann::json to_json(const MemoryReport& memory);
 nlohmann::json to_json(const QualityReport& quality);
+nlohmann::json to_json(const ResolutionReport& resolution);
 nlohmann::json to_json(const ProbeReport& probes);
 nlohmann::json to_json(const SettingsReport& settings);
 // Throw std::runtime_error naming the first key that is missing or of the wrong type.
 TimingReport timing_report_from_json(const nlohmann::json& in);
 MemoryReport memory_report_from_json(const nlohmann::json& in);
 QualityReport quality_report_from_json(const nlohmann::json& in);
+ResolutionReport resolution_report_from_json(const nlohmann::json& in);
 ProbeReport probe_report_from_json(const nlohmann::json& in);
 SettingsReport settings_report_from_json(const nlohmann::json& in);
 
-// timings.json and memory.json from out_dir (required), settings.json, quality.json and
-// probes.json when there; the plan summary and its dot text stay empty. Throws std::runtime_error
+// timings.json and memory.json from out_dir (required), settings.json, quality.json,
+// resolution.json and probes.json when there; the plan summary and its dot text stay empty. Throws std::runtime_error
 // naming the file.
 FrameReport read_frame_report(const std::filesystem::path& out_dir);
 

@@ -51,7 +51,8 @@ std::string_view to_string(PassStage stage) {
 
 bool is_inspection_pass(std::string_view name) {
   return name.ends_with(" debug image") || starts_with(name, "shadow probes") ||
-         starts_with(name, "shadow texel curves") || starts_with(name, "shadow quality");
+         starts_with(name, "shadow texel curves") || starts_with(name, "shadow quality") ||
+         name == "shadow resolution" || name == "shadow level overlay";
 }
 
 bool is_shadow_stage(PassStage stage) {

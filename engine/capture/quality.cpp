@@ -24,12 +24,23 @@
 namespace avsm::capture {
 namespace fs = std::filesystem;
 
-namespace {
+void write_pixel_image(const fs::path& path, uint32_t width, uint32_t height,
+                       const std::function<void(size_t pixel, float* rgb)>& colour) {
+  gpu::ImageRGBA32F image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(size_t(width) * height * 4, 1.0f);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) colour(size_t(y) * width + x, image.at(x, y));
+  io::write_png_raw(path, image);
+}
 
 std::string light_label(const scene::Scene& scene, size_t index) {
   const std::string& name = scene.lights[index].name;
   return name.empty() ? "light " + std::to_string(index) : name;
 }
+
+namespace {
 
 // Black (no error) -> red -> yellow -> white (error >= 1/kErrorImageScale).
 void heat_colour(float error, float* rgb) {
@@ -39,27 +50,16 @@ void heat_colour(float error, float* rgb) {
   rgb[2] = std::clamp(3.0f * e - 2.0f, 0.0f, 1.0f);
 }
 
-// Pixels with no receiver for the light: a dim blue, told apart from black (error 0).
-constexpr float kNoReceiver[3] = {0.08f, 0.1f, 0.22f};
-
 void write_error_image(const fs::path& path, const passes::PixelShadowError* errors, uint32_t width,
                        uint32_t height) {
-  gpu::ImageRGBA32F image;
-  image.width = width;
-  image.height = height;
-  image.pixels.assign(size_t(width) * height * 4, 1.0f);
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const passes::PixelShadowError& e = errors[size_t(y) * width + x];
-      float* rgb = image.at(x, y);
-      const bool surface = e.surface >= 0.0f, smoke = e.smoke_count > 0.0f;
-      if (!surface && !smoke) {
-        std::copy(kNoReceiver, kNoReceiver + 3, rgb);
-        continue;
-      }
+  write_pixel_image(path, width, height, [&](size_t pixel, float* rgb) {
+    const passes::PixelShadowError& e = errors[pixel];
+    const bool surface = e.surface >= 0.0f, smoke = e.smoke_count > 0.0f;
+    if (!surface && !smoke)
+      std::copy(kNoReceiverColour, kNoReceiverColour + 3, rgb);
+    else
       heat_colour(std::max(surface ? e.surface : 0.0f, smoke ? e.smoke_max : 0.0f), rgb);
-    }
-  io::write_png_raw(path, image);
+  });
 }
 
 std::optional<uint32_t> parse_uint(const std::string& text) {

@@ -6,6 +6,7 @@
 //    exact curve, as curve_<light index>_<x>_<y>.svg (like Figures 6-7 of the AVSM paper).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,15 @@ class ShadowMaps;
 }
 
 namespace avsm::capture {
+
+// Writes a width x height PNG; `colour` sets pixel y * width + x's RGB (row 0 at the top).
+void write_pixel_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                       const std::function<void(size_t pixel, float* rgb)>& colour);
+// Pixels with no receiver for the light: a dim blue, told apart from black (error 0).
+inline constexpr float kNoReceiverColour[3] = {0.08f, 0.1f, 0.22f};
+
+// A light's name in the figures: its own, or "light <index>".
+std::string light_label(const scene::Scene& scene, size_t index);
 
 // ---- quality.json ----
 

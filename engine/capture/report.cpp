@@ -314,6 +314,34 @@ void write_quality_table(std::ostringstream& html, const fs::path& out_dir, cons
   html << "</div>\n";
 }
 
+// Per light (--measure-resolution) how wide on screen the texels the surfaces read are,
+// and its picture.
+void write_resolution(std::ostringstream& html, const fs::path& out_dir, const ResolutionReport& resolution) {
+  html << "<section>\n<h2>Shadow resolution</h2>\n<p class=\"note\">The widest a texel of the level each lit "
+          "surface pixel's lookup reads is on screen; matched: at most "
+       << format_value("%g", kMatchedTexelPixels) << " pixels. Images: " << escape_markup(kResolutionImageColours)
+       << ". All lights: " << format_value("%.1f", 100.0 * resolution.matched_fraction()) << "% of "
+       << resolution.receivers() << " receivers matched.</p>\n"
+       << "<table id=\"resolution-table\">\n<tr><th>light</th><th>layout</th><th class=\"num\">receivers</th>"
+          "<th class=\"num\">matched</th><th class=\"num\">median px</th><th class=\"num\">95th percentile px</th></tr>\n";
+  for (const LightResolution& light : resolution.lights)
+    html << "<tr><td>" << escape_markup(light.light) << "</td><td>" << (light.paged ? "paged" : "dense")
+         << "</td><td class=\"num\">" << light.receivers << "</td><td class=\"num\">"
+         << format_value("%.1f%%", 100.0 * light.matched_fraction()) << "</td><td class=\"num\">"
+         << format_value("%.2f", light.median_texel_pixels) << "</td><td class=\"num\">"
+         << format_value("%.2f", light.p95_texel_pixels) << "</td></tr>\n";
+  html << "</table>\n<div id=\"resolution-images\" style=\"display:flex;flex-wrap:wrap;gap:1em\">\n";
+  for (size_t i = 0; i < resolution.lights.size(); ++i) {
+    const std::string file = resolution_image_name(i);
+    std::error_code ec;
+    if (!fs::is_regular_file(out_dir / file, ec)) continue;
+    html << "<figure><img class=\"resolution-image\" style=\"width:320px;height:auto;border:1px solid #ccc\" alt=\""
+         << escape_markup(file) << "\" src=\"" << embed_png(out_dir / file).data_uri << "\"><figcaption>"
+         << escape_markup(resolution.lights[i].light + ": texel width on screen") << "</figcaption></figure>\n";
+  }
+  html << "</div>\n</section>\n";
+}
+
 // The quality table when measured, then the texel curves (--plot-texel) as images.
 void write_quality(std::ostringstream& html, const fs::path& out_dir, const std::optional<QualityReport>& quality,
                    const std::vector<fs::path>& curves) {
@@ -418,6 +446,7 @@ void write_report(const fs::path& out_dir, const FrameReport& report, const fs::
   write_memory(html, report.memory);
   if (report.probes) write_probes(html, *report.probes);
   if (report.quality || !curves.empty()) write_quality(html, out_dir, report.quality, curves);
+  if (report.resolution) write_resolution(html, out_dir, *report.resolution);
   write_graph(html, report.plan, report.plan_dot, report.timings);
   write_footer(html, out_dir);
 

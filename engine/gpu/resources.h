@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace avsm::gpu {
@@ -179,6 +180,13 @@ struct SamplerDesc {
   VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
   std::string name;
 };
+
+// A sampler that reads texels as they are (nearest, no mips, clamped): a depth buffer
+// read by texelFetch, for a pass whose shader declares a sampler2D.
+inline SamplerDesc texel_sampler_desc(std::string name) {
+  return {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
+          VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, std::move(name)};
+}
 
 class Sampler {
  public:

@@ -64,6 +64,8 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   if (probes_ && probe_normals_.empty()) probes_->set_points(probe_points_, light_count_);
   if (probes_ && !probe_normals_.empty()) probes_->set_surface_points(probe_points_, probe_normals_, light_count_);
   if (light_images_) light_images_->set_lights(shadows_);
+  if (resolution_) resolution_->set_size(width_, height_, light_count_);
+  if (level_overlay_ && *level_overlay_ >= light_count_) level_overlay_.reset();
   if (quality_ && shadows_.has_reference()) {
     enable_quality();
   } else {
@@ -98,6 +100,7 @@ void SceneRenderer::set_size(uint32_t width, uint32_t height) {
   height_ = height;
   create_outputs();
   if (quality_) quality_->set_size(width_, height_, light_count_);
+  if (resolution_) resolution_->set_size(width_, height_, light_count_);
 }
 
 void SceneRenderer::set_frames_in_flight(uint32_t count) {
@@ -109,6 +112,7 @@ void SceneRenderer::set_frames_in_flight(uint32_t count) {
     if (pass) pass->set_frames_in_flight(count);
   if (quality_) quality_->set_frames_in_flight(count);
   if (hair_quality_) hair_quality_->set_frames_in_flight(count);
+  if (resolution_) resolution_->set_frames_in_flight(count);
   finished_slot_ = 0;
 }
 
@@ -191,10 +195,14 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   const rg::BufferHandle hair_lights = hair_lighting_.add_to_graph(graph, hair_, frame);
   color = hair_.add_to_graph(graph, color, opaque.depth, hair_lights, per_fragment, frame);
 
-  tonemap_.add_to_graph(graph, color, ldr, exposure_);
+  ldr = tonemap_.add_to_graph(graph, color, ldr, exposure_);
   if (quality_)
     quality_->add_to_graph(graph, opaque.depth, frame);
   if (hair_quality_) hair_quality_->add_to_graph(graph, opaque.depth, frame);
+  if (resolution_) {
+    const rg::BufferHandle levels = resolution_->add_to_graph(graph, opaque.depth, frame);
+    if (level_overlay_) level_overlay_pass_->add_to_graph(graph, ldr, levels, *level_overlay_);
+  }
   if (probes_) probes_->add_to_graph(graph, shadows);
   if (texel_curves_) texel_curves_->add_to_graph(graph, shadows);
   if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
@@ -266,6 +274,27 @@ std::vector<float> SceneRenderer::hair_quality_results() const {
 
 std::vector<passes::PixelShadowError> SceneRenderer::quality_results() const {
   return quality_ ? quality_->results(finished_slot_) : std::vector<passes::PixelShadowError>{};
+}
+
+void SceneRenderer::enable_resolution_figures() {
+  if (!resolution_) resolution_ = std::make_unique<passes::ShadowResolutionPass>(ctx_, shaders_);
+  resolution_->set_frames_in_flight(frames_in_flight());
+  resolution_->set_size(width_, height_, light_count_);
+}
+
+std::vector<passes::PixelShadowResolution> SceneRenderer::resolution_results() const {
+  return resolution_ ? resolution_->results(finished_slot_) : std::vector<passes::PixelShadowResolution>{};
+}
+
+void SceneRenderer::set_level_overlay(std::optional<uint32_t> light) {
+  if (light && *light >= light_count_)
+    throw std::invalid_argument("shadow level overlay: light " + std::to_string(*light) + " of " +
+                                std::to_string(light_count_) + " lights");
+  if (light) {
+    enable_resolution_figures();
+    if (!level_overlay_pass_) level_overlay_pass_ = std::make_unique<passes::ShadowLevelOverlayPass>(ctx_, shaders_);
+  }
+  level_overlay_ = light;
 }
 
 void SceneRenderer::enable_light_images() {

@@ -28,6 +28,8 @@
 #include "passes/shadows/inspection/shadow_probe_pass.h"
 #include "passes/camera/quality/shadow_quality_hair_pass.h"
 #include "passes/camera/quality/shadow_quality_pass.h"
+#include "passes/camera/quality/shadow_level_overlay_pass.h"
+#include "passes/camera/quality/shadow_resolution_pass.h"
 #include "passes/camera/tonemap_pass.h"
 #include "passes/frame/view.h"
 #include "passes/camera/volumes/volume_cached_march_pass.h"
@@ -115,6 +117,19 @@ class SceneRenderer {
   std::vector<float> hair_quality_results() const;
   uint32_t hair_receiver_count() const { return hair_quality_ ? hair_quality_->receiver_count() : 0; }
 
+  // Measures, per camera pixel and light, the level the opaque surface's lookup reads
+  // and how wide its texels are on screen (passes/camera/quality/shadow_resolution_pass.h),
+  // in each frame after the opaque pass; resolution_results() once the frame completed:
+  // [light][pixel], row 0 at the top.
+  void enable_resolution_figures();
+  std::vector<passes::PixelShadowResolution> resolution_results() const;
+  // Tints the tonemapped image's receivers of light `light` by the level their surface
+  // lookup reads, and dims the rest (the viewer's overlay; needs the resolution
+  // figures, which it enables); nullopt: off. Throws std::invalid_argument for a light
+  // the scene does not have.
+  void set_level_overlay(std::optional<uint32_t> light);
+  std::optional<uint32_t> level_overlay() const { return level_overlay_; }
+
   // Renders a picture of every light's transmittance map in each frame
   // (passes/shadows/inspection/shadow_debug_pass.h); light_images() after the frame completed.
   void enable_light_images();
@@ -176,6 +191,9 @@ class SceneRenderer {
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;
   std::unique_ptr<passes::ShadowQualityPass> quality_;
   std::unique_ptr<passes::ShadowQualityHairPass> hair_quality_;
+  std::unique_ptr<passes::ShadowResolutionPass> resolution_;
+  std::unique_ptr<passes::ShadowLevelOverlayPass> level_overlay_pass_;
+  std::optional<uint32_t> level_overlay_;
   std::unique_ptr<passes::ShadowDebugPass> light_images_;
   const gpu::ShaderLibrary& shaders_;
 

@@ -83,11 +83,15 @@ ControlCommand parse_control_command(const std::string& line) {
   } else if (name == "exposure") {
     command.kind = ControlCommand::Kind::exposure;
     command.exposure = parse_number(argument("a number"), "exposure");
+  } else if (name == "levels") {
+    command.kind = ControlCommand::Kind::levels;
+    const std::string light = argument("a light index or off");
+    if (light != "off") command.overlay_light = uint32_t(parse_whole(light, "levels"));
   } else if (name == "quit") {
     command.kind = ControlCommand::Kind::quit;
   } else {
     throw std::invalid_argument("unknown command '" + name +
-                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, quit)");
+                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, levels I|off, quit)");
   }
   if (words >> rest) throw std::invalid_argument("'" + name + "': unexpected '" + rest + "'");
   return command;

@@ -14,11 +14,14 @@
 //                            1 off), on (on/off), position X,Y,Z (spot, point), direction
 //                            X,Y,Z (directional, spot; normalised)
 //   exposure V               the tonemapper's exposure
+//   levels I|off             tint light I's receivers by the shadow map level they read
+//                            (the panel's "shadow levels" overlay), or stop
 //   quit                     stop (the exit status still reports validation messages)
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "viewer/scene_overrides.h"
@@ -26,13 +29,14 @@
 namespace avsm::viewer {
 
 struct ControlCommand {
-  enum class Kind { frame, inspect, screenshot, light, exposure, quit };
+  enum class Kind { frame, inspect, screenshot, light, exposure, levels, quit };
   Kind kind = Kind::frame;
   glm::vec2 pixel{0.0f};             // inspect
   std::filesystem::path directory;   // screenshot
   uint32_t light = 0;                // light
   std::string field, value;          // light
   float exposure = 1.0f;             // exposure
+  std::optional<uint32_t> overlay_light;  // levels (nullopt: off)
 };
 
 // Throws std::invalid_argument saying what is wrong with the line.

@@ -230,7 +230,7 @@ PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_lights(view, settings, requests);
   if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(view);
   if (ImGui::CollapsingHeader("Smoke and hair")) draw_media(view, settings, requests);
-  if (ImGui::CollapsingHeader("Display")) draw_display(settings, requests);
+  if (ImGui::CollapsingHeader("Display")) draw_display(view, settings, requests);
   if (ImGui::CollapsingHeader("Memory")) draw_memory(view);
   if (ImGui::CollapsingHeader("Frame graph plan")) draw_plan(view);
   if (ImGui::CollapsingHeader("Scene file")) draw_scene_file(requests);
@@ -338,9 +338,25 @@ void Panel::draw_volume_shading(const scene::VolumeShading& shading, ViewerSetti
     o.step_voxels = step, requests.scene_edited = true;
 }
 
-void Panel::draw_display(ViewerSettings& settings, PanelRequests& requests) {
+void Panel::draw_display(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
   if (ImGui::SliderFloat("exposure", &settings.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
     requests.exposure_changed = true;
+  // Receivers tinted by the level they read: red the finest, then orange, yellow, green,
+  // cyan, blue, violet, magenta (shadow_level_overlay.comp).
+  const std::vector<scene::Light>& lights = view.live.scene().lights;
+  std::vector<int> overlay_options{-1};
+  for (int i = 0; i < int(lights.size()); ++i) overlay_options.push_back(i);
+  const int overlay = settings.level_overlay ? int(*settings.level_overlay) : -1;
+  const auto overlay_name = [&](int i) {
+    return i < 0 ? std::string("off") : lights[size_t(i)].name.empty() ? "light " + std::to_string(i) : lights[size_t(i)].name;
+  };
+  if (const std::optional<int> chosen = choose("shadow levels", overlay, overlay_options, overlay_name)) {
+    settings.level_overlay = *chosen < 0 ? std::nullopt : std::optional<uint32_t>(uint32_t(*chosen));
+    requests.level_overlay_changed = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("tints the light's receivers by the shadow map level they read: red level 0 (finest), then "
+                      "orange, yellow, green, cyan, blue, violet, magenta; the rest is dimmed");
   if (ImGui::Checkbox("exponential interpolation", &settings.shadow_options.exponential_interpolation))
     requests.shadow_options_changed = true;
   if (ImGui::SliderFloat("normal offset (texels)", &settings.shadow_options.normal_offset_texels, 0.0f, 8.0f))

@@ -3,7 +3,7 @@
 // map resolution / filter / sort / on-off, placement (a point light's position and
 // range), fit / cascades / clusters and the maps the last frame made of it (kind,
 // count, budget lowering), volume extinction and
-// albedo, hair opacity and width, exposure; the last frame's per-pass GPU timings,
+// albedo, hair opacity and width, exposure, the shadow level overlay; the last frame's per-pass GPU timings,
 // memory figures and frame-graph plan; reload errors; the light maps and the
 // inspected texel's transmittance curves. It edits ViewerSettings and returns what
 // else the user asked for; the viewer app acts on it. It is docked: a column at the
@@ -35,6 +35,8 @@ struct ViewerSettings {
   SceneOverrides overrides;
   float exposure = 1.0f;
   passes::ShadowOptions shadow_options;
+  // The light whose receivers are tinted by the level their lookup reads (nullopt: none).
+  std::optional<uint32_t> level_overlay;
 };
 
 // The last scene frame the viewer rendered.
@@ -61,6 +63,7 @@ struct PanelRequests {
   bool scene_edited = false;            // settings.overrides changed
   bool shadow_options_changed = false;  // settings.shadow_options changed
   bool exposure_changed = false;
+  bool level_overlay_changed = false;  // settings.level_overlay changed
   std::optional<std::string> load_scene;
   bool screenshot = false;
   bool reset_camera = false;
@@ -82,7 +85,7 @@ class Panel {
   void draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_volume_shading(const scene::VolumeShading& shading, ViewerSettings& settings, PanelRequests& requests);
-  void draw_display(ViewerSettings& settings, PanelRequests& requests);
+  void draw_display(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_timings(const PanelView& view);
   void draw_memory(const PanelView& view);
   void draw_plan(const PanelView& view);

@@ -205,6 +205,9 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer.set_frames_in_flight(options_.frames_in_flight);
     renderer.set_exposure(settings_.exposure);
     renderer.enable_light_images();
+    if (settings_.level_overlay && *settings_.level_overlay >= renderer.shadows().light_count())
+      settings_.level_overlay.reset();  // a reloaded scene with fewer lights
+    renderer.set_level_overlay(settings_.level_overlay);
   });
   live_->set_before_change([this] { finish_scene_frames(); });
   std::fprintf(stderr, "avsm-viewer: %s (%s), %ux%u, view %ux%u beside a %u px panel, scene %s, %u frames in flight\n",
@@ -311,6 +314,13 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
     case ControlCommand::Kind::exposure:
       settings_.exposure = command.exposure;
       apply({.exposure_changed = true});
+      break;
+    case ControlCommand::Kind::levels:
+      if (command.overlay_light && *command.overlay_light >= live_->scene().lights.size())
+        throw std::invalid_argument("levels " + std::to_string(*command.overlay_light) + ": the scene has " +
+                                    std::to_string(live_->scene().lights.size()) + " lights");
+      settings_.level_overlay = command.overlay_light;
+      apply({.level_overlay_changed = true});
       break;
     case ControlCommand::Kind::quit: break;
   }
@@ -439,6 +449,11 @@ void ViewerApp::apply(const PanelRequests& requests) {
   }
   if (requests.exposure_changed) {
     live_->renderer().set_exposure(settings_.exposure);
+    scene_dirty_ = true;
+  }
+  if (requests.level_overlay_changed) {
+    finish_scene_frames();  // the frames in flight were declared without (or with) the overlay's passes
+    live_->renderer().set_level_overlay(settings_.level_overlay);
     scene_dirty_ = true;
   }
   if (requests.load_scene) {

@@ -113,6 +113,7 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
     pages.pending += m.pending;
     pages.unserved += m.unserved;
     pages.lod_bias = std::max(pages.lod_bias, m.lod_bias);
+    pages.settling = pages.settling || m.settling;
     light.pages = pages;
   }
   if (map.fixed_build) {

@@ -211,6 +211,7 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
     for (uint32_t e = 0; e < map.pages->entries(); ++e)
       if ((bits[e / 32] >> (e % 32) & 1u) != 0 && declared.page_table[e] == shared::kPageAbsent) ++stats.pages->pending;
     map.pages->add_requests({bits, words});
+    stats.pages->settling = map.pages->stats().settling;  // its requests moved the bias
   }
   const uint64_t texels = uint64_t(declared.map_state.layout.resolution) * declared.map_state.layout.resolution;
   stats.capture_capacity = declared.capacity;

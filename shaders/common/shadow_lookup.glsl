@@ -118,8 +118,17 @@ void shadow_request_page(GpuShadow s, uint entry) {
 #endif
 }
 
+// Where p is in map `s`, in uv (0..1 over the map).
+vec2 shadow_map_uv(GpuShadow s, vec3 p) {
+  vec4 clip = s.light_from_world * vec4(p, 1.0);
+  return clip.xy / clip.w * 0.5 + 0.5;
+}
+
 // The level a receiver at p (light depth d) asks for: the one whose texels match a
 // camera pixel's footprint there, moved by the map's bias; fractional (trilinear).
+// (Matching the texel's widest extent on screen instead, from the derivatives of the
+// position, asked for about twice the pages in the default scene, and under the fixed
+// pool the bias that followed made every texel coarser: docs/shadows.md.)
 float shadow_paged_lod(GpuShadow s, vec3 p, float d) {
   float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
   float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)) + s.page_lod_bias;
@@ -168,6 +177,47 @@ bool shadow_page_texel(GpuShadow s, uint level, ivec2 texel, out GpuShadow page,
   return true;
 }
 
+// The levels of map `s` a lookup at p reads (uv: p in the map, d: its light depth):
+// `first`, and when `count` is 2 the next one too, weighted by `blend` (trilinear).
+// A paged map reads the finest resident level at or above the receiver's own and asks
+// for the receiver's pages (where the including pass marks); `kernel`: the soft-shadow
+// kernel filters level 0 alone.
+struct ShadowLevels {
+  uint first;
+  int count;
+  float blend;
+};
+
+ShadowLevels shadow_lookup_levels(GpuShadow s, vec3 p, vec2 uv, float d, bool kernel) {
+  ShadowLevels read = ShadowLevels(0u, 1, 0.0);
+  if (shadow_is_paged(s)) {
+    // Trilinear between the two levels around the receiver's; while one of them is not
+    // resident, the finest resident level above stands in alone.
+    float lod = shadow_paged_lod(s, p, d);
+    uint level = uint(floor(lod));
+    read.blend = lod - float(level);
+    read.count = level + 1u < s.mip_count ? 2 : 1;
+    uint resident = shadow_paged_resident_level(s, uv, level, true);
+    if (read.count == 2 && shadow_paged_resident_level(s, uv, level + 1u, true) != level + 1u) read.count = 1;
+    if (resident != level) read.count = 1;
+    read.first = resident;
+  } else if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
+    // Level of detail: a camera pixel's footprint at p over a light texel's size there.
+    float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
+    float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
+                      float(s.mip_count - 1u));
+    read.first = uint(floor(lod));
+    read.blend = lod - float(read.first);
+    read.count = read.first + 1u < s.mip_count ? 2 : 1;
+  }
+  return read;
+}
+
+// The width of the texels a lookup reads, in the map's uv units: the blended level's.
+float shadow_read_texel_uv(GpuShadow s, ShadowLevels read) {
+  return exp2(float(read.first) + (read.count == 2 ? read.blend : 0.0)) / float(s.resolution);
+}
+
 // shadow_texel_transmittance(s, level, texel, d): the light's technique's texel
 // lookup, dispatched over the registry (passes/shadows/techniques/registry.h) by the code the
 // build generates (cmake/ShadowTechniques.cmake).
@@ -209,31 +259,12 @@ float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
   float d = shadow_light_depth(s, p);
 
-  uint level = 0u;
-  int levels = 1;
-  float level_blend = 0.0;
   bool kernel = soft && s.kernel != kKernelNone;  // at level 0: the kernel is the filter
   bool paged = shadow_is_paged(s);
-  if (paged) {
-    // Trilinear between the two levels around the receiver's; while one of them is not
-    // resident, the finest resident level above stands in alone.
-    float lod = shadow_paged_lod(s, p, d);
-    level = uint(floor(lod));
-    level_blend = lod - float(level);
-    levels = level + 1u < s.mip_count ? 2 : 1;
-    uint resident = shadow_paged_resident_level(s, uv, level, true);
-    if (levels == 2 && shadow_paged_resident_level(s, uv, level + 1u, true) != level + 1u) levels = 1;
-    if (resident != level) levels = 1;
-    level = resident;
-  } else if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
-    // Level of detail: a camera pixel's footprint at p over a light texel's size there.
-    float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
-    float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
-                      float(s.mip_count - 1u));
-    level = uint(floor(lod));
-    level_blend = lod - float(level);
-    levels = level + 1u < s.mip_count ? 2 : 1;
-  }
+  ShadowLevels read = shadow_lookup_levels(s, p, uv, d, kernel);
+  uint level = read.first;
+  int levels = read.count;
+  float level_blend = read.blend;
   bool bilinear = s.filter_mode != kFilterPoint;
   float result = 0.0;
   for (int l = 0; l < levels; ++l) {
@@ -298,6 +329,36 @@ uint shadow_cube_face(vec3 d) {
   return d.z >= 0.0 ? 4u : 5u;
 }
 
+// The cascade of light record `s` (kViewsCascades) at p's camera depth; `count` is 2
+// inside the band before a split, where the next cascade is blended in by `blend`.
+uint shadow_cascade_at(GpuShadow s, vec3 p, out uint count, out float blend) {
+  float depth = dot(p - s.camera_position.xyz, s.view_select.xyz);
+  uint split = 0u;
+  for (uint k = 0u; k < 3u; ++k)
+    if (k + 1u < s.view_count && depth > s.cascade_ends[k]) split = k + 1u;
+  float end = s.cascade_ends[split], begin = split == 0u ? 0.0 : s.cascade_ends[split - 1u];
+  float band = (end - begin) * s.view_select.w;
+  count = 1u;
+  blend = 0.0;
+  if (split + 1u < s.view_count && band > 0.0 && depth > end - band) {
+    blend = clamp((depth - (end - band)) / band, 0.0, 1.0);
+    count = 2u;
+  }
+  return split;
+}
+
+// The map record a lookup in light record `record` at p reads first: the light's own
+// (one map), the cube face p lies in, its cascade, or its first cluster map.
+uint light_map_record_at(uint record, vec3 p) {
+  GpuShadow s = shadows[record];
+  if (s.views == kViewsCube) return s.first_view + shadow_cube_face(p - s.view_select.xyz);
+  if (s.views == kViewsClusters) return s.first_view;
+  if (s.views != kViewsCascades) return record;
+  uint count;
+  float blend;
+  return s.first_view + shadow_cascade_at(s, p, count, blend);
+}
+
 // Transmittance from the light whose record is shadows[record] to p: its one map, the
 // cube face p lies in, the cascade(s) at p's camera depth (blended across a split), or
 // the product over its cluster maps. `surface`: p is on a surface with that normal and is
@@ -306,24 +367,11 @@ uint shadow_cube_face(vec3 d) {
 float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal, vec3 to_light) {
   GpuShadow s = shadows[record];
   if (s.views == kViewsSingle && s.technique == kShadowNone) return 1.0;
-  uint first = record, count = 1u;
+  uint first = light_map_record_at(record, p), count = 1u;
   float blend = 0.0;  // cascades: weight of the second map
-  if (s.views == kViewsCube) {
-    first = s.first_view + shadow_cube_face(p - s.view_select.xyz);
-  } else if (s.views == kViewsCascades) {
-    float depth = dot(p - s.camera_position.xyz, s.view_select.xyz);
-    uint split = 0u;
-    for (uint k = 0u; k < 3u; ++k)
-      if (k + 1u < s.view_count && depth > s.cascade_ends[k]) split = k + 1u;
-    first = s.first_view + split;
-    float end = s.cascade_ends[split], begin = split == 0u ? 0.0 : s.cascade_ends[split - 1u];
-    float band = (end - begin) * s.view_select.w;
-    if (split + 1u < s.view_count && band > 0.0 && depth > end - band) {
-      blend = clamp((depth - (end - band)) / band, 0.0, 1.0);
-      count = 2u;
-    }
+  if (s.views == kViewsCascades) {
+    shadow_cascade_at(s, p, count, blend);
   } else if (s.views == kViewsClusters) {
-    first = s.first_view;
     count = s.view_count;
   }
   bool product = s.views == kViewsClusters;

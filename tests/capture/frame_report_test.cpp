@@ -180,6 +180,36 @@ TEST(FrameReport, QualityRoundTrip) {
   EXPECT_EQ(to_json(back), json);
 }
 
+// Six pixels of two lights: the summary counts each light's lit receivers, those whose
+// texel is at most 1.5 pixels wide, their median and levels; the file reads back.
+TEST(FrameReport, ResolutionSummaryAndRoundTrip) {
+  scene::Scene scene;
+  scene.lights.resize(2);
+  scene.lights[0].name = "sun";
+  using P = passes::PixelShadowResolution;
+  const std::vector<P> pixels = {
+      {0.5f, 1.0f, 0, 1}, {-1.0f, 0.0f, 0, 1}, {3.0f, 2.0f, 0, 1},  // light 0: two receivers
+      {0.0f, 1.5f, 1, 0}, {0.0f, 1.6f, 1, 0}, {0.0f, 0.4f, 1, 0},   // light 1: three
+  };
+  const ResolutionReport report = summarize_resolution(pixels, 3, 1, scene);
+  ASSERT_EQ(report.lights.size(), 2u);
+  EXPECT_EQ(report.lights[0].light, "sun");
+  EXPECT_EQ(report.lights[1].light, "light 1");
+  EXPECT_TRUE(report.lights[0].paged);
+  EXPECT_FALSE(report.lights[1].paged);
+  EXPECT_EQ(report.lights[0].receivers, 2u);
+  EXPECT_EQ(report.lights[0].matched, 1u);
+  EXPECT_EQ(report.lights[0].levels[0], 1u);
+  EXPECT_EQ(report.lights[0].levels[3], 1u);
+  EXPECT_EQ(report.lights[1].matched, 2u);  // 1.5 counts, 1.6 does not
+  EXPECT_FLOAT_EQ(report.lights[1].median_texel_pixels, 1.5f);
+  EXPECT_EQ(report.receivers(), 5u);
+  EXPECT_DOUBLE_EQ(report.matched_fraction(), 3.0 / 5.0);
+  const nlohmann::json json = to_json(report);
+  EXPECT_EQ(json["lights"][1]["image"], "light1_resolution.png");
+  EXPECT_EQ(to_json(resolution_report_from_json(json)), json);
+}
+
 TEST(FrameReport, ProbesRoundTrip) {
   const ProbeReport probes = sample_probes();
   const nlohmann::json json = to_json(probes);

@@ -180,6 +180,64 @@ TEST_F(PagedMapsTest, ReceiversAskForThePagesTheyReadUntilTheMapConverges) {
   }
 }
 
+// The engine's resolution figure (passes/camera/quality/shadow_resolution_pass.h) follows
+// the level the surfaces read: a page_lod_bias of one level makes each receiver read the
+// next coarser level (unless it already reads the coarsest), and its texel exactly twice as
+// wide on screen (up to the change of the surface point's offset, which the level sets).
+// With room in the pool (no bias) most lit receivers read texels at most 1.5 pixels wide.
+TEST_F(PagedMapsTest, TheResolutionFigureFollowsTheLevelsTheSurfacesRead) {
+  constexpr uint32_t kWidth = 2 * kFrameWidth, kHeight = 2 * kFrameHeight;  // fewer receivers at the coarsest level
+  std::vector<passes::PixelShadowResolution> pixels[2];
+  uint32_t coarsest[2] = {};  // per light
+  for (const int bias : {0, 1}) {
+    scene::Scene scene = default_scene(scene::ShadowLayout::paged, 256);
+    for (scene::Light& light : scene.lights) light.shadow.page_lod_bias = float(bias);
+    const passes::View view = passes::make_view(scene.cameras.front(), kWidth, kHeight);
+    renderer::SceneRenderer paged(ctx(), shaders(), scene, kWidth, kHeight, {.unlimited_page_builds = true});
+    paged.enable_resolution_figures();
+    render_frames(ctx(), paged, view, 4);
+    for (uint32_t light = 0; light < 2; ++light) {
+      const passes::PageStats& pages = *paged.shadows().frame_stats()[light].pages;
+      ASSERT_EQ(pages.pending, 0u) << scene.lights[light].name;
+      ASSERT_EQ(pages.lod_bias, 0.0f) << scene.lights[light].name << ": the pool holds the requests";
+    }
+    for (uint32_t light = 0; light < 2; ++light) coarsest[light] = paged.shadows().frame_stats()[light].mip_levels - 1;
+    pixels[bias] = paged.resolution_results();
+  }
+  ASSERT_EQ(pixels[0].size(), size_t(2) * kWidth * kHeight);
+  uint32_t receivers = 0, matched = 0, others = 0;
+  std::vector<float> level_steps, width_ratios;  // of the receivers that are not at the coarsest level
+  for (size_t i = 0; i < pixels[0].size(); ++i) {
+    const passes::PixelShadowResolution &fine = pixels[0][i], &biased = pixels[1][i];
+    // The same receivers, but for a few at a map's edge, where the larger offset of the
+    // surface point moves it out of the map.
+    if (fine.level < 0.0f || biased.level < 0.0f) {
+      others += fine.level >= 0.0f || biased.level >= 0.0f;
+      continue;
+    }
+    ++receivers;
+    matched += fine.texel_pixels <= 1.5f;
+    if (biased.level >= float(coarsest[i / (kWidth * kHeight)])) continue;  // clamped
+    level_steps.push_back(biased.level - fine.level);
+    width_ratios.push_back(biased.texel_pixels / fine.texel_pixels);
+  }
+  std::sort(level_steps.begin(), level_steps.end());
+  std::sort(width_ratios.begin(), width_ratios.end());
+  const size_t n = level_steps.size();
+  std::cout << "[ resolution  ] " << receivers << " lit receivers; with a bias of 1, " << n << " read a level "
+            << level_steps[n / 2] << " coarser (5th to 95th percentile " << level_steps[n / 20] << " to "
+            << level_steps[n - 1 - n / 20] << "), texels " << width_ratios[n / 2] << "x as wide; without it "
+            << 100.0 * matched / receivers << "% at most 1.5 px\n";
+  EXPECT_GT(receivers, 4000u);
+  EXPECT_LT(others, receivers / 100);
+  ASSERT_GT(n, receivers / 2);
+  EXPECT_NEAR(level_steps[n / 2], 1.0f, 0.01f);
+  EXPECT_NEAR(width_ratios[n / 2], 2.0f, 0.02f);
+  EXPECT_GT(level_steps[n / 20], 0.9f);  // the surface point's offset moves with the level
+  EXPECT_LT(level_steps[n - 1 - n / 20], 1.1f);
+  EXPECT_GE(matched, receivers / 2);
+}
+
 // A pool of four pages: receivers are served by the coarser levels that fit, the
 // overflow is reported (unserved, pending), and the bias grows.
 TEST_F(PagedMapsTest, APoolOfAFewPagesServesCoarserLevelsAndReportsTheOverflow) {

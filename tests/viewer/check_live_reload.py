@@ -16,6 +16,8 @@ edits the copies as a user would in an editor:
   5. an asset (the hair file) cut short: the error names it; then restored: reloaded;
   6. a panel edit the renderer rejects (light 0 nodes 5), then a valid one (nodes 4);
   7. a click on the smoke, whose curves must be evaluated (inspect.json);
+  8. the shadow level overlay of light 0 (the sun, a dense map: every receiver reads
+     level 0, red): the sky, no receiver, is dimmed and the floor turns red; then off;
 and finally quits: the exit status is 0 only without validation messages.
 The viewer runs under XVFB_RUN (xvfb-run).
 """
@@ -82,6 +84,13 @@ def mean_brightness(png):
     return sum(sum(row) for row in rows) / (len(rows) * len(rows[0]))
 
 
+def pixel(png, x, y):
+    """The RGB of pixel (x, y), y down."""
+    width, _, rows = read_png(png)
+    channels = len(rows[0]) // width
+    return tuple(rows[y][x * channels:x * channels + 3])
+
+
 def main():
     xvfb_run = sys.argv[1]
     viewer_exe, shaders, scene_dir, work = (Path(a) for a in sys.argv[2:6])
@@ -143,6 +152,21 @@ def main():
     viewer.frame()
     viewer.send(f"screenshot {work / 'inspected'}")
     check_inspection(work / "inspected" / "inspect.json")
+
+    # 8: the shadow level overlay.
+    viewer.send("levels 0")
+    viewer.frame()
+    viewer.send(f"screenshot {work / 'levels'}")
+    sky, floor = (2, 2), (view_width // 2, view_height - 3)
+    plain_sky, tinted_sky = pixel(work / "inspected" / "frame.png", *sky), pixel(work / "levels" / "frame.png", *sky)
+    tinted_floor = pixel(work / "levels" / "frame.png", *floor)
+    print(f"overlay: sky {plain_sky} -> {tinted_sky}, floor {tinted_floor}")
+    if not sum(tinted_sky) < 0.5 * sum(plain_sky):
+        fail("the level overlay did not dim the sky (no receiver)")
+    if not tinted_floor[0] > tinted_floor[1] + 40 and tinted_floor[0] > tinted_floor[2] + 40:
+        fail("the level overlay did not tint the floor red (level 0 of the sun's dense map)")
+    viewer.send("levels off")
+    viewer.frame()
 
     viewer.send("quit")
     status = viewer.process.wait(timeout=60)

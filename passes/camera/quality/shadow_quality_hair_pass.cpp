@@ -19,9 +19,7 @@ ShadowQualityHairPass::ShadowQualityHairPass(gpu::Context& ctx, const gpu::Shade
     : ctx_(ctx),
       pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/quality/shadow_quality_hair.comp"),
                                        "shadow quality hair")),
-      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE,
-                           "quality hair depth"}) {}
+      depth_sampler_(ctx, gpu::texel_sampler_desc("quality hair depth")) {}
 
 void ShadowQualityHairPass::set_hair(const HairPass& hair, uint32_t light_count) {
   const uint32_t vertices = hair.segment_count() ? uint32_t(hair.points().size() / sizeof(glm::vec4)) : 0;

@@ -17,7 +17,7 @@
 #include "gpu/resources.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadows/shadow_maps.h"
-#include "passes/frame/frames_in_flight.h"
+#include "passes/camera/quality/per_pixel_results.h"
 #include "passes/frame/view.h"
 #include "passes/camera/volumes/volume_pass.h"
 #include "shared/passes/camera/quality/shadow_quality.h"
@@ -49,17 +49,16 @@ class ShadowQualityPass {
 
   // After the frame recorded into `slot` completed: [light * width * height + y * width + x],
   // row 0 at the top.
-  std::vector<PixelShadowError> results(uint32_t slot = 0) const;
-  uint32_t width() const { return width_; }
-  uint32_t height() const { return height_; }
-  uint32_t light_count() const { return light_count_; }
+  std::vector<PixelShadowError> results(uint32_t slot = 0) const { return results_.read(slot); }
+  uint32_t width() const { return results_.width(); }
+  uint32_t height() const { return results_.height(); }
+  uint32_t light_count() const { return results_.light_count(); }
 
  private:
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
-  FrameBuffers results_;
-  uint32_t width_ = 0, height_ = 0, light_count_ = 0;
+  PerPixelResults<PixelShadowError> results_;
 };
 
 }  // namespace avsm::passes

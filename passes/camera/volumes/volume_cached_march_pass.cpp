@@ -23,8 +23,7 @@ VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::Shade
       cached_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/volumes/volume_cached_march.comp"), "volume march")),
       with_lookups_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/volumes/volume_cached_march_lookups.comp"),
                                            "volume march with lookups")),
-      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "march depth"}) {}
+      depth_sampler_(ctx, gpu::texel_sampler_desc("march depth")) {}
 
 VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth,
                                                      const FrameInputs& inputs) {

@@ -111,8 +111,7 @@ std::string grid_sizes(const std::vector<scene::Volume>& volumes) {
 VolumePass::VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
       pipeline_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/volumes/volume_march.comp"), "volume march")),
-      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "volume depth"}) {}
+      depth_sampler_(ctx, gpu::texel_sampler_desc("volume depth")) {}
 
 void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   std::vector<std::byte> grids;

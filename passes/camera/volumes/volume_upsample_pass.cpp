@@ -17,8 +17,7 @@ VolumeUpsamplePass::VolumeUpsamplePass(gpu::Context& ctx, const gpu::ShaderLibra
       cached_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/volumes/volume_upsample.comp"), "volume composite")),
       with_lookups_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/volumes/volume_upsample_lookups.comp"),
                                            "volume composite with lookups")),
-      nearest_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
-                     VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "volume composite"}) {}
+      nearest_(ctx, gpu::texel_sampler_desc("volume composite")) {}
 
 rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
                                                    const VolumeMarchImage& march, const FrameInputs& inputs) {

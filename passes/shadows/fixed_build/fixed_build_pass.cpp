@@ -19,8 +19,7 @@ FixedBuildPass::FixedBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shad
       depth_(ctx, shaders),
       bins_(ctx, shaders),
       pipelines_(avsm_node_variants(ctx, shaders, shader, name_, per_node_count)),
-      depth_sampler_(ctx, {VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                           false, VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "light depth"}),
+      depth_sampler_(ctx, gpu::texel_sampler_desc("light depth")),
       placeholder_(gpu::create_buffer_from(ctx, std::vector<shared::GpuVolume>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                            "fixed build: no casters")) {
   std::vector<shared::GpuVolume> no_volumes;

@@ -13,12 +13,14 @@ namespace {
 
 // Requests within this share of the pool leave the bias alone; above it the bias grows.
 constexpr float kPoolHigh = 0.85f;
-// Below this share the bias shrinks: a quarter level less asks for about 1.4x the pages,
-// which stays under kPoolHigh, so the bias does not swing back and forth.
-constexpr float kPoolLow = 0.55f;
+// Below this share the bias shrinks. A quarter level less asks for about 1.4x the pages
+// in theory, but up to 1.7x in the default scene at 640x360 (the pages at the edges of
+// each level's band on screen), so at 0.55 the bias swung back and forth; from 0.4 even
+// 2x stays under kPoolHigh.
+constexpr float kPoolLow = 0.4f;
 constexpr float kBiasStep = 0.25f;
-// Where a grown bias aims: between kPoolLow and kPoolHigh.
-constexpr float kPoolTarget = 0.7f;
+// Where a moving bias aims: between kPoolLow and kPoolHigh.
+constexpr float kPoolTarget = 0.6f;
 constexpr float kMaxBias = 8.0f;
 
 bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
@@ -87,18 +89,22 @@ bool PageTable::has_pending_requests() const {
 
 void PageTable::adapt_lod_bias() {
   const float share = float(stats_.requested) / float(slots_);
+  const float before = lod_bias_;
+  // Requests fall about 4x per level (2x per side), so the bias that brings them to
+  // kPoolTarget is log4 of the excess (or of the room left): one frame's move, in whole
+  // quarter steps, rather than a step a frame (each of which would rebuild the pages it
+  // moves, and keep a capture waiting).
+  const auto quarters = [&] { return std::ceil(std::abs(std::log(share / kPoolTarget)) / std::log(4.0f) / kBiasStep) * kBiasStep; };
   if (share > kPoolHigh) {
-    // Requests fall about 4x per level (2x per side), so the bias that brings them to
-    // kPoolTarget is log4 of the excess: one frame's jump, in whole steps, rather than
-    // a step a frame (each of which would rebuild the pages it moves).
-    const float levels = std::log(share / kPoolTarget) / std::log(4.0f);
-    const float step = std::max(kBiasStep, std::ceil(levels / kBiasStep) * kBiasStep);
-    lod_bias_ = std::min(lod_bias_ + step, kMaxBias);
+    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), kMaxBias);
   } else if (stats_.unserved > 0) {
     lod_bias_ = std::min(lod_bias_ + kBiasStep, kMaxBias);
   } else if (share < kPoolLow) {
-    lod_bias_ = std::max(lod_bias_ - kBiasStep, 0.0f);
+    // Down by whole quarters short of the target, so that it is not overshot.
+    const float down = share > 0.0f ? std::max(kBiasStep, quarters() - kBiasStep) : lod_bias_;
+    lod_bias_ = std::max(lod_bias_ - down, 0.0f);
   }
+  stats_.settling = lod_bias_ != before;
 }
 
 bool PageTable::needs_build(uint32_t entry) const {
@@ -126,6 +132,7 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   PageStats stats;
   stats.slots = slots_;
   stats.requested = stats_.requested;
+  stats.settling = stats_.settling;
   stats.invalidated = invalidated_since_plan_;
   invalidated_since_plan_ = 0;
   // Wanted: coarsest level first (their entries come last), so the stand-ins for

@@ -13,7 +13,8 @@
 //
 // When requests outgrow the pool, the pages that do not fit are counted (unserved)
 // and served by coarser levels, and a level-of-detail bias grows until the requests
-// fit in about 85% of the pool; it shrinks back when they would fit again.
+// fit in about 85% of the pool; it shrinks back when they would fit again. Either move
+// is made in one frame, by log4 of the excess or of the room left.
 #include <glm/vec2.hpp>
 
 #include "passes/shadows/uv_rect.h"
@@ -49,6 +50,7 @@ struct PageStats {
   uint32_t pending = 0;      // pages the frame's receivers asked for that it did not hold (coarser ones stood in)
   uint32_t unserved = 0;     // requested pages the pool could not hold (overflow)
   float lod_bias = 0.0f;     // the bias that keeps requests within the pool (levels)
+  bool settling = false;     // the last requests moved the bias: the next frame asks for other pages
   bool operator==(const PageStats&) const = default;
 };
 
@@ -89,8 +91,9 @@ class PageTable {
   // Requested pages that are missing or stale (after add_requests(): the next frame has
   // pages to build, or cannot hold them).
   bool has_pending_requests() const;
-  // Every requested page is resident and current: a capture may write the frame.
-  bool converged() const { return stats_.pending == 0 && stats_.unserved == 0; }
+  // Every requested page is resident and current, at a settled bias: a capture may
+  // write the frame.
+  bool converged() const { return stats_.pending == 0 && stats_.unserved == 0 && !stats_.settling; }
   const PageStats& stats() const { return stats_; }
   // Counts the changes to the table and the builds planned: what reads the map may skip
   // a revision it has already read.

@@ -27,58 +27,11 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 0) uniform sampler2D depth_texture;
+#define DEPTH_SURFACE_TEXTURE depth_texture
+#include "common/depth_surface.glsl"
 layout(std430, binding = 1) buffer Errors { PixelShadowError errors[]; };  // [light * width * height + y * width + x]
 layout(std430, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 
-
-// Depth-buffer value of the far plane: no surface.
-const float kFarDepth = 1.0;
-
-// World position of a pixel at a depth-buffer value (as in volume_march.comp:
-// Vulkan depth 0..1, flipped viewport, pixel row 0 at the top).
-vec3 unproject(ivec2 pixel, float depth) {
-  vec2 ndc = vec2(2.0 * (float(pixel.x) + 0.5) / float(pc.image_size.x) - 1.0,
-                  1.0 - 2.0 * (float(pixel.y) + 0.5) / float(pc.image_size.y));
-  vec4 world = pc.inverse_view_projection * vec4(ndc, depth, 1.0);
-  return world.xyz / world.w;
-}
-
-// The surface point of a neighbouring pixel, if it has one.
-bool neighbour_point(ivec2 pixel, out vec3 p) {
-  if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(uvec2(pixel), pc.image_size))) return false;
-  float depth = texelFetch(depth_texture, pixel, 0).r;
-  if (depth >= kFarDepth) return false;
-  p = unproject(pixel, depth);
-  return true;
-}
-
-// Step along one image axis: towards the neighbour closer to p (in world units), so
-// the difference stays on p's own surface at depth edges.
-bool surface_step(ivec2 pixel, vec3 p, ivec2 axis, out vec3 step) {
-  vec3 a, b;
-  bool has_a = neighbour_point(pixel + axis, a);
-  bool has_b = neighbour_point(pixel - axis, b);
-  if (has_a && (!has_b || distance(a, p) <= distance(b, p))) {
-    step = a - p;
-    return true;
-  }
-  if (has_b) {
-    step = p - b;
-    return true;
-  }
-  return false;
-}
-
-// The surface normal from the depth buffer, facing the camera.
-vec3 surface_normal(ivec2 pixel, vec3 p, vec3 to_camera) {
-  vec3 dx, dy;
-  if (!surface_step(pixel, p, ivec2(1, 0), dx) || !surface_step(pixel, p, ivec2(0, 1), dy)) return to_camera;
-  vec3 n = cross(dx, dy);
-  float len = length(n);
-  if (!(len > 1e-20)) return to_camera;
-  n /= len;
-  return dot(n, to_camera) < 0.0 ? -n : n;
-}
 
 bool lit(vec3 radiance) { return any(greaterThan(radiance, vec3(0.0))); }
 
@@ -88,13 +41,14 @@ void main() {
   uint pixel_count = pc.image_size.x * pc.image_size.y;
   uint pixel_index = uint(pixel.y) * pc.image_size.x + uint(pixel.x);
 
+  DepthCamera camera = DepthCamera(pc.inverse_view_projection, pc.image_size);
   float depth = texelFetch(depth_texture, pixel, 0).r;
   bool has_surface = depth < kFarDepth;
-  vec3 far_point = unproject(pixel, depth);
+  vec3 far_point = depth_pixel_point(camera, pixel, depth);
   vec3 origin = pc.camera_position;
   float t_max = length(far_point - origin);
   vec3 direction = t_max > 0.0 ? (far_point - origin) / t_max : vec3(0.0, 0.0, -1.0);
-  vec3 normal = has_surface ? surface_normal(pixel, far_point, -direction) : vec3(0.0);
+  vec3 normal = has_surface ? depth_surface_normal(camera, pixel, far_point, -direction) : vec3(0.0);
 
   // Each pixel's errors are kept in its own entries of `errors` as they add up (no
   // private array per light, so any number of lights). The lookups run for every
