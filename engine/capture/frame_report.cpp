@@ -348,6 +348,7 @@ json to_json(const LightSettings& light) {
           {"page_size", s.page_size},
           {"page_pool_mib", s.page_pool_mib},
           {"page_lod_bias", s.page_lod_bias},
+          {"page_volume_lod_bias", s.page_volume_lod_bias},
           {"parameters", s.parameters}};
 }
 
@@ -379,6 +380,8 @@ LightSettings light_settings_from_json(const json& in) {
     s.page_size = value_of<int>(in, "page_size");
     s.page_pool_mib = value_of<double>(in, "page_pool_mib");
     s.page_lod_bias = value_of<float>(in, "page_lod_bias");
+    // Reports from before volume receivers asked for pages: the default.
+    if (in.contains("page_volume_lod_bias")) s.page_volume_lod_bias = value_of<float>(in, "page_volume_lod_bias");
   }
   s.parameters = value_of<std::map<std::string, double>>(in, "parameters");
   return light;

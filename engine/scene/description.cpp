@@ -314,6 +314,11 @@ ShadowOverrides read_shadow_overrides(ObjectReader& object) {
     shadow.page_lod_bias = float(object.number("page_lod_bias"));
     object.check(*shadow.page_lod_bias >= -4.0f && *shadow.page_lod_bias <= 8.0f, "page_lod_bias", "must be -4 to 8 levels");
   }
+  if (object.optional("page_volume_lod_bias")) {
+    shadow.page_volume_lod_bias = float(object.number("page_volume_lod_bias"));
+    object.check(*shadow.page_volume_lod_bias >= 0.0f && *shadow.page_volume_lod_bias <= 8.0f, "page_volume_lod_bias",
+                 "must be 0 to 8 levels");
+  }
   shadow.page_builds_per_frame =
       whole_number("page_builds_per_frame", [](int n) { return n >= 0 && n <= 65536; }, "0 (no limit) to 65536 pages");
   if (const json* parameters = object.optional("parameters")) {

@@ -87,6 +87,7 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
   if (page_size) settings.page_size = *page_size;
   if (page_pool_mib) settings.page_pool_mib = *page_pool_mib;
   if (page_lod_bias) settings.page_lod_bias = *page_lod_bias;
+  if (page_volume_lod_bias) settings.page_volume_lod_bias = *page_volume_lod_bias;
   if (page_builds_per_frame) settings.page_builds_per_frame = *page_builds_per_frame;
   for (const auto& [name, value] : parameters) settings.parameters[name] = value;
 }

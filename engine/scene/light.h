@@ -63,6 +63,7 @@ struct ShadowSettings {
   int page_size = 64;              // paged: texels per page side: 32, 64 or 128
   double page_pool_mib = 32.0;     // paged: the light's page pool (a point light's six faces share it)
   float page_lod_bias = 0.0f;      // paged: levels added to every receiver's request (> 0: coarser)
+  float page_volume_lod_bias = 1.0f;  // paged: levels added to smoke receivers' requests on top (soft shadows)
   int page_builds_per_frame = 0;   // paged: most pages built in one frame (0: no limit); captures ignore it
 
   double parameter(const std::string& name, double fallback) const {
@@ -92,6 +93,7 @@ struct ShadowOverrides {
   std::optional<int> page_size;
   std::optional<double> page_pool_mib;
   std::optional<float> page_lod_bias;
+  std::optional<float> page_volume_lod_bias;
   std::optional<int> page_builds_per_frame;
   std::map<std::string, double> parameters;  // set on top of the light's own
 

@@ -225,7 +225,8 @@ SettingList settings_of(const capture::SettingsReport& s) {
       settings.insert(settings.end(), {{"virtual_resolution", std::to_string(shadow.virtual_resolution)},
                                        {"page_size", std::to_string(shadow.page_size)},
                                        {"page_pool_mib", number_text(shadow.page_pool_mib)},
-                                       {"page_lod_bias", number_text(shadow.page_lod_bias)}});
+                                       {"page_lod_bias", number_text(shadow.page_lod_bias)},
+                                       {"page_volume_lod_bias", number_text(shadow.page_volume_lod_bias)}});
     for (const auto& [name, value] : shadow.parameters) settings.push_back({"parameters." + name, number_text(value)});
     list.lights.push_back({light.light, std::move(settings)});
   }

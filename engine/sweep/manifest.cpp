@@ -60,6 +60,7 @@ struct SettingsPart {
     take(top.page_size, base.page_size);
     take(top.page_pool_mib, base.page_pool_mib);
     take(top.page_lod_bias, base.page_lod_bias);
+    take(top.page_volume_lod_bias, base.page_volume_lod_bias);
     take(top.page_builds_per_frame, base.page_builds_per_frame);
     for (const auto& [name, value] : top.parameters) base.parameters[name] = value;
   }

@@ -86,6 +86,7 @@ json to_json(const scene::ShadowOverrides& shadow) {
   if (shadow.page_size) out["page_size"] = *shadow.page_size;
   if (shadow.page_pool_mib) out["page_pool_mib"] = *shadow.page_pool_mib;
   if (shadow.page_lod_bias) out["page_lod_bias"] = *shadow.page_lod_bias;
+  if (shadow.page_volume_lod_bias) out["page_volume_lod_bias"] = *shadow.page_volume_lod_bias;
   if (shadow.page_builds_per_frame) out["page_builds_per_frame"] = *shadow.page_builds_per_frame;
   if (!shadow.parameters.empty()) out["parameters"] = shadow.parameters;
   return out;
@@ -110,6 +111,7 @@ scene::ShadowOverrides shadow_overrides_from_json(const json& in) {
   if (in.contains("page_size")) shadow.page_size = value_of<int>(in, "page_size");
   if (in.contains("page_pool_mib")) shadow.page_pool_mib = value_of<double>(in, "page_pool_mib");
   if (in.contains("page_lod_bias")) shadow.page_lod_bias = value_of<float>(in, "page_lod_bias");
+  if (in.contains("page_volume_lod_bias")) shadow.page_volume_lod_bias = value_of<float>(in, "page_volume_lod_bias");
   if (in.contains("page_builds_per_frame")) shadow.page_builds_per_frame = value_of<int>(in, "page_builds_per_frame");
   if (in.contains("parameters")) shadow.parameters = value_of<std::map<std::string, double>>(in, "parameters");
   return shadow;

@@ -43,11 +43,16 @@ struct FrameInputs {
   bool smoke_visible() const { return shading.mode != VolumeShading::Mode::hidden; }
   // Whether the fast passes need their variant with shadow-map lookups (a volume's cache is off).
   bool map_lookups() const { return volumes->needs_map_lookups(); }
-  // For the fast volume passes: the cache (when there is one) and the shadow maps.
-  void declare_volume_reads(rg::PassBuilder& builder) const;
+  // For a pass whose receivers ask paged maps for pages (AVSM_SHADOW_PAGE_REQUESTS_BINDING),
+  // in its setup: declares its writes to the request bits, and makes the new version the
+  // one the next such pass writes. Bind the result with shadows.bind_page_requests().
+  rg::BufferHandle ask_for_pages(rg::PassBuilder& builder);
+  // For the fast volume passes: the cache (when there is one) and the shadow maps; with
+  // map lookups, their receivers ask for pages (returned, else invalid).
+  rg::BufferHandle declare_volume_access(rg::PassBuilder& builder);
   // For the fast march and composite: the volumes with their atlas, the cache and, with
-  // map lookups, the lights and the shadow maps. Needs the cache.
-  void bind_volumes(gpu::Bindings& bindings, const rg::PassContext& context) const;
+  // map lookups, the lights, the shadow maps and the page requests. Needs the cache.
+  void bind_volumes(gpu::Bindings& bindings, const rg::PassContext& context, rg::BufferHandle page_requests) const;
 };
 
 }  // namespace avsm::passes

@@ -40,8 +40,10 @@ struct ShadowInputs {
   std::vector<rg::BufferHandle> lists;  // the looked-up lists: regions of `list_heads`, `list_nodes`
   gpu::BufferRange atlas, list_heads, list_nodes;
   VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists
-  // Paged maps' request bits (shaders/shared/pages.h), cleared by the frame: the one pass
-  // whose receivers ask for pages (the opaque pass) writes them; invalid without paged maps.
+  // Paged maps' request bits (shaders/shared/pages.h), cleared by the frame: the passes
+  // whose receivers ask for pages write them one after another (the opaque pass, hair
+  // lighting, the volume lighting cache and march: FrameInputs::ask_for_pages); invalid
+  // without paged maps.
   rg::BufferHandle page_requests;
   gpu::BufferRange page_request_bits;  // its bytes (this frame slot's), for a host's descriptor
   // The frame slot the graph records into (passes/frame/frames_in_flight.h): passes with a

@@ -30,9 +30,7 @@ uint64_t ShadowMaps::page_counter_stride() const {
 
 uint32_t ShadowMaps::page_slots(const MapState& map) const {
   const LightState& light = lights_[map.light];
-  const scene::ShadowSettings& s = light.light.shadow;
-  const uint64_t pool = uint64_t(s.page_pool_mib * double(1 << 20)) / light.map_count;
-  return uint32_t(std::clamp<uint64_t>(pool / slot_bytes(s), 1, 1u << 20));
+  return paged_pool_slots(light.light.shadow, light.map_count);
 }
 
 uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
@@ -47,7 +45,8 @@ uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
 
 void ShadowMaps::create_page_state(MapState& map) const {
   const scene::ShadowSettings& s = lights_[map.light].light.shadow;
-  map.pages = std::make_unique<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size), page_slots(map));
+  map.pages = std::make_unique<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size), page_slots(map),
+                                          paged_fallback_level(s));
   if (options_.required_page_level >= 0) map.pages->require_level(uint32_t(options_.required_page_level));
   map.page_counters.set_frames(ctx_, frames_in_flight());
   map.page_counters.create(ctx_, {map.pages->slots() * page_counter_stride(),

@@ -42,6 +42,15 @@ void check_light_settings(const scene::Light& light, size_t index);
 // The part of check_light_settings() for shadow.layout "paged" (`who` names the light).
 void check_paged_settings(const scene::Light& light, const std::string& who);
 
+// A paged light's pool in pages of each of its `maps` virtual maps (a point light's six
+// faces split it evenly).
+uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps);
+// The coarsest level a paged map's receivers ask for: the one whose texels are those of a
+// dense map of shadow.resolution. The pool must hold it and the levels above, so that
+// however far the pool's LOD bias goes, receivers read no coarser texels than the dense
+// map has: an overflow never loses a shadow that map shows.
+uint32_t paged_fallback_level(const scene::ShadowSettings& s);
+
 // "light 2 'key'": how messages name a light.
 std::string light_display_name(const scene::Light& light, size_t index);
 

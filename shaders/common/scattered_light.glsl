@@ -11,7 +11,7 @@ vec3 scattered_light(vec3 p, vec3 to_camera, uint light_count) {
   for (uint i = 0u; i < light_count; ++i) {
     vec3 to_light;
     vec3 radiance = light_radiance(lights[i], p, to_light);
-    sum += radiance * phase_function(to_camera, to_light) * light_transmittance(i, p);
+    sum += radiance * phase_function(to_camera, to_light) * volume_light_transmittance(i, p);
   }
   return sum;
 }

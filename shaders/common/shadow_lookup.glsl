@@ -94,6 +94,11 @@ float shadow_texel_size(GpuShadow s, float depth) { return s.texel_camera.x + s.
 // Below this a curve counts as opaque (opaque segments end at exactly 0).
 const float kShadowOpaque = 1e-4;
 
+// What a lookup serves: how it filters, and which level it asks a paged map for.
+const uint kReceiverPoint = 0u;    // hair, probes: the light's filter
+const uint kReceiverSurface = 1u;  // an opaque surface: the soft-shadow kernel too, where the light has one
+const uint kReceiverVolume = 2u;   // smoke: a paged map's page_volume_lod_bias levels coarser (soft shadows)
+
 // ---- Paged maps (GpuShadow::page_size != kDenseLayout; shared/pages.h) ----
 
 bool shadow_is_paged(GpuShadow s) { return s.page_size != kDenseLayout; }
@@ -125,14 +130,16 @@ vec2 shadow_map_uv(GpuShadow s, vec3 p) {
 }
 
 // The level a receiver at p (light depth d) asks for: the one whose texels match a
-// camera pixel's footprint there, moved by the map's bias; fractional (trilinear).
+// camera pixel's footprint there, moved by the map's bias (and a volume receiver's);
+// fractional (trilinear).
 // (Matching the texel's widest extent on screen instead, from the derivatives of the
 // position, asked for about twice the pages in the default scene, and under the fixed
 // pool the bias that followed made every texel coarser: docs/shadows.md.)
-float shadow_paged_lod(GpuShadow s, vec3 p, float d) {
+float shadow_paged_lod(GpuShadow s, vec3 p, float d, uint receiver) {
   float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
-  float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)) + s.page_lod_bias;
-  return clamp(lod, 0.0, float(s.mip_count - 1u));
+  float bias = s.page_lod_bias + (receiver == kReceiverVolume ? s.page_volume_lod_bias : 0.0);
+  float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)) + bias;
+  return clamp(lod, 0.0, float(min(s.mip_count - 1u, s.page_fallback_level)));
 }
 
 // The finest level at or above `level` whose pages hold all four bilinear taps around
@@ -177,10 +184,14 @@ bool shadow_page_texel(GpuShadow s, uint level, ivec2 texel, out GpuShadow page,
   return true;
 }
 
+bool shadow_filters_with_kernel(GpuShadow s, uint receiver) {
+  return receiver == kReceiverSurface && s.kernel != kKernelNone;
+}
+
 // The levels of map `s` a lookup at p reads (uv: p in the map, d: its light depth):
 // `first`, and when `count` is 2 the next one too, weighted by `blend` (trilinear).
 // A paged map reads the finest resident level at or above the receiver's own and asks
-// for the receiver's pages (where the including pass marks); `kernel`: the soft-shadow
+// for the receiver's pages (where the including pass marks). A surface's soft-shadow
 // kernel filters level 0 alone.
 struct ShadowLevels {
   uint first;
@@ -188,12 +199,12 @@ struct ShadowLevels {
   float blend;
 };
 
-ShadowLevels shadow_lookup_levels(GpuShadow s, vec3 p, vec2 uv, float d, bool kernel) {
+ShadowLevels shadow_lookup_levels(GpuShadow s, vec3 p, vec2 uv, float d, uint receiver) {
   ShadowLevels read = ShadowLevels(0u, 1, 0.0);
   if (shadow_is_paged(s)) {
     // Trilinear between the two levels around the receiver's; while one of them is not
     // resident, the finest resident level above stands in alone.
-    float lod = shadow_paged_lod(s, p, d);
+    float lod = shadow_paged_lod(s, p, d, receiver);
     uint level = uint(floor(lod));
     read.blend = lod - float(level);
     read.count = level + 1u < s.mip_count ? 2 : 1;
@@ -201,7 +212,7 @@ ShadowLevels shadow_lookup_levels(GpuShadow s, vec3 p, vec2 uv, float d, bool ke
     if (read.count == 2 && shadow_paged_resident_level(s, uv, level + 1u, true) != level + 1u) read.count = 1;
     if (resident != level) read.count = 1;
     read.first = resident;
-  } else if (!kernel && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
+  } else if (!shadow_filters_with_kernel(s, receiver) && s.filter_mode == kFilterTrilinear && s.mip_count > 1u) {  // only techniques with mips have more than one level
     // Level of detail: a camera pixel's footprint at p over a light texel's size there.
     float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
     float lod = clamp(log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)), 0.0,
@@ -249,8 +260,8 @@ float shadow_kernel_tap(GpuShadow s, vec2 x, int tap, out ivec2 texel) {
 // in the two mip levels around the level of detail, blended. The taps run in one
 // loop so the texel evaluation is compiled once: inlined per tap, it made the
 // shaders that call this (the smoke march above all) several times slower on lavapipe.
-// `soft`: a surface lookup, filtered over the light's kernel (at level 0) when it has one.
-float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
+// A surface lookup is filtered over the light's kernel (at level 0) when it has one.
+float shadow_transmittance_filtered(GpuShadow s, vec3 p, uint receiver) {
   if (s.technique == kShadowNone) return 1.0;
   vec4 clip = s.light_from_world * vec4(p, 1.0);
   if (clip.w <= 0.0) return 1.0;  // behind a spot light: it does not shine there
@@ -259,9 +270,9 @@ float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
   float d = shadow_light_depth(s, p);
 
-  bool kernel = soft && s.kernel != kKernelNone;  // at level 0: the kernel is the filter
+  bool kernel = shadow_filters_with_kernel(s, receiver);  // at level 0: the kernel is the filter
   bool paged = shadow_is_paged(s);
-  ShadowLevels read = shadow_lookup_levels(s, p, uv, d, kernel);
+  ShadowLevels read = shadow_lookup_levels(s, p, uv, d, receiver);
   uint level = read.first;
   int levels = read.count;
   float level_blend = read.blend;
@@ -305,7 +316,7 @@ float shadow_transmittance_filtered(GpuShadow s, vec3 p, bool soft) {
   return result;
 }
 
-float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_filtered(s, p, false); }
+float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_filtered(s, p, kReceiverPoint); }
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
@@ -314,7 +325,7 @@ vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
   float d = shadow_light_depth(s, p);
   float texel = shadow_texel_size(s, d);
-  if (shadow_is_paged(s)) texel *= exp2(ceil(shadow_paged_lod(s, p, d)));
+  if (shadow_is_paged(s)) texel *= exp2(ceil(shadow_paged_lod(s, p, d, kReceiverSurface)));
   return p + n * (s.camera_position.w * texel);
 }
 
@@ -361,10 +372,11 @@ uint light_map_record_at(uint record, vec3 p) {
 
 // Transmittance from the light whose record is shadows[record] to p: its one map, the
 // cube face p lies in, the cascade(s) at p's camera depth (blended across a split), or
-// the product over its cluster maps. `surface`: p is on a surface with that normal and is
-// moved off it in each map's own texels. The maps are looked up in one loop so that
+// the product over its cluster maps. A surface receiver (kReceiverSurface) is on a
+// surface with that normal and is moved off it in each map's own texels. The maps are
+// looked up in one loop so that
 // shadow_transmittance() is compiled once (see above).
-float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal, vec3 to_light) {
+float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light) {
   GpuShadow s = shadows[record];
   if (s.views == kViewsSingle && s.technique == kShadowNone) return 1.0;
   uint first = light_map_record_at(record, p), count = 1u;
@@ -380,15 +392,20 @@ float light_record_transmittance(uint record, vec3 p, bool surface, vec3 normal,
     if (k >= count) break;
     GpuShadow v = s;  // a light with one map: its record is the map's
     if (s.views != kViewsSingle) v = shadows[first + k];
-    vec3 q = surface ? shadow_surface_point(v, p, normal, to_light) : p;
-    float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance_filtered(v, q, surface);
+    vec3 q = receiver == kReceiverSurface ? shadow_surface_point(v, p, normal, to_light) : p;
+    float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance_filtered(v, q, receiver);
     result = product ? result * t : result + (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend)) * t;
   }
   return result;
 }
 
 float light_transmittance(uint light_index, vec3 p) {
-  return light_record_transmittance(light_index, p, false, vec3(0.0), vec3(0.0));
+  return light_record_transmittance(light_index, p, kReceiverPoint, vec3(0.0), vec3(0.0));
+}
+
+// For smoke: its receivers may read coarser levels of paged maps (page_volume_lod_bias).
+float volume_light_transmittance(uint light_index, vec3 p) {
+  return light_record_transmittance(light_index, p, kReceiverVolume, vec3(0.0), vec3(0.0));
 }
 
 // The exact transmittance (the light's capture lists, all nodes) when the frame
@@ -406,7 +423,7 @@ vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) 
 }
 
 float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
-  return light_record_transmittance(light_index, p, true, normal, to_light);
+  return light_record_transmittance(light_index, p, kReceiverSurface, normal, to_light);
 }
 
 #endif

@@ -60,13 +60,17 @@ GPU_CONST(uint, kMaxViewsPerLight, 8u)
   F(uint, view_count)                                                                                          \
   F(uint, kernel)           /* kKernel*: the soft-shadow kernel of surface lookups */                          \
   F(uint, kernel_radius)    /* its radius in level-0 texels, 1 to kMaxKernelRadius */                         \
-  F(uint, padding0) /* no array: glslang 11 stores a loaded record with one into a local wrongly */           \
+  F(float, page_volume_lod_bias) /* paged: levels added to smoke receivers' on top of page_lod_bias */      \
   F(uint, page_size)        /* kDenseLayout, or a paged map's page texels per side (shared/pages.h); then  \
                                resolution is the virtual one, mip_count its levels and map_offset its      \
                                page table */                                                                \
   F(uint, page_pool_offset) /* paged: the pool's first vec4 in the atlas */                                \
   F(uint, page_requests_offset) /* paged: its request bits' first word, or kNoPageRequests */              \
-  F(float, page_lod_bias)   /* paged: levels added to every receiver's (coarser when > 0) */
+  F(float, page_lod_bias)   /* paged: levels added to every receiver's (coarser when > 0) */                 \
+  F(uint, page_fallback_level) /* paged: the coarsest level receivers ask for (passes/shadows/shadow_settings.h) */ \
+  F(uint, padding1)                                                                                          \
+  F(uint, padding2)                                                                                          \
+  F(uint, padding3)
 GPU_STRUCT(GpuShadow, GPU_SHADOW)
 
 GPU_NAMESPACE_END

@@ -181,7 +181,9 @@ TEST_F(PagedMapsTest, ReceiversAskForThePagesTheyReadUntilTheMapConverges) {
 }
 
 // The engine's resolution figure (passes/camera/quality/shadow_resolution_pass.h) follows
-// the level the surfaces read: a page_lod_bias of one level makes each receiver read the
+// the level the surfaces read (the lights' shadow.resolution of 64 lets receivers ask for
+// every level: passes/shadows/shadow_settings.h, paged_fallback_level): a page_lod_bias
+// of one level makes each receiver read the
 // next coarser level (unless it already reads the coarsest), and its texel exactly twice as
 // wide on screen (up to the change of the surface point's offset, which the level sets).
 // With room in the pool (no bias) most lit receivers read texels at most 1.5 pixels wide.
@@ -190,7 +192,7 @@ TEST_F(PagedMapsTest, TheResolutionFigureFollowsTheLevelsTheSurfacesRead) {
   std::vector<passes::PixelShadowResolution> pixels[2];
   uint32_t coarsest[2] = {};  // per light
   for (const int bias : {0, 1}) {
-    scene::Scene scene = default_scene(scene::ShadowLayout::paged, 256);
+    scene::Scene scene = default_scene(scene::ShadowLayout::paged, 64);
     for (scene::Light& light : scene.lights) light.shadow.page_lod_bias = float(bias);
     const passes::View view = passes::make_view(scene.cameras.front(), kWidth, kHeight);
     renderer::SceneRenderer paged(ctx(), shaders(), scene, kWidth, kHeight, {.unlimited_page_builds = true});
@@ -238,25 +240,94 @@ TEST_F(PagedMapsTest, TheResolutionFigureFollowsTheLevelsTheSurfacesRead) {
   EXPECT_GE(matched, receivers / 2);
 }
 
-// A pool of four pages: receivers are served by the coarser levels that fit, the
-// overflow is reported (unserved, pending), and the bias grows.
+// Smoke and hair are receivers too: without the scene's meshes, the lighting cache's
+// cells and the hair vertices still ask for pages (more than the coarsest), and the
+// smoke's page_volume_lod_bias makes them ask for coarser, fewer ones (down to every level:
+// shadow.resolution 64).
+TEST_F(PagedMapsTest, SmokeAndHairAskForThePagesTheyRead) {
+  uint32_t requested[2] = {};  // per volume bias 0, 2: both lights' pages
+  for (const int bias : {0, 2}) {
+    scene::Scene scene = default_scene(scene::ShadowLayout::paged, 64);
+    for (scene::Light& light : scene.lights) light.shadow.page_volume_lod_bias = float(bias);
+    scene.meshes.clear();  // no surface asks for pages
+    const passes::View view = passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight);
+    renderer::SceneRenderer paged(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+    render_frames(ctx(), paged, view, 4);
+    for (uint32_t light = 0; light < 2; ++light) {
+      const passes::PageStats& pages = *paged.shadows().frame_stats()[light].pages;
+      EXPECT_EQ(pages.pending, 0u) << scene.lights[light].name;
+      if (bias == 0) EXPECT_GE(pages.requested, 2u) << scene.lights[light].name << ": finer pages than the coarsest";
+      requested[bias / 2] += pages.requested;
+    }
+  }
+  std::cout << "[ paged ask   ] smoke and hair alone: " << requested[0] << " pages asked for, " << requested[1]
+            << " with the smoke two levels coarser\n";
+  EXPECT_LT(requested[1], requested[0]);
+}
+
+// Surface probes over the default scene's floor, facing up, every `step` metres.
+void set_floor_probes(renderer::SceneRenderer& renderer, const scene::Bounds& bounds, float step) {
+  std::vector<glm::vec3> points, normals;
+  for (float x = bounds.min.x + step / 2; x < bounds.max.x; x += step)
+    for (float z = bounds.min.z + step / 2; z < bounds.max.z; z += step) {
+      points.push_back({x, bounds.min.y, z});
+      normals.push_back({0.0f, 1.0f, 0.0f});
+    }
+  renderer.set_surface_probes(points, normals);
+}
+
+// A pool of six pages: receivers are served by the coarser levels that fit, the
+// overflow is reported (unserved, pending), and the bias grows, but receivers never read
+// coarser texels than the dense map of the lights' shadow.resolution (64^2: the pool
+// must hold that level, four pages, and the root): no floor point that dense map
+// shadows is left unshadowed.
 TEST_F(PagedMapsTest, APoolOfAFewPagesServesCoarserLevelsAndReportsTheOverflow) {
-  scene::Scene scene = default_scene(scene::ShadowLayout::paged, 256);
+  constexpr int kDense = 64;
+  scene::Scene scene = default_scene(scene::ShadowLayout::paged, kDense);
   for (scene::Light& light : scene.lights) {
     light.shadow.virtual_resolution = 2048;
     light.shadow.page_size = 32;
-    light.shadow.page_pool_mib = 4.0 * 32 * 32 * 32 / double(1 << 20);  // four AVSM-8 pages of 32^2
+    light.shadow.page_pool_mib = 6.0 * 32 * 32 * 32 / double(1 << 20);  // six AVSM-8 pages of 32^2
   }
   const passes::View view = passes::make_view(scene.cameras.front(), kFrameWidth, kFrameHeight);
   renderer::SceneRenderer paged(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+  set_floor_probes(paged, scene.bounds, 0.1f);
+  // Frame 1 builds the coarsest page; frame 2 builds what fits of what frame 1 asked for.
+  render_frames(ctx(), paged, view, 2);
+  const passes::LightShadowStats overflowed = paged.shadows().frame_stats()[0];
+  EXPECT_EQ(overflowed.pages->slots, 6u);
+  EXPECT_EQ(overflowed.pages->resident, 6u);
+  EXPECT_GT(overflowed.pages->unserved, 0u);
+  EXPECT_GT(overflowed.pages->pending, 0u);
+  EXPECT_TRUE(overflowed.lost_shadowing());
+  EXPECT_GT(overflowed.pages->lod_bias, 0.0f);
+  const std::vector<std::vector<float>> served = paged.probe_results();
+
+  renderer::SceneRenderer dense(ctx(), shaders(), default_scene(scene::ShadowLayout::dense, kDense), kFrameWidth,
+                                kFrameHeight);
+  set_floor_probes(dense, scene.bounds, 0.1f);
+  render_frames(ctx(), dense, view, 1);
+  const std::vector<std::vector<float>> reference = dense.probe_results();
+  for (uint32_t light = 0; light < 2; ++light) {
+    uint32_t shadowed = 0, unshadowed = 0;
+    for (size_t i = 0; i < reference[light].size(); ++i) {
+      if (reference[light][i] >= 0.5f) continue;
+      ++shadowed;
+      unshadowed += served[light][i] > 0.9f;
+    }
+    std::cout << "[ overflow    ] " << scene.lights[light].name << ": " << shadowed
+              << " floor points the dense 64^2 map shadows (T < 0.5); " << unshadowed
+              << " of them unshadowed (T > 0.9) from the coarser pages\n";
+    EXPECT_GT(shadowed, 20u) << scene.lights[light].name;
+    EXPECT_EQ(unshadowed, 0u) << scene.lights[light].name;
+  }
+  // The bias grows until the requests fit (at the dense map's level at the most).
   render_frames(ctx(), paged, view, 3);
-  const passes::LightShadowStats& sun = paged.shadows().frame_stats()[0];
-  EXPECT_EQ(sun.pages->slots, 4u);
-  EXPECT_EQ(sun.pages->resident, 4u);
-  EXPECT_GT(sun.pages->unserved, 0u);
-  EXPECT_GT(sun.pages->pending, 0u);
-  EXPECT_TRUE(sun.lost_shadowing());
-  EXPECT_GT(sun.pages->lod_bias, 0.0f);
+  const passes::LightShadowStats& settled = paged.shadows().frame_stats()[0];
+  EXPECT_GE(settled.pages->lod_bias, overflowed.pages->lod_bias);
+  EXPECT_LE(settled.pages->lod_bias, 5.0f);
+  EXPECT_EQ(settled.pages->unserved, 0u);
+  EXPECT_EQ(settled.pages->pending, 0u);
 }
 
 // The default scene's box moves by 30 cm. With a level forced resident (a camera that

@@ -124,7 +124,7 @@ TEST(SceneDescriptionErrors, UnknownKeyNamesThePathAndSuggests) {
               StartsWith("/scenes/test/scene.json: lights[1].shadow.nodez: unknown key (did you mean 'nodes'?); allowed here: "
                          "technique, nodes, resolution, filter, kernel, kernel_radius, sort, build, fit, cascades, "
                          "clusters, layout, virtual_resolution, page_size, page_pool_mib, page_lod_bias, "
-                         "page_builds_per_frame, parameters, distance, cascade_blend"));
+                         "page_volume_lod_bias, page_builds_per_frame, parameters, distance, cascade_blend"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 1, "colour": 2,)")),
               HasSubstr("scene.json: colour: unknown key"));
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", R"("grid": "density", "density_scale": 2,)")),

@@ -20,15 +20,17 @@ HairLightingPass::HairLightingPass(gpu::Context& ctx, const gpu::ShaderLibrary& 
       reference_(gpu::Pipeline::compute(ctx, shaders.load("shaders/passes/camera/hair/hair_lighting_reference.comp"),
                                         "hair lighting reference")) {}
 
-rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass& hair, const FrameInputs& inputs) {
+rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass& hair, FrameInputs& inputs) {
   const View& view = inputs.view;
   if (hair.point_count() == 0) return {};
   struct Output {
-    rg::BufferHandle lights;
+    rg::BufferHandle lights, page_requests;
   };
   const Output& output = graph.add_pass<Output>("hair lighting", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Output& d) {
-        inputs.declare_volume_reads(b);
+        if (inputs.cache) inputs.cache->declare_reads(b);
+        inputs.shadows.declare_reads(b);
+        d.page_requests = inputs.ask_for_pages(b);  // the fibres and the smoke in front of them
         const rg::BufferDesc lights{uint64_t(hair.point_count()) * sizeof(HairVertexLight),
                                     "the scene's hair: grooms with fewer strand vertices"};
         d.lights = b.write(b.create_buffer("hair vertex lights", lights), rg::Usage::StorageWrite);
@@ -44,6 +46,7 @@ rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass
             .buffer("VertexLights", c.buffer(d.lights))
             .buffer("Lights", *inputs.lights);
         inputs.shadows.bind(b, c);
+        inputs.shadows.bind_page_requests(b, c, d.page_requests);
         bind_volumes(b, volumes, /*with_atlas=*/cached);
         if (cached) inputs.cache->bind(b, c);
         b.push(c.cmd());

@@ -28,7 +28,7 @@ class HairLightingPass {
   // One HairVertexLight per strand vertex of `hair`. The fog comes through the frame's
   // lighting cache when `inputs` has one, else from the reference march; the strands
   // see no smoke when it is hidden. Returns an invalid handle when the scene has no hair.
-  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, const FrameInputs& inputs);
+  rg::BufferHandle add_to_graph(rg::Graph& graph, const HairPass& hair, FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

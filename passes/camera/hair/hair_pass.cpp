@@ -73,22 +73,25 @@ void HairPass::set_scene(const scene::Scene& scene) {
 
 rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
                                          rg::BufferHandle vertex_lights, bool light_per_fragment,
-                                         const FrameInputs& frame) {
+                                         FrameInputs& frame) {
   const View& view = frame.view;
   const gpu::Buffer& lights = *frame.lights;
   const uint32_t light_count = frame.light_count;
-  const ShadowInputs& shadows = frame.shadows;
+  const ShadowInputs shadows = frame.shadows;
   if (segment_count_ == 0) return color;
   struct Targets {
     rg::TextureHandle color, depth;
-    rg::BufferHandle vertex_lights;
+    rg::BufferHandle vertex_lights, page_requests;
   };
   const Targets& targets = graph.add_pass<Targets>("hair", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Targets& d) {
         d.color = b.read_write(color, rg::Usage::ColorAttachment);
         d.depth = b.read(depth, rg::Usage::DepthAttachmentRead);
         d.vertex_lights = b.read(vertex_lights, rg::Usage::StorageRead);
-        if (light_per_fragment) shadows.declare_reads(b);
+        if (light_per_fragment) {
+          shadows.declare_reads(b);
+          d.page_requests = frame.ask_for_pages(b);
+        }
       },
       [this, view, &lights, light_count, shadows, light_per_fragment](const Targets& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
@@ -105,6 +108,7 @@ rg::TextureHandle HairPass::add_to_graph(rg::Graph& graph, rg::TextureHandle col
         if (light_per_fragment) {
           bindings.buffer("Lights", lights);
           shadows.bind(bindings, c);
+          shadows.bind_page_requests(bindings, c, d.page_requests);
         }
         bindings.push(cmd);
         pipeline.push_constants(cmd, HairPush{view.view_projection, glm::vec4(view.camera_position, 1.0f),

@@ -44,7 +44,7 @@ class HairPass {
   // `vertex_lights`: this frame's HairLightingPass output. `light_per_fragment`: the
   // reference shading, with shadow lookups per fragment.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                 rg::BufferHandle vertex_lights, bool light_per_fragment, const FrameInputs& frame);
+                                 rg::BufferHandle vertex_lights, bool light_per_fragment, FrameInputs& frame);
 
  private:
   gpu::Context& ctx_;

@@ -138,18 +138,18 @@ VkImageView OpaquePass::texture_view(int texture) const {
   return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
 }
 
-OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame) {
+OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame) {
   const View& view = frame.view;
   const gpu::Buffer& lights = *frame.lights;
   const uint32_t light_count = frame.light_count;
-  const ShadowInputs& shadows = frame.shadows;
+  const ShadowInputs shadows = frame.shadows;
   const Outputs& out = graph.add_pass<Outputs>("opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, Outputs& d) {
         d.color = b.write(color, rg::Usage::ColorAttachment);
         rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat, kCameraSizeSetting};
         d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
         shadows.declare_reads(b);
-        d.page_requests = shadows.declare_page_requests(b);
+        d.page_requests = frame.ask_for_pages(b);
       },
       [this, view, &lights, light_count, shadows](const Outputs& d, rg::PassContext& c) {
         record(c, d, view, lights, light_count, shadows);

@@ -44,7 +44,7 @@ class OpaquePass {
 
   // Clears `color` to the sky colour and a new transient depth buffer to far,
   // then draws every mesh.
-  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, const FrameInputs& frame);
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame);
 
  private:
   struct Draw {

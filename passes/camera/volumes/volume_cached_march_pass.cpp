@@ -26,7 +26,7 @@ VolumeCachedMarchPass::VolumeCachedMarchPass(gpu::Context& ctx, const gpu::Shade
       depth_sampler_(ctx, gpu::texel_sampler_desc("march depth")) {}
 
 VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::TextureHandle depth,
-                                                     const FrameInputs& inputs) {
+                                                     FrameInputs& inputs) {
   const View& view = inputs.view;
   const uint32_t divisor = uint32_t(inputs.shading.resolution_divisor);
   if (divisor != 1 && divisor != 2 && divisor != 4)
@@ -35,11 +35,12 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
   const uint32_t width = (view.width + divisor - 1) / divisor, height = (view.height + divisor - 1) / divisor;
   struct Targets {
     rg::TextureHandle depth, scattering, distance;
+    rg::BufferHandle page_requests;
   };
   const Targets& targets = graph.add_pass<Targets>("volume march", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
-        inputs.declare_volume_reads(b);
+        d.page_requests = inputs.declare_volume_access(b);
         const rg::TextureDesc scattering{width, height, 1, 1, 1, kScatteringFormat, kMarchSizeSetting};
         const rg::TextureDesc distance{width, height, 1, 1, 1, kDistanceFormat, kMarchSizeSetting};
         d.scattering = b.write(b.create_texture("volume march scattering", scattering), rg::Usage::StorageWrite);
@@ -52,7 +53,7 @@ VolumeMarchImage VolumeCachedMarchPass::add_to_graph(rg::Graph& graph, rg::Textu
         b.image("depth_texture", c.view(d.depth), c.layout(d.depth), depth_sampler_.handle())
             .image("scattering_image", c.view(d.scattering), c.layout(d.scattering))
             .image("distance_image", c.view(d.distance), c.layout(d.distance));
-        inputs.bind_volumes(b, c);
+        inputs.bind_volumes(b, c, d.page_requests);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position,

@@ -29,7 +29,7 @@ class VolumeCachedMarchPass {
   VolumeCachedMarchPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // `depth`: the opaque depth (D32_SFLOAT, output size, Sampled).
-  VolumeMarchImage add_to_graph(rg::Graph& graph, rg::TextureHandle depth, const FrameInputs& inputs);
+  VolumeMarchImage add_to_graph(rg::Graph& graph, rg::TextureHandle depth, FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

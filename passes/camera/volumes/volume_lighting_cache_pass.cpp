@@ -134,6 +134,7 @@ void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, FrameInputs& inputs
   struct Cache {
     rg::BufferHandle layouts;
     rg::TextureHandle image;
+    rg::BufferHandle page_requests;
   };
   const Cache& cache = graph.add_pass<Cache>("volume lighting cache", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Cache& d) {
@@ -143,6 +144,7 @@ void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, FrameInputs& inputs
                                                             "higher, or --volume-resolution-divisor"}),
                           rg::Usage::StorageWrite);
         inputs.shadows.declare_reads(b);
+        d.page_requests = inputs.ask_for_pages(b);
       },
       [this, inputs, size, camera = view.camera_position](const Cache& d, rg::PassContext& c) {
         const VolumeCasters volumes = inputs.volumes->casters();
@@ -152,6 +154,7 @@ void VolumeLightingCachePass::add_to_graph(rg::Graph& graph, FrameInputs& inputs
         bind_volumes(b, volumes, /*with_atlas=*/false);
         b.buffer("CacheLayouts", c.buffer(d.layouts)).buffer("Lights", *inputs.lights);
         inputs.shadows.bind(b, c);
+        inputs.shadows.bind_page_requests(b, c, d.page_requests);
         b.push(c.cmd());
         pipeline_.push_constants(c.cmd(), Push{camera, volumes.volume_count, size, inputs.light_count});
         pipeline_.dispatch_threads(c.cmd(), size.x, size.y, size.z);

@@ -173,11 +173,11 @@ VolumeCasters VolumePass::casters() const {
 }
 
 rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                           const FrameInputs& frame) {
+                                           FrameInputs& frame) {
   const View& view = frame.view;
   const gpu::Buffer& lights = *frame.lights;
   const uint32_t light_count = frame.light_count;
-  const ShadowInputs& shadows = frame.shadows;
+  const ShadowInputs shadows = frame.shadows;
   if (volume_count_ == 0) return color;
   check_targets(graph, color, depth);
   const VkDeviceSize light_bytes = VkDeviceSize(std::max(light_count, 1u)) * sizeof(GpuLight);
@@ -187,16 +187,18 @@ rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle c
                                 std::to_string(light_bytes));
   struct Targets {
     rg::TextureHandle color, depth;
+    rg::BufferHandle page_requests;
   };
   const Targets& targets = graph.add_pass<Targets>("volumes", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
         shadows.declare_reads(b);
+        d.page_requests = frame.ask_for_pages(b);
       },
       [this, view, &lights, light_count, shadows, skipping = majorant_skipping_](const Targets& d,
                                                                                  rg::PassContext& c) {
-        record(c, d.color, d.depth, view, lights, light_count, shadows, skipping);
+        record(c, d.color, d.depth, view, lights, light_count, shadows, d.page_requests, skipping);
       });
   return targets.color;
 }
@@ -220,7 +222,7 @@ void VolumePass::check_targets(const rg::Graph& graph, rg::TextureHandle color, 
 
 void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
                         const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
-                        bool majorant_skipping) const {
+                        rg::BufferHandle page_requests, bool majorant_skipping) const {
   const rg::TextureDesc& size = c.desc(color);
   pipeline_.bind(c.cmd());
   gpu::Bindings bindings(ctx_, pipeline_);
@@ -231,6 +233,7 @@ void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::Texture
       .buffer("VolumeParameters", parameters_)
       .buffer("Lights", lights);
   shadows.bind(bindings, c);
+  shadows.bind_page_requests(bindings, c, page_requests);
   bindings.push(c.cmd());
   Push push{view.inverse_view_projection, view.camera_position, volume_count_, {size.width, size.height},
             light_count, majorant_skipping ? 0u : shared::kMarchNoMajorantSkipping};

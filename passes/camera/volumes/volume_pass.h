@@ -84,7 +84,7 @@ class VolumePass {
   // `color` itself when there are no volumes (no pass is added). `lights` must hold at
   // least max(light_count, 1) GpuLight entries (passes/frame/lights.h) and outlive the frame.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color /*R16G16B16A16_SFLOAT, StorageReadWrite*/,
-                                 rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, const FrameInputs& frame);
+                                 rg::TextureHandle depth /*D32_SFLOAT, Sampled*/, FrameInputs& frame);
 
   // Debug switch: march through empty bricks too. The image must not change; it only
   // exists so tests can check that skipping never drops density.
@@ -107,7 +107,7 @@ class VolumePass {
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
   void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
               const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
-              bool majorant_skipping) const;
+              rg::BufferHandle page_requests, bool majorant_skipping) const;
 
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;

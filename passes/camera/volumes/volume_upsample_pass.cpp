@@ -20,17 +20,18 @@ VolumeUpsamplePass::VolumeUpsamplePass(gpu::Context& ctx, const gpu::ShaderLibra
       nearest_(ctx, gpu::texel_sampler_desc("volume composite")) {}
 
 rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                                   const VolumeMarchImage& march, const FrameInputs& inputs) {
+                                                   const VolumeMarchImage& march, FrameInputs& inputs) {
   const View& view = inputs.view;
   struct Targets {
     rg::TextureHandle color, depth, scattering, distance;
+    rg::BufferHandle page_requests;
   };
   const Targets& targets = graph.add_pass<Targets>("volume composite", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Targets& d) {
         d.depth = b.read(depth, rg::Usage::Sampled);
         d.scattering = b.read(march.scattering, rg::Usage::Sampled);
         d.distance = b.read(march.distance, rg::Usage::Sampled);
-        inputs.declare_volume_reads(b);
+        d.page_requests = inputs.declare_volume_access(b);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
       },
       [this, view, divisor = march.divisor, inputs](const Targets& d, rg::PassContext& c) {
@@ -42,7 +43,7 @@ rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::Texture
             .image("depth_texture", c.view(d.depth), c.layout(d.depth), nearest_.handle())
             .image("scattering_texture", c.view(d.scattering), c.layout(d.scattering), nearest_.handle())
             .image("distance_texture", c.view(d.distance), c.layout(d.distance), nearest_.handle());
-        inputs.bind_volumes(b, c);
+        inputs.bind_volumes(b, c, d.page_requests);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, divisor,

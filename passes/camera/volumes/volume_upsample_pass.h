@@ -19,7 +19,7 @@ class VolumeUpsamplePass {
 
   // `color`: R16G16B16A16_SFLOAT, read and written; `depth`: D32_SFLOAT. Returns the new colour.
   rg::TextureHandle add_to_graph(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
-                                 const VolumeMarchImage& march, const FrameInputs& inputs);
+                                 const VolumeMarchImage& march, FrameInputs& inputs);
 
  private:
   gpu::Context& ctx_;

@@ -21,19 +21,19 @@ constexpr float kPoolLow = 0.4f;
 constexpr float kBiasStep = 0.25f;
 // Where a moving bias aims: between kPoolLow and kPoolHigh.
 constexpr float kPoolTarget = 0.6f;
-constexpr float kMaxBias = 8.0f;
 
 bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
 
 }  // namespace
 
-PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots)
+PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level)
     : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots) {
   if (!is_power_of_two(virtual_resolution) || !is_power_of_two(page_size) || page_size > virtual_resolution)
     throw std::invalid_argument("page table: a virtual resolution of " + std::to_string(virtual_resolution) +
                                 " texels does not split into pages of " + std::to_string(page_size));
   if (slots == 0) throw std::invalid_argument("page table: a pool of no pages");
   levels_ = shared::page_level_count(virtual_resolution, page_size);
+  max_bias_ = float(std::min(fallback_level, levels_ - 1));
   for (uint32_t level = 0; level <= levels_; ++level)
     level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, level));
   pages_.resize(level_first_.back());
@@ -87,8 +87,16 @@ bool PageTable::has_pending_requests() const {
   return false;
 }
 
+bool PageTable::overflowed_lately(float bias) const {
+  constexpr uint64_t kLately = 16;  // frames: a swing, if any, is one move in this many
+  const auto seen = seen_at_bias_.find(int(std::lround(bias / kBiasStep)));
+  return seen != seen_at_bias_.end() && request_clock_ - seen->second.clock <= kLately &&
+         float(seen->second.requested) > kPoolHigh * float(slots_);
+}
+
 void PageTable::adapt_lod_bias() {
   const float share = float(stats_.requested) / float(slots_);
+  seen_at_bias_[int(std::lround(lod_bias_ / kBiasStep))] = {stats_.requested, request_clock_};
   const float before = lod_bias_;
   // Requests fall about 4x per level (2x per side), so the bias that brings them to
   // kPoolTarget is log4 of the excess (or of the room left): one frame's move, in whole
@@ -96,13 +104,17 @@ void PageTable::adapt_lod_bias() {
   // moves, and keep a capture waiting).
   const auto quarters = [&] { return std::ceil(std::abs(std::log(share / kPoolTarget)) / std::log(4.0f) / kBiasStep) * kBiasStep; };
   if (share > kPoolHigh) {
-    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), kMaxBias);
+    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), max_bias_);
   } else if (stats_.unserved > 0) {
-    lod_bias_ = std::min(lod_bias_ + kBiasStep, kMaxBias);
+    lod_bias_ = std::min(lod_bias_ + kBiasStep, max_bias_);
   } else if (share < kPoolLow) {
-    // Down by whole quarters short of the target, so that it is not overshot.
-    const float down = share > 0.0f ? std::max(kBiasStep, quarters() - kBiasStep) : lod_bias_;
-    lod_bias_ = std::max(lod_bias_ - down, 0.0f);
+    // Down by whole quarters short of the target, so that it is not overshot (one step
+    // when nothing asked: every receiver read the coarsest level), but not to a bias
+    // whose requests overflowed lately: a pool too small for any bias to land its
+    // requests between kPoolLow and kPoolHigh would swing between two.
+    float lower = std::max(lod_bias_ - (share > 0.0f ? std::max(kBiasStep, quarters() - kBiasStep) : kBiasStep), 0.0f);
+    while (lower < lod_bias_ && overflowed_lately(lower)) lower += kBiasStep;
+    lod_bias_ = std::min(lower, lod_bias_);
   }
   stats_.settling = lod_bias_ != before;
 }

@@ -20,6 +20,7 @@
 #include "passes/shadows/uv_rect.h"
 
 #include <cstdint>
+#include <map>
 #include <span>
 #include <vector>
 
@@ -57,8 +58,10 @@ struct PageStats {
 class PageTable {
  public:
   // Throws std::invalid_argument unless page_size divides virtual_resolution (both
-  // powers of two) and slots >= 1.
-  PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots);
+  // powers of two) and slots >= 1. `fallback_level`: the coarsest level receivers ask for
+  // (passes/shadows/shadow_settings.h), so the bias never grows past it (further would
+  // not shrink the requests); the last level when not given.
+  PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level = ~0u);
 
   uint32_t virtual_resolution() const { return virtual_resolution_; }
   uint32_t page_size() const { return page_size_; }
@@ -113,8 +116,10 @@ class PageTable {
   void assign(uint32_t entry, uint32_t slot);
   void release(uint32_t entry);
   void adapt_lod_bias();
+  bool overflowed_lately(float bias) const;
 
   uint32_t virtual_resolution_, page_size_, levels_, slots_;
+  float max_bias_ = 0.0f;
   std::vector<uint32_t> level_first_;  // entry of each level's first page
   std::vector<Page> pages_;
   std::vector<uint32_t> table_;
@@ -124,6 +129,13 @@ class PageTable {
   uint32_t invalidated_since_plan_ = 0;
   uint64_t revision_ = 0;
   float lod_bias_ = 0.0f;
+  // Per bias (in quarter levels) the requests last seen at it, and when (request_clock_):
+  // the bias does not come back down to one that overflowed lately.
+  struct SeenRequests {
+    uint32_t requested = 0;
+    uint64_t clock = 0;
+  };
+  std::map<int, SeenRequests> seen_at_bias_;
   uint32_t required_level_ = ~0u;
   PageStats stats_;
 };

@@ -10,6 +10,7 @@
 #define AVSM_CACHE_BINDING 13
 #define AVSM_MARCH_LIGHTS_BINDING 3
 #define AVSM_SHADOW_BINDING 4
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // hair vertices (and the smoke before them) ask for pages
 #define AVSM_MARCH_MAP_LOOKUPS  // the lights are needed anyway, and a vertex is one thread
 #include "common/volume_cached_march.glsl"
 #include "common/hair_lighting.glsl"

@@ -9,5 +9,6 @@
 #define AVSM_VOLUME_BINDING_PARAMETERS 10
 #define AVSM_MARCH_LIGHTS_BINDING 3
 #define AVSM_SHADOW_BINDING 4
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // hair vertices (and the smoke before them) ask for pages
 #include "common/volume_reference_march.glsl"
 #include "common/hair_lighting.glsl"

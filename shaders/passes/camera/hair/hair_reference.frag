@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
 #define AVSM_SHADOW_BINDING 4
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // hair fragments ask for the pages they read
 #include "common/shadow_lookup.glsl"
 
 layout(std430, binding = 3) readonly buffer Lights { GpuLight lights[]; };

@@ -56,7 +56,7 @@ void main() {
     vec2 uv = shadow_map_uv(s, q);
     bool counts = has_steps && any(greaterThan(radiance, vec3(0.0))) && dot(normal, to_light) > 0.0 &&
                   s.technique != kShadowNone && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
-    ShadowLevels read = shadow_lookup_levels(s, q, uv, shadow_light_depth(s, q), s.kernel != kKernelNone);
+    ShadowLevels read = shadow_lookup_levels(s, q, uv, shadow_light_depth(s, q), kReceiverSurface);
     float texel_uv = shadow_read_texel_uv(s, read);
     float stretch = smallest_stretch(shadow_map_uv(s, q + step_x) - uv, shadow_map_uv(s, q + step_y) - uv);
     PixelShadowResolution result;

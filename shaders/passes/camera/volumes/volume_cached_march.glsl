@@ -16,6 +16,7 @@
 #define AVSM_CACHE_BINDING 8
 #define AVSM_MARCH_LIGHTS_BINDING 10
 #define AVSM_SHADOW_BINDING 11
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // with lookups: the smoke asks for the pages it reads
 #include "common/volume_cached_march.glsl"
 #include "common/camera_rays.glsl"
 

@@ -19,6 +19,7 @@
 #include "common/volume_lighting_cache.glsl"
 #include "common/lights.glsl"
 #define AVSM_SHADOW_BINDING 6
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 10  // the cells ask for the pages they read
 #include "common/shadow_lookup.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

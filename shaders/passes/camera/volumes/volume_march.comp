@@ -13,6 +13,7 @@
 #define AVSM_VOLUME_BINDING_PARAMETERS 4
 #define AVSM_MARCH_LIGHTS_BINDING 5
 #define AVSM_SHADOW_BINDING 6
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 10  // the smoke asks for the pages it reads
 #include "common/volume_reference_march.glsl"
 #include "common/camera_rays.glsl"
 
