@@ -46,7 +46,7 @@ uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
 void ShadowMaps::create_page_state(MapState& map) const {
   const scene::ShadowSettings& s = lights_[map.light].light.shadow;
   map.pages = std::make_unique<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size), page_slots(map),
-                                          paged_fallback_level(s));
+                                          paged_fallback_level(s, lights_[map.light].map_count));
   if (options_.required_page_level >= 0) map.pages->require_level(uint32_t(options_.required_page_level));
   map.page_counters.set_frames(ctx_, frames_in_flight());
   map.page_counters.create(ctx_, {map.pages->slots() * page_counter_stride(),

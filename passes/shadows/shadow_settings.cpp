@@ -1,7 +1,6 @@
 #include "passes/shadows/shadow_settings.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 #include "passes/shadows/techniques/techniques.h"
@@ -65,19 +64,6 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
            std::to_string(v) + "; set shadow.virtual_resolution");
   if (!(s.page_pool_mib > 0.0)) refuse("needs a page pool; set shadow.page_pool_mib above 0");
   if (s.page_builds_per_frame < 0) refuse("needs shadow.page_builds_per_frame of 0 (no limit) or more");
-  const uint32_t maps = light.type == scene::LightType::point ? 6 : 1;
-  const uint32_t virtual_res = uint32_t(v), page = uint32_t(s.page_size);
-  const uint32_t fallback = shared::page_table_entries(virtual_res, page) -
-                            shared::page_table_level_first(virtual_res, page, paged_fallback_level(s));
-  const uint32_t slots = paged_pool_slots(s, maps);
-  if (slots < fallback) {
-    const double slot_mib = double(shared::page_slot_vec4s(page, uint32_t(s.nodes))) * 16.0 / double(1 << 20);
-    refuse("needs a pool that holds the " + std::to_string(fallback) + " pages of the levels at and above its " +
-           "shadow.resolution (" + std::to_string(s.resolution) + "^2), which serve its receivers when the pool " +
-           "overflows" + (maps > 1 ? " (per cube face)" : "") + "; it holds " + std::to_string(slots) +
-           ". Raise shadow.page_pool_mib to at least " + std::to_string(std::ceil(fallback * maps * slot_mib * 100) / 100) +
-           " or lower shadow.resolution");
-  }
 }
 
 uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps) {
@@ -86,10 +72,16 @@ uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps) {
   return uint32_t(std::clamp<uint64_t>(pool / slot_bytes, 1, 1u << 20));
 }
 
-uint32_t paged_fallback_level(const scene::ShadowSettings& s) {
-  const uint32_t levels = shared::page_level_count(uint32_t(s.virtual_resolution), uint32_t(s.page_size));
+uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps) {
+  const uint32_t virtual_res = uint32_t(s.virtual_resolution), page = uint32_t(s.page_size);
+  const uint32_t levels = shared::page_level_count(virtual_res, page);
   uint32_t level = 0;
-  while (level + 1 < levels && (uint32_t(s.virtual_resolution) >> (level + 1)) >= uint32_t(s.resolution)) ++level;
+  while (level + 1 < levels && (virtual_res >> (level + 1)) >= uint32_t(s.resolution)) ++level;
+  // The pages of `level` and every level above it, against the pool.
+  const uint32_t slots = paged_pool_slots(s, maps);
+  while (level + 1 < levels &&
+         shared::page_table_entries(virtual_res, page) - shared::page_table_level_first(virtual_res, page, level) > slots)
+    ++level;
   return level;
 }
 

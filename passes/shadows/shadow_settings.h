@@ -46,10 +46,11 @@ void check_paged_settings(const scene::Light& light, const std::string& who);
 // faces split it evenly).
 uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps);
 // The coarsest level a paged map's receivers ask for: the one whose texels are those of a
-// dense map of shadow.resolution. The pool must hold it and the levels above, so that
-// however far the pool's LOD bias goes, receivers read no coarser texels than the dense
-// map has: an overflow never loses a shadow that map shows.
-uint32_t paged_fallback_level(const scene::ShadowSettings& s);
+// dense map of shadow.resolution, so that however far the pool's LOD bias goes, receivers
+// read no coarser texels than the dense map has and an overflow never loses a shadow that
+// map shows. The pool (of each of `maps` virtual maps) must hold that level and the ones
+// above; where it cannot, the finest coarser level it holds.
+uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps);
 
 // "light 2 'key'": how messages name a light.
 std::string light_display_name(const scene::Light& light, size_t index);
