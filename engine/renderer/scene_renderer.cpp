@@ -199,7 +199,7 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (quality_)
     quality_->add_to_graph(graph, opaque.depth, frame);
   if (hair_quality_) hair_quality_->add_to_graph(graph, opaque.depth, frame);
-  if (resolution_) {
+  if (resolution_figures_ || level_overlay_) {
     const rg::BufferHandle levels = resolution_->add_to_graph(graph, opaque.depth, frame);
     if (level_overlay_) level_overlay_pass_->add_to_graph(graph, ldr, levels, *level_overlay_);
   }
@@ -277,7 +277,13 @@ std::vector<passes::PixelShadowError> SceneRenderer::quality_results() const {
 }
 
 void SceneRenderer::enable_resolution_figures() {
-  if (!resolution_) resolution_ = std::make_unique<passes::ShadowResolutionPass>(ctx_, shaders_);
+  create_resolution_pass();
+  resolution_figures_ = true;
+}
+
+void SceneRenderer::create_resolution_pass() {
+  if (resolution_) return;
+  resolution_ = std::make_unique<passes::ShadowResolutionPass>(ctx_, shaders_);
   resolution_->set_frames_in_flight(frames_in_flight());
   resolution_->set_size(width_, height_, light_count_);
 }
@@ -291,7 +297,7 @@ void SceneRenderer::set_level_overlay(std::optional<uint32_t> light) {
     throw std::invalid_argument("shadow level overlay: light " + std::to_string(*light) + " of " +
                                 std::to_string(light_count_) + " lights");
   if (light) {
-    enable_resolution_figures();
+    create_resolution_pass();
     if (!level_overlay_pass_) level_overlay_pass_ = std::make_unique<passes::ShadowLevelOverlayPass>(ctx_, shaders_);
   }
   level_overlay_ = light;

@@ -124,8 +124,8 @@ class SceneRenderer {
   void enable_resolution_figures();
   std::vector<passes::PixelShadowResolution> resolution_results() const;
   // Tints the tonemapped image's receivers of light `light` by the level their surface
-  // lookup reads, and dims the rest (the viewer's overlay; needs the resolution
-  // figures, which it enables); nullopt: off. Throws std::invalid_argument for a light
+  // lookup reads, and dims the rest (the viewer's overlay; it runs the resolution pass
+  // while it is on); nullopt: off. Throws std::invalid_argument for a light
   // the scene does not have.
   void set_level_overlay(std::optional<uint32_t> light);
   std::optional<uint32_t> level_overlay() const { return level_overlay_; }
@@ -170,6 +170,7 @@ class SceneRenderer {
   std::vector<passes::TexelSample> texel_samples_;
   void write_lights(uint32_t slot) const;
   std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
+  void create_resolution_pass();  // sized and ringed as the renderer is
 
   std::vector<scene::Light> lights_;
   scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)
@@ -194,6 +195,7 @@ class SceneRenderer {
   std::unique_ptr<passes::ShadowResolutionPass> resolution_;
   std::unique_ptr<passes::ShadowLevelOverlayPass> level_overlay_pass_;
   std::optional<uint32_t> level_overlay_;
+  bool resolution_figures_ = false;  // enable_resolution_figures(); the overlay runs the pass on its own
   std::unique_ptr<passes::ShadowDebugPass> light_images_;
   const gpu::ShaderLibrary& shaders_;
 

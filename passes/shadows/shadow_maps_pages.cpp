@@ -14,14 +14,6 @@
 
 namespace avsm::passes {
 
-namespace {
-
-uint64_t slot_bytes(const scene::ShadowSettings& s) {
-  return uint64_t(shared::page_slot_vec4s(uint32_t(s.page_size), uint32_t(s.nodes))) * sizeof(glm::vec4);
-}
-
-}  // namespace
-
 // A page build's capture counter (16 bytes: CaptureLists::counter), on the device's
 // storage buffer offset alignment, since each is bound on its own.
 uint64_t ShadowMaps::page_counter_stride() const {
@@ -40,7 +32,7 @@ uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
 }
 
 uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
-  return page_table_bytes(map) + uint64_t(page_slots(map)) * slot_bytes(lights_[map.light].light.shadow);
+  return page_table_bytes(map) + uint64_t(page_slots(map)) * paged_slot_bytes(lights_[map.light].light.shadow);
 }
 
 void ShadowMaps::create_page_state(MapState& map) const {
@@ -100,7 +92,7 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   declared.pages = map.pages->stats();
   declared.page_table = map.pages->table_words();
   const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
-  const uint64_t bytes_per_slot = slot_bytes(settings);
+  const uint64_t bytes_per_slot = paged_slot_bytes(settings);
   std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
   if (!declared.page_builds.empty())
     for (uint32_t o = 0; o < objects_.size(); ++o) footprints[o] = light_footprint(map.view, objects_[o].bounds);

@@ -60,7 +60,7 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
     g.page_requests_offset = map.page_requests_offset;
     g.page_lod_bias = settings.page_lod_bias + map.pages->lod_bias();
     g.page_volume_lod_bias = settings.page_volume_lod_bias;
-    g.page_fallback_level = paged_fallback_level(settings, light.map_count);
+    g.page_fallback_level = map.pages->fallback_level();
   } else {
     g.page_requests_offset = shared::kNoPageRequests;
   }

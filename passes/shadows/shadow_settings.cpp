@@ -66,10 +66,13 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
   if (s.page_builds_per_frame < 0) refuse("needs shadow.page_builds_per_frame of 0 (no limit) or more");
 }
 
+uint64_t paged_slot_bytes(const scene::ShadowSettings& s) {
+  return uint64_t(shared::page_slot_vec4s(uint32_t(s.page_size), uint32_t(s.nodes))) * 16;  // vec4s of 16 bytes
+}
+
 uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps) {
-  const uint64_t slot_bytes = uint64_t(shared::page_slot_vec4s(uint32_t(s.page_size), uint32_t(s.nodes))) * 16;
   const uint64_t pool = uint64_t(s.page_pool_mib * double(1 << 20)) / std::max(maps, 1u);
-  return uint32_t(std::clamp<uint64_t>(pool / slot_bytes, 1, 1u << 20));
+  return uint32_t(std::clamp<uint64_t>(pool / paged_slot_bytes(s), 1, 1u << 20));
 }
 
 uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps) {

@@ -42,6 +42,8 @@ void check_light_settings(const scene::Light& light, size_t index);
 // The part of check_light_settings() for shadow.layout "paged" (`who` names the light).
 void check_paged_settings(const scene::Light& light, const std::string& who);
 
+// The bytes of one page of a paged map: page_size^2 AVSM texels of shadow.nodes.
+uint64_t paged_slot_bytes(const scene::ShadowSettings& s);
 // A paged light's pool in pages of each of its `maps` virtual maps (a point light's six
 // faces split it evenly).
 uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps);

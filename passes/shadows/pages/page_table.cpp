@@ -33,7 +33,7 @@ PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t s
                                 " texels does not split into pages of " + std::to_string(page_size));
   if (slots == 0) throw std::invalid_argument("page table: a pool of no pages");
   levels_ = shared::page_level_count(virtual_resolution, page_size);
-  max_bias_ = float(std::min(fallback_level, levels_ - 1));
+  fallback_level_ = std::min(fallback_level, levels_ - 1);
   for (uint32_t level = 0; level <= levels_; ++level)
     level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, level));
   pages_.resize(level_first_.back());
@@ -104,9 +104,9 @@ void PageTable::adapt_lod_bias() {
   // moves, and keep a capture waiting).
   const auto quarters = [&] { return std::ceil(std::abs(std::log(share / kPoolTarget)) / std::log(4.0f) / kBiasStep) * kBiasStep; };
   if (share > kPoolHigh) {
-    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), max_bias_);
+    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), float(fallback_level_));
   } else if (stats_.unserved > 0) {
-    lod_bias_ = std::min(lod_bias_ + kBiasStep, max_bias_);
+    lod_bias_ = std::min(lod_bias_ + kBiasStep, float(fallback_level_));
   } else if (share < kPoolLow) {
     // Down by whole quarters short of the target, so that it is not overshot (one step
     // when nothing asked: every receiver read the coarsest level), but not to a bias

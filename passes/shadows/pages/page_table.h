@@ -64,6 +64,7 @@ class PageTable {
   PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level = ~0u);
 
   uint32_t virtual_resolution() const { return virtual_resolution_; }
+  uint32_t fallback_level() const { return fallback_level_; }
   uint32_t page_size() const { return page_size_; }
   uint32_t levels() const { return levels_; }
   uint32_t entries() const { return uint32_t(pages_.size()); }
@@ -119,7 +120,7 @@ class PageTable {
   bool overflowed_lately(float bias) const;
 
   uint32_t virtual_resolution_, page_size_, levels_, slots_;
-  float max_bias_ = 0.0f;
+  uint32_t fallback_level_ = 0;  // also the most the bias grows to, in levels
   std::vector<uint32_t> level_first_;  // entry of each level's first page
   std::vector<Page> pages_;
   std::vector<uint32_t> table_;
