@@ -36,7 +36,9 @@ struct ShadowInputs {
   // The same buffer as a graph resource when the frame writes it (ShadowMaps uploads the
   // records in a "shadow parameters" pass); invalid for static parameters.
   rg::BufferHandle records;
-  std::vector<rg::BufferHandle> maps;   // every map this frame builds: regions of `atlas`
+  // Every map this frame builds and every paged map's page pool (regions of `atlas`), and
+  // the paged maps' page tables.
+  std::vector<rg::BufferHandle> maps;
   std::vector<rg::BufferHandle> lists;  // the looked-up lists: regions of `list_heads`, `list_nodes`
   gpu::BufferRange atlas, list_heads, list_nodes;
   VkBuffer unused_buffer = VK_NULL_HANDLE;  // bound where there is no atlas or no lists

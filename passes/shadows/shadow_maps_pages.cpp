@@ -113,6 +113,12 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
     rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
     inputs.maps.push_back(builder.add_to_graph({graph, prefix, lists, handle, view, settings, map.map_state}, lists));
   }
+  // The whole pool, as the lookups read it: kept pages too, built in earlier frames. The
+  // pages built above are regions of it, which the graph orders before the lookups by
+  // their own handles; this import carries the rest from frame to frame.
+  const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
+      atlas_, map.page_pool_offset, page_slots(map) * bytes_per_slot, map.prefix + " page pool")));
+  inputs.maps.push_back(rg::vulkan::import(graph, map.prefix + " page pool", pool, after, after));
   // The page table, as plan_builds() left it: pages built above are already in it.
   rg::BufferHandle table = rg::vulkan::import(graph, map.prefix + " page table", map.page_table, rewritten_after(after), after);
   struct Data {

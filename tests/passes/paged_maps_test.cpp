@@ -256,7 +256,9 @@ TEST_F(PagedMapsTest, SmokeAndHairAskForThePagesTheyRead) {
     for (uint32_t light = 0; light < 2; ++light) {
       const passes::PageStats& pages = *paged.shadows().frame_stats()[light].pages;
       EXPECT_EQ(pages.pending, 0u) << scene.lights[light].name;
-      if (bias == 0) EXPECT_GE(pages.requested, 2u) << scene.lights[light].name << ": finer pages than the coarsest";
+      if (bias == 0) {
+        EXPECT_GE(pages.requested, 2u) << scene.lights[light].name << ": finer pages than the coarsest";
+      }
       requested[bias / 2] += pages.requested;
     }
   }

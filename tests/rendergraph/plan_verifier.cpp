@@ -5,6 +5,7 @@
 #include <rendergraph/vk_names.h>
 
 #include <algorithm>
+#include <map>
 #include <optional>
 
 namespace rg_test {
@@ -192,7 +193,51 @@ class Verifier {
     check_placements();
     collect_barriers();
     check_hazards();
+    problems_at_run_ = problems_.size();
     return problems_;
+  }
+
+  // Problems found since run() returned (check_shared_memory).
+  std::vector<std::string> problems_after_run() const {
+    return std::vector<std::string>(problems_.begin() + ptrdiff_t(problems_at_run_), problems_.end());
+  }
+
+  // After run(): what the frame leaves in resource r's memory (verify_frames).
+  const std::vector<Event>& open_at_end(uint32_t r) const { return open_at_end_[r]; }
+  VkImageLayout end_layout(uint32_t r) const { return end_layout_[r]; }
+
+  // After run(): imports x and y share memory, at bytes `x_at` and `y_at` of it. Every
+  // access to one that conflicts with an access to the other (overlapping bytes, either
+  // writing) is ordered after it by a barrier on either, as if they were one resource;
+  // a pass that writes one while it uses the other cannot be ordered at all.
+  void check_shared_memory(uint32_t x, uint64_t x_at, uint32_t y, uint64_t y_at) {
+    for (const Use& ux : uses_[x])
+      for (const Use& uy : uses_[y]) {
+        const Range bx = bytes_of(res(x), ux.access->range), by = bytes_of(res(y), uy.access->range);
+        if (x_at + bx.begin >= y_at + by.end || y_at + by.begin >= x_at + bx.end) continue;
+        if (!ux.access->writes && !uy.access->writes) continue;
+        if (ux.position == uy.position) {
+          problem("pass '" + *ux.pass_name + "' uses " + name(x) + " and " + name(y) +
+                  ", which share memory, and writes one of them");
+          continue;
+        }
+        const bool x_first = ux.position < uy.position;
+        const Use& first = x_first ? ux : uy;
+        const Use& second = x_first ? uy : ux;
+        const Event earlier = event_of(first, 2 * int64_t{first.position} + 1);
+        const Event later = event_of(second, 2 * int64_t{second.position} + 1);
+        auto covers = [&](const TimedBarrier& tb) {
+          const rg::Barrier& b = *tb.barrier;
+          return tb.pos > earlier.pos && tb.pos < later.pos && src_covers(b, earlier) &&
+                 stages_cover(b.dst_stages, later.stages) && (!earlier.write || access_covers(b.dst_access, later.access));
+        };
+        const bool ordered = std::any_of(barriers_[x].begin(), barriers_[x].end(), covers) ||
+                             std::any_of(barriers_[y].begin(), barriers_[y].end(), covers) ||
+                             std::any_of(global_barriers_.begin(), global_barriers_.end(), covers);
+        if (!ordered)
+          problem("hazard on the memory " + name(x) + " and " + name(y) + " share: " + later.what +
+                  " is not ordered after " + earlier.what);
+      }
   }
 
  private:
@@ -200,6 +245,7 @@ class Verifier {
   const rg::CompiledPlan& plan_;
   const rg::MemoryModel& memory_;
   std::vector<std::string> problems_;
+  size_t problems_at_run_ = 0;
 
   std::vector<uint32_t> position_;  // per declared pass, kInvalidIndex if culled
   std::vector<std::vector<Use>> uses_;  // per resource, in plan order
@@ -208,6 +254,7 @@ class Verifier {
   std::vector<std::vector<TimedBarrier>> barriers_;  // per resource
   std::vector<TimedBarrier> global_barriers_;
   std::vector<std::vector<Event>> open_at_end_;  // per resource, all bytes
+  std::vector<VkImageLayout> end_layout_;        // per texture: its layout after the final barriers
   // While simulating one byte interval of a resource: its barriers, and its name in
   // messages (the resource's, plus the interval when accesses split it).
   const std::vector<TimedBarrier>* interval_barriers_ = nullptr;
@@ -474,6 +521,7 @@ class Verifier {
 
   void check_hazards() {
     open_at_end_.assign(graph_.resources().size(), {});
+    end_layout_.assign(graph_.resources().size(), VK_IMAGE_LAYOUT_UNDEFINED);
     // Earlier-starting resources first: aliasing checks need the final state of the
     // resources that occupied the memory before.
     std::vector<uint32_t> order;
@@ -546,6 +594,7 @@ class Verifier {
     }
     barriers_until(end_pos());
     if (resource.imported) finish_imported(r, track, resource);
+    if (texture) end_layout_[r] = track.layout;
     std::vector<Event>& open = open_at_end_[r];
     open.insert(open.end(), track.open.reads.begin(), track.open.reads.end());
     if (track.open.last_write) open.push_back(*track.open.last_write);
@@ -599,20 +648,29 @@ class Verifier {
     track.open.reads.clear();
   }
 
-  void access(uint32_t r, Track& track, const Use& use, int64_t pos, bool texture) {
-    Event later{pos, 0, 0, false, false, ""};
+  // A pass's access as an event at `pos`: what its usages need, named after the pass.
+  static Event event_of(const Use& use, int64_t pos) {
+    Event event{pos, 0, 0, false, false, ""};
     std::string usage_names;
     use.access->usages.for_each([&](rg::Usage usage) {
       const Need need = need_of(usage, use.queue);
-      later.stages |= need.stages;
-      later.access |= need.access;
-      later.write |= need.write;
+      event.stages |= need.stages;
+      event.access |= need.access;
+      event.write |= need.write;
       usage_names += (usage_names.empty() ? "" : "+") + std::string(rg::to_string(usage));
-      if (texture && !layout_works_for(track.layout, usage))
-        problem(name(r) + " is in " + rg::layout_name(track.layout) + " when pass '" + *use.pass_name +
-                "' uses it as " + rg::to_string(usage));
     });
-    later.what = "pass '" + *use.pass_name + "' (" + usage_names + ")";
+    event.what = "pass '" + *use.pass_name + "' (" + usage_names + ")";
+    return event;
+  }
+
+  void access(uint32_t r, Track& track, const Use& use, int64_t pos, bool texture) {
+    const Event later = event_of(use, pos);
+    if (texture)
+      use.access->usages.for_each([&](rg::Usage usage) {
+        if (!layout_works_for(track.layout, usage))
+          problem(name(r) + " is in " + rg::layout_name(track.layout) + " when pass '" + *use.pass_name +
+                  "' uses it as " + rg::to_string(usage));
+      });
 
     if (!track.accessed && !res(r).imported) {
       if (!later.write) problem(later.what + " reads " + subject_ + " before anything wrote it");
@@ -660,6 +718,128 @@ class Verifier {
 std::vector<std::string> verify_plan(const rg::Graph& graph, const rg::CompiledPlan& plan,
                                      const rg::MemoryModel& memory) {
   return Verifier(graph, plan, memory).run();
+}
+
+namespace {
+
+// What a frame left in a piece of imported memory for the frames after it.
+struct Carried {
+  uint64_t begin = 0, end = 0;
+  size_t frame = 0;
+  std::string left_by;  // "frame <i>'s '<import>'"
+  bool texture = false;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  std::optional<rg::ImportState> final_state;  // the frame's final state, if it named one
+  std::vector<Event> open;                     // otherwise: the accesses it left open
+};
+
+bool is_none(const rg::ImportState& state) { return state.stages == 0 && state.access == 0; }
+
+// Problems with `initial` (import `what`) as a claim about `before`.
+// `drained`: the frame that left `before` had completed.
+void check_claim(bool drained, const rg::ImportState& initial, const Carried& before, const std::string& what,
+                 std::vector<std::string>& problems) {
+  const std::string prefix = what + " starts in a state " + before.left_by + " did not leave: ";
+  if (before.texture && initial.layout != VK_IMAGE_LAYOUT_UNDEFINED && initial.layout != before.layout)
+    problems.push_back(prefix + "layout " + rg::layout_name(initial.layout) + " instead of " +
+                       rg::layout_name(before.layout));
+  if (drained) return;
+  if (before.final_state) {
+    const rg::ImportState& left = *before.final_state;
+    if (left.stages == VK_PIPELINE_STAGE_2_HOST_BIT) return;  // drained by the host's wait
+    if (is_none(initial)) {
+      problems.push_back(prefix + "nothing pending, after a final state in " + rg::stage_names(left.stages));
+      return;
+    }
+    if (!stages_meet(initial.stages, left.stages))
+      problems.push_back(prefix + "stages " + rg::stage_names(initial.stages) + " do not chain to the final " +
+                         rg::stage_names(left.stages));
+    const bool claims_visible = (initial.access & kWriteBits) == 0;
+    if (claims_visible && (!stages_cover(left.stages, initial.stages) || !access_covers(left.access, initial.access)))
+      problems.push_back(prefix + "it claims " + rg::access_names(initial.access) + " in " +
+                         rg::stage_names(initial.stages) + " visible, the final state made " +
+                         rg::access_names(left.access) + " in " + rg::stage_names(left.stages) + " visible");
+    return;
+  }
+  for (const Event& open : before.open) {
+    const bool write = open.write || open.sync_point;
+    if (!stages_cover(initial.stages, open.stages) ||
+        (write && !access_covers(initial.access, open.access & kWriteBits)))
+      problems.push_back(prefix + open.what + " is still open and not inside " + rg::stage_names(initial.stages) + " / " +
+                         rg::access_names(initial.access));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> verify_frames(const std::vector<PlannedFrame>& frames, const rg::MemoryModel& memory) {
+  std::vector<std::string> problems;
+  std::map<uint64_t, std::vector<Carried>> carried;  // per object, disjoint pieces
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const rg::Graph& graph = *frames[f].graph;
+    const std::string frame = "frame " + std::to_string(f) + ": ";
+    Verifier verifier(graph, *frames[f].plan, memory);
+    std::vector<std::string> own = verifier.run();
+    for (std::string& p : own) problems.push_back(frame + p);
+    if (!own.empty()) continue;  // the frame's own state is not to be trusted
+
+    struct Import {
+      uint32_t resource;
+      PhysicalRange range;
+    };
+    std::vector<Import> imports;
+    for (uint32_t r = 0; r < graph.resources().size() && r < frames[f].memory.size(); ++r)
+      if (graph.resources()[r].imported && frames[f].memory[r]) imports.push_back({r, *frames[f].memory[r]});
+    auto name = [&](const Import& i) { return "'" + graph.resources()[i.resource].name + "'"; };
+    auto overlap = [](const PhysicalRange& a, uint64_t begin, uint64_t end) { return a.begin < end && begin < a.end; };
+
+    Verifier shared(graph, *frames[f].plan, memory);  // a second run, for the problems of shared memory alone
+    shared.run();
+    for (size_t a = 0; a < imports.size(); ++a)
+      for (size_t b = a + 1; b < imports.size(); ++b) {
+        const Import &x = imports[a], &y = imports[b];
+        if (x.range.object == y.range.object && overlap(x.range, y.range.begin, y.range.end))
+          shared.check_shared_memory(x.resource, x.range.begin, y.resource, y.range.begin);
+      }
+    for (const std::string& p : shared.problems_after_run()) problems.push_back(frame + p);
+
+    for (const Import& i : imports)
+      for (const Carried& piece : carried[i.range.object])
+        if (overlap(i.range, piece.begin, piece.end))
+          check_claim(piece.frame < frames[f].completed_before, graph.resources()[i.resource].initial, piece, frame + name(i), problems);
+
+    for (const Import& i : imports) {
+      const rg::ResourceDecl& decl = graph.resources()[i.resource];
+      Carried left{i.range.begin, i.range.end, f, "frame " + std::to_string(f) + "'s " + name(i),
+                   decl.kind == rg::ResourceKind::Texture, verifier.end_layout(i.resource), std::nullopt, {}};
+      if (is_none(decl.final_state))
+        left.open = verifier.open_at_end(i.resource);
+      else
+        left.final_state = decl.final_state;
+      if (left.texture && decl.final_state.layout != VK_IMAGE_LAYOUT_UNDEFINED) left.layout = decl.final_state.layout;
+      // The new piece replaces what it covers; the rest of the older pieces stays.
+      std::vector<Carried> pieces;
+      for (Carried& piece : carried[i.range.object]) {
+        if (!overlap(i.range, piece.begin, piece.end)) {
+          pieces.push_back(std::move(piece));
+          continue;
+        }
+        if (piece.begin < i.range.begin) {
+          Carried head = piece;
+          head.end = i.range.begin;
+          pieces.push_back(std::move(head));
+        }
+        if (piece.end > i.range.end) {
+          Carried tail = piece;
+          tail.begin = i.range.end;
+          pieces.push_back(std::move(tail));
+        }
+      }
+      pieces.push_back(std::move(left));
+      carried[i.range.object] = std::move(pieces);
+    }
+  }
+  return problems;
 }
 
 }  // namespace rg_test

@@ -26,6 +26,8 @@
 // be reached through an execution dependency chain).
 #include <rendergraph/graph.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,5 +36,40 @@ namespace rg_test {
 // One message per problem; empty means the plan is valid for this graph.
 std::vector<std::string> verify_plan(const rg::Graph& graph, const rg::CompiledPlan& plan,
                                      const rg::MemoryModel& memory);
+
+// Persistent state: what frames leave in the memory they import for the frames after.
+// The graph sees one frame; an import's initial state is the frame's claim about what the
+// frames before it left. Only the memory behind the imports can say whether that claim
+// holds, so the caller names it, while the frame's resources still live: `object` is the
+// buffer or image (its handle), [begin, end) the bytes an import covers ({0, 1} for an
+// image).
+struct PhysicalRange {
+  uint64_t object = 0;
+  uint64_t begin = 0, end = 0;
+};
+
+struct PlannedFrame {
+  const rg::Graph* graph = nullptr;
+  const rg::CompiledPlan* plan = nullptr;
+  std::vector<std::optional<PhysicalRange>> memory;  // per resource: an import's memory; nullopt leaves it out
+  // Frames [0, completed_before) had completed (the host waited for their fences) when
+  // this one was submitted: what they left is drained, but for images' layouts.
+  size_t completed_before = 0;
+};
+
+// Checks frames submitted one after another to one queue: each with verify_plan, and
+//   overlap   within a frame, two imports whose memory overlaps are not both used where
+//             one of them is written: the graph cannot order accesses to different
+//             resources
+//   carried   across frames, every import's initial state is true of what the last frame
+//             to use that memory left there: an image is in the layout it was left in (or
+//             UNDEFINED, discarding it); unless that frame had completed, accesses it left
+//             open (final state none) are inside the initial state's stages, their writes
+//             in its accesses, so the frame's first barriers wait for them, and where it
+//             left a final state, the initial state claims no stage or access it did not
+//             make visible, and chains to it through a shared stage. A final state in HOST
+//             stages only is drained: the host waits for the frame before reading.
+// Messages start with "frame <i>: ".
+std::vector<std::string> verify_frames(const std::vector<PlannedFrame>& frames, const rg::MemoryModel& memory);
 
 }  // namespace rg_test

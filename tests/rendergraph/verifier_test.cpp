@@ -180,6 +180,151 @@ TEST(Verifier, ReaderScheduledBeforeItsProducer) {
   EXPECT_TRUE(reports(b.problems(), "pass 'ssao' reads 'depth' version 1 but its producer 'gbuffer' does not run before it"));
 }
 
+// --- persistent state across frames (verify_frames) --------------------------------------
+
+// A persistent map of 1024 bytes: a frame builds the bytes [offset, offset + size) in
+// compute (importing them as `initial`, leaving them in `final_state`) and a later pass
+// reads them in the fragment shader.
+rg::Graph persistent_map_frame(rg::ImportState initial, rg::ImportState final_state, uint64_t offset = 0,
+                               uint64_t size = 1024) {
+  rg::Graph graph;
+  auto map = graph.import_buffer("map " + std::to_string(offset), {size}, initial, final_state);
+  graph.add_pass("build", rg::QueueType::Compute,
+                 [&](rg::PassBuilder& b) { map = b.write(map, rg::Usage::StorageWrite); }, no_execute);
+  graph.add_pass("shade", rg::QueueType::Graphics, [&](rg::PassBuilder& b) {
+    b.read(map, rg::Usage::StorageRead);
+    b.side_effect();
+  }, no_execute);
+  return graph;
+}
+
+// The memory behind "map <offset>" imports: one buffer, at that offset; the rest by name.
+std::optional<PhysicalRange> map_memory(const rg::ResourceDecl& decl) {
+  if (decl.name.rfind("map ", 0) == 0) {
+    const uint64_t offset = std::stoull(decl.name.substr(4));
+    return PhysicalRange{1, offset, offset + decl.buffer.size};
+  }
+  return PhysicalRange{std::hash<std::string>{}(decl.name), 0, 1};
+}
+
+struct Frames {
+  MockMemoryModel memory;
+  std::vector<rg::Graph> graphs;
+  std::vector<rg::CompiledPlan> plans;
+
+  std::vector<size_t> completed_before;
+
+  // A frame submitted once frames [0, completed) have completed.
+  void add(rg::Graph graph, size_t completed = 0) {
+    plans.push_back(graph.compile(memory));
+    graphs.push_back(std::move(graph));
+    completed_before.push_back(completed);
+  }
+  std::vector<std::string> problems() const {
+    std::vector<PlannedFrame> frames;
+    for (size_t f = 0; f < graphs.size(); ++f) {
+      frames.push_back({&graphs[f], &plans[f], {}, completed_before[f]});
+      for (const rg::ResourceDecl& decl : graphs[f].resources()) frames.back().memory.push_back(map_memory(decl));
+    }
+    return verify_frames(frames, memory);
+  }
+};
+
+const rg::ImportState kReadInShaders = rg::ImportState::of(rg::Usage::StorageRead);
+
+TEST(VerifierFrames, AcceptsFramesThatCarryTheirState) {
+  Frames frames;
+  for (int f = 0; f < 3; ++f) frames.add(history_graph());
+  EXPECT_TRUE(frames.problems().empty()) << testing::PrintToString(frames.problems());
+  Frames maps;
+  for (int f = 0; f < 3; ++f) maps.add(persistent_map_frame(kReadInShaders, kReadInShaders));
+  EXPECT_TRUE(maps.problems().empty()) << testing::PrintToString(maps.problems());
+}
+
+// The frame before left the map to whoever comes next without a final barrier: the
+// fragment shader's read is still open, and the next frame's build does not wait for it.
+TEST(VerifierFrames, AnOpenReadTheNextFrameDoesNotWaitFor) {
+  Frames frames;
+  frames.add(persistent_map_frame(rg::ImportState::none(), rg::ImportState::none()));
+  frames.add(persistent_map_frame(rg::ImportState::none(), rg::ImportState::none()));
+  EXPECT_TRUE(reports(frames.problems(), "frame 1: 'map 0' starts in a state frame 0's 'map 0' did not leave: "
+                                         "pass 'shade' (StorageRead) is still open"));
+}
+
+// A frame-slot buffer (a readback, parameters the host writes) is used again only after
+// the host waited for the frame that used it last: nothing of that frame is pending.
+TEST(VerifierFrames, NothingIsPendingFromAFrameTheHostWaitedFor) {
+  Frames frames;
+  frames.add(persistent_map_frame(rg::ImportState::none(), rg::ImportState::none()));
+  frames.add(persistent_map_frame(rg::ImportState::none(), rg::ImportState::none()), 1);
+  EXPECT_TRUE(frames.problems().empty()) << testing::PrintToString(frames.problems());
+}
+
+// The frame before made its writes visible to compute only; the next claims them visible
+// to the fragment shader as well.
+TEST(VerifierFrames, AClaimOfVisibilityTheFinalStateDidNotMake) {
+  Frames frames;
+  const rg::ImportState compute_read = rg::ImportState::of(rg::Usage::StorageRead, rg::QueueType::Compute);
+  frames.add(persistent_map_frame(kReadInShaders, compute_read));
+  frames.add(persistent_map_frame(kReadInShaders, kReadInShaders));
+  EXPECT_TRUE(reports(frames.problems(), "frame 1: 'map 0' starts in a state frame 0's 'map 0' did not leave: it claims"));
+}
+
+// Persistent state is memory, not names: a frame that builds a page into the slot another
+// page used must wait for what the frames before did there.
+TEST(VerifierFrames, StateFollowsTheMemoryAcrossImportsOfOtherNames) {
+  Frames frames;
+  frames.add(persistent_map_frame(kReadInShaders, rg::ImportState::none(), 0, 512));
+  frames.add(persistent_map_frame(rg::ImportState::none(), kReadInShaders, 256, 512));
+  EXPECT_TRUE(reports(frames.problems(), "frame 1: 'map 256' starts in a state frame 0's 'map 0' did not leave"));
+}
+
+TEST(VerifierFrames, AnImageInAnotherLayoutThanTheFrameBeforeLeftIt) {
+  Frames frames;
+  frames.add(history_graph());
+  rg::Graph second;
+  auto history = second.import_texture("taa_history", texture_desc(256, 256, VK_FORMAT_R16G16B16A16_SFLOAT),
+                                       rg::ImportState::of(rg::Usage::StorageRead, rg::QueueType::Compute),
+                                       rg::ImportState::of(rg::Usage::StorageRead, rg::QueueType::Compute));
+  second.add_pass("taa", rg::QueueType::Compute, [&](rg::PassBuilder& b) {
+    b.read(history, rg::Usage::StorageRead);
+    b.side_effect();
+  }, no_execute);
+  frames.add(std::move(second));
+  EXPECT_TRUE(reports(frames.problems(), "'taa_history' starts in a state frame 0's 'taa_history' did not leave: layout "
+                                         "GENERAL instead of SHADER_READ_ONLY_OPTIMAL"));
+}
+
+// Two imports of one buffer's bytes are one memory to the device: a write to one and a
+// read of the other need a barrier between them, though the planner sees two resources.
+TEST(VerifierFrames, AWriteToOneImportOfSharedMemoryAndAnUnorderedReadOfAnother) {
+  Frames frames;
+  rg::Graph graph;
+  auto whole = graph.import_buffer("map 0", {1024}, kReadInShaders, kReadInShaders);
+  auto part = graph.import_buffer("map 512", {256}, kReadInShaders, kReadInShaders);
+  graph.add_pass("build part", rg::QueueType::Compute,
+                 [&](rg::PassBuilder& b) { part = b.write(part, rg::Usage::StorageWrite); }, no_execute);
+  graph.add_pass("shade", rg::QueueType::Graphics, [&](rg::PassBuilder& b) {
+    b.read(whole, rg::Usage::StorageRead);
+    b.side_effect();
+  }, no_execute);
+  frames.add(std::move(graph));
+  EXPECT_TRUE(reports(frames.problems(), "frame 0: hazard on the memory 'map 0' and 'map 512' share: pass 'shade'"));
+}
+
+TEST(VerifierFrames, APassThatWritesOneImportOfSharedMemoryAndReadsAnother) {
+  Frames frames;
+  rg::Graph graph;
+  auto whole = graph.import_buffer("map 0", {1024}, kReadInShaders, kReadInShaders);
+  auto part = graph.import_buffer("map 512", {256}, kReadInShaders, kReadInShaders);
+  graph.add_pass("build part from whole", rg::QueueType::Compute, [&](rg::PassBuilder& b) {
+    b.read(whole, rg::Usage::StorageRead);
+    part = b.write(part, rg::Usage::StorageWrite);
+  }, no_execute);
+  frames.add(std::move(graph));
+  EXPECT_TRUE(reports(frames.problems(), "pass 'build part from whole' uses"));
+}
+
 }  // namespace
 }  // namespace verifier_test
 }  // namespace rg_test
