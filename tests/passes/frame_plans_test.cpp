@@ -86,9 +86,9 @@ void render(renderer::SceneRenderer& renderer, renderer::FrameSlots& slots, cons
 }  // namespace
 
 // The default scene (meshes, smoke, hair) with the sun paged in a pool of 14 pages and
-// the spot dense, two frames in flight: frames that build the first pages, then a camera that goes round the stage
-// (its pages evict others from their slots), then a box that moves (pages invalidated
-// and built again in place). Every frame's plan is valid, and every import's initial
+// the spot dense, two frames in flight: frames that build the first pages, then a camera
+// that goes round the stage (its pages evict others from their slots), then a box that
+// moves (pages invalidated and built again in place). Every frame's plan is valid, and every import's initial
 // state is what the frames before left in its memory.
 TEST_F(FramePlansTest, PagedAndDenseFramesCarryTheirStateFromFrameToFrame) {
   scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);

@@ -770,6 +770,29 @@ void check_claim(bool drained, const rg::ImportState& initial, const Carried& be
   }
 }
 
+// `left` replaces what it covers of the older pieces; the rest of them stays.
+void leave(std::vector<Carried>& pieces, Carried left) {
+  std::vector<Carried> kept;
+  for (Carried& piece : pieces) {
+    if (piece.end <= left.begin || left.end <= piece.begin) {
+      kept.push_back(std::move(piece));
+      continue;
+    }
+    if (piece.begin < left.begin) {
+      Carried head = piece;
+      head.end = left.begin;
+      kept.push_back(std::move(head));
+    }
+    if (piece.end > left.end) {
+      Carried tail = piece;
+      tail.begin = left.end;
+      kept.push_back(std::move(tail));
+    }
+  }
+  kept.push_back(std::move(left));
+  pieces = std::move(kept);
+}
+
 }  // namespace
 
 std::vector<std::string> verify_frames(const std::vector<PlannedFrame>& frames, const rg::MemoryModel& memory) {
@@ -793,15 +816,13 @@ std::vector<std::string> verify_frames(const std::vector<PlannedFrame>& frames, 
     auto name = [&](const Import& i) { return "'" + graph.resources()[i.resource].name + "'"; };
     auto overlap = [](const PhysicalRange& a, uint64_t begin, uint64_t end) { return a.begin < end && begin < a.end; };
 
-    Verifier shared(graph, *frames[f].plan, memory);  // a second run, for the problems of shared memory alone
-    shared.run();
     for (size_t a = 0; a < imports.size(); ++a)
       for (size_t b = a + 1; b < imports.size(); ++b) {
         const Import &x = imports[a], &y = imports[b];
         if (x.range.object == y.range.object && overlap(x.range, y.range.begin, y.range.end))
-          shared.check_shared_memory(x.resource, x.range.begin, y.resource, y.range.begin);
+          verifier.check_shared_memory(x.resource, x.range.begin, y.resource, y.range.begin);
       }
-    for (const std::string& p : shared.problems_after_run()) problems.push_back(frame + p);
+    for (const std::string& p : verifier.problems_after_run()) problems.push_back(frame + p);
 
     for (const Import& i : imports)
       for (const Carried& piece : carried[i.range.object])
@@ -817,26 +838,7 @@ std::vector<std::string> verify_frames(const std::vector<PlannedFrame>& frames, 
       else
         left.final_state = decl.final_state;
       if (left.texture && decl.final_state.layout != VK_IMAGE_LAYOUT_UNDEFINED) left.layout = decl.final_state.layout;
-      // The new piece replaces what it covers; the rest of the older pieces stays.
-      std::vector<Carried> pieces;
-      for (Carried& piece : carried[i.range.object]) {
-        if (!overlap(i.range, piece.begin, piece.end)) {
-          pieces.push_back(std::move(piece));
-          continue;
-        }
-        if (piece.begin < i.range.begin) {
-          Carried head = piece;
-          head.end = i.range.begin;
-          pieces.push_back(std::move(head));
-        }
-        if (piece.end > i.range.end) {
-          Carried tail = piece;
-          tail.begin = i.range.end;
-          pieces.push_back(std::move(tail));
-        }
-      }
-      pieces.push_back(std::move(left));
-      carried[i.range.object] = std::move(pieces);
+      leave(carried[i.range.object], std::move(left));
     }
   }
   return problems;

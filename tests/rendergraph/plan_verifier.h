@@ -58,9 +58,10 @@ struct PlannedFrame {
 };
 
 // Checks frames submitted one after another to one queue: each with verify_plan, and
-//   overlap   within a frame, two imports whose memory overlaps are not both used where
-//             one of them is written: the graph cannot order accesses to different
-//             resources
+//   overlap   within a frame, where two imports' memory overlaps, every access to one that
+//             conflicts with an access to the other (either writes) is ordered after it by
+//             a barrier on either, as if they were one resource; a pass that writes one
+//             while it uses the other cannot be ordered at all
 //   carried   across frames, every import's initial state is true of what the last frame
 //             to use that memory left there: an image is in the layout it was left in (or
 //             UNDEFINED, discarding it); unless that frame had completed, accesses it left
