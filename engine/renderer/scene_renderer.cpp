@@ -203,8 +203,8 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
     const rg::BufferHandle levels = resolution_->add_to_graph(graph, opaque.depth, frame);
     if (level_overlay_) level_overlay_pass_->add_to_graph(graph, ldr, levels, *level_overlay_);
   }
-  if (probes_) probes_->add_to_graph(graph, shadows);
-  if (texel_curves_) texel_curves_->add_to_graph(graph, shadows);
+  if (probes_) probes_->add_to_graph(graph, frame.shadows);
+  if (texel_curves_) texel_curves_->add_to_graph(graph, frame.shadows);
   if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
   return graph;
 }

@@ -320,12 +320,19 @@ float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_fi
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
-// A paged map's texels are those of the coarser of the two levels the receiver reads.
+// A paged map's receiver between levels L and L + 1 (lod L + f) moves by L's texel
+// times 1 + f: the finer level's texel where it reads that level alone, the coarser's
+// where it reads that one alone, and a blend that follows the levels' weights between.
+// (The coarser level's texel throughout made the offset double where the lod crosses a
+// whole level, a step the seam test saw: tests/passes/light_maps_test.cpp.)
 vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   vec3 n = dot(normal, to_light) < 0.0 ? -normal : normal;
   float d = shadow_light_depth(s, p);
   float texel = shadow_texel_size(s, d);
-  if (shadow_is_paged(s)) texel *= exp2(ceil(shadow_paged_lod(s, p, d, kReceiverSurface)));
+  if (shadow_is_paged(s)) {
+    float lod = shadow_paged_lod(s, p, d, kReceiverSurface);
+    texel *= exp2(floor(lod)) * (1.0 + fract(lod));
+  }
   return p + n * (s.camera_position.w * texel);
 }
 

@@ -194,7 +194,8 @@ Sequence render(gpu::Context& ctx, Shadows& shadows, passes::ShadowProbePass& pr
     slot_frame[slot.index] = frame;
     shadows.set_light(sun_at(frame), casters.bounds);  // only moves it: no wait for the frames in flight
     rg::Graph graph;
-    probes.add_to_graph(graph, avsm::add_to_graph(graph, shadows, camera, casters.views, slot.index));
+    passes::ShadowInputs inputs = avsm::add_to_graph(graph, shadows, camera, casters.views, slot.index);
+    probes.add_to_graph(graph, inputs);
     record(graph, *slot.executor, slot.cmd);
     // With two in flight, frame 0 waits on the queue until frame 1 is submitted.
     if (in_flight > 1 && frame == 0) {

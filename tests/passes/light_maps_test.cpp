@@ -21,6 +21,7 @@
 #include "passes/frame/view.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
+#include "shared/pages.h"
 #include "support/gpu_test.h"
 #include "support/test_volumes.h"
 
@@ -237,6 +238,148 @@ TEST_F(LightMapsTest, PointLightLookupsDoNotCrackAtAFaceSeam) {
 // texels are as wide as the dense map's.
 TEST_F(LightMapsTest, PagedPointLightLookupsDoNotCrackAtAFaceSeam) {
   expect_no_crack_at_a_face_seam(ctx(), shaders(), scene::ShadowLayout::paged);
+}
+
+// ---- Paged maps: page and level seams ----
+
+// A line of floor receivers along the shadow that a sun low in the sky casts from one
+// smoke box, seen by a camera looking along it, so that the lookups cross page
+// boundaries and, as the distance grows, levels. Returns per receiver the surface
+// lookup's transmittance after the map converged (the receivers ask for their own
+// pages: shaders/passes/shadows/inspection/shadow_probe.comp).
+struct SeamLine {
+  std::vector<Box> boxes;
+  scene::Light sun;
+  scene::Camera camera;
+  std::vector<glm::vec3> points;
+  static constexpr uint32_t kWidth = 320, kHeight = 180;
+};
+
+SeamLine seam_line() {
+  SeamLine line;
+  Box box;
+  box.voxels = 24;
+  box.origin = glm::vec3(-1.15f, 1.0f, -1.15f);
+  line.boxes = {box};
+  line.sun = make_light("sun", scene::LightType::directional, 64);
+  line.sun.direction = glm::normalize(glm::vec3(0.0f, -std::sin(glm::radians(35.0f)), -std::cos(glm::radians(35.0f))));
+  line.sun.shadow.fit = scene::ShadowFit::scene;
+  line.sun.shadow.filter = scene::ShadowFilter::bilinear;
+  line.camera.position = glm::vec3(0.6f, 1.6f, 3.5f);
+  line.camera.target = glm::vec3(0.3f, 0.0f, -3.0f);
+  for (float z = 0.5f; z >= -6.5f; z -= 0.02f) line.points.emplace_back(0.3f, 0.0f, z);
+  return line;
+}
+
+struct SeamLookups {
+  std::vector<float> transmittance;
+  passes::LightView map;  // the sun's (virtual, when paged) map
+  passes::PageStats pages;
+};
+
+SeamLookups look_up_seam_line(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const SeamLine& line,
+                              scene::Light sun) {
+  scene::Scene scene = box_scene(line.boxes);
+  scene.cameras = {line.camera};
+  scene.lights = {sun};
+  renderer::SceneRenderer renderer(ctx, shaders, scene, SeamLine::kWidth, SeamLine::kHeight,
+                                   {.unlimited_page_builds = true});
+  renderer.set_surface_probes(line.points, std::vector<glm::vec3>(line.points.size(), glm::vec3(0.0f, 1.0f, 0.0f)));
+  rg::vulkan::Executor executor(ctx, gpu::TimestampMode::Exact);
+  // Frame 1 builds the root; the receivers' requests are built by the frames after it.
+  for (int frame = 0; frame < 4; ++frame) {
+    rg::Graph graph = renderer.build_frame(passes::make_view(line.camera, SeamLine::kWidth, SeamLine::kHeight));
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+    renderer.finish_frame();
+  }
+  const passes::LightShadowStats& stats = renderer.shadows().frame_stats().at(0);
+  EXPECT_FALSE(stats.lost_shadowing()) << scene::to_string(sun.shadow.layout);
+  return {renderer.probe_results().at(0), renderer.shadows().map_views(0).at(0),
+          stats.pages ? *stats.pages : passes::PageStats{}};
+}
+
+// Per neighbouring receivers (i - 1, i): how much the lookup's step differs from the
+// integrated transmittance's.
+std::vector<float> step_errors(const SeamLine& line, const std::vector<float>& got) {
+  std::vector<float> errors(line.points.size(), 0.0f);
+  const auto want = [&](size_t i) {
+    return reference_transmittance(line.boxes, light_origin(line.sun, line.points[i]), line.points[i]);
+  };
+  float previous = want(0);
+  for (size_t i = 1; i < line.points.size(); ++i) {
+    const float current = want(i);
+    errors[i] = std::abs((got.at(i) - got.at(i - 1)) - (current - previous));
+    previous = current;
+  }
+  return errors;
+}
+
+// Receivers straddling a page boundary or a level boundary of a paged map (all its pages
+// built, 8192^2 in pages of 32) step no more, against the integrated transmittance, than
+// the dense map of the coarser level they read does between any neighbours on the line.
+TEST_F(LightMapsTest, PagedLookupsStepNoMoreAtPageAndLevelBoundariesThanTheDenseMap) {
+  constexpr uint32_t kVirtual = 8192, kPage = 32;
+  const SeamLine line = seam_line();
+  scene::Light paged_sun = line.sun;
+  paged_sun.shadow.layout = scene::ShadowLayout::paged;
+  paged_sun.shadow.virtual_resolution = int(kVirtual);
+  paged_sun.shadow.page_size = int(kPage);
+  paged_sun.shadow.resolution = int(kPage);  // receivers may read every level down to the root
+  const SeamLookups paged = look_up_seam_line(ctx(), shaders(), line, paged_sun);
+  EXPECT_EQ(paged.pages.pending, 0u);
+  EXPECT_EQ(paged.pages.unserved, 0u);
+
+  // The level each receiver reads, as shadow_paged_lod() picks it (no bias: the pool holds
+  // every request), and the page of that level and the next that holds it.
+  const passes::View view = passes::make_view(line.camera, SeamLine::kWidth, SeamLine::kHeight);
+  const float radians_per_pixel = 2.0f / (std::abs(view.projection[1][1]) * float(view.height));
+  const uint32_t levels = shared::page_level_count(kVirtual, kPage);
+  std::vector<float> lod(line.points.size());
+  std::vector<glm::vec2> uv(line.points.size());
+  for (size_t i = 0; i < line.points.size(); ++i) {
+    const glm::vec3& p = line.points[i];
+    const float pixel = glm::distance(p, view.camera_position) * radians_per_pixel;
+    lod[i] = std::clamp(std::log2(pixel / paged.map.texel_size(0.0f)), 0.0f, float(levels - 1));
+    const glm::vec4 clip = paged.map.light_from_world * glm::vec4(p, 1.0f);
+    uv[i] = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+  }
+  const auto page_of = [&](size_t i, uint32_t level) {
+    return glm::uvec2(glm::floor(uv[i] * float((kVirtual >> level) / kPage)));
+  };
+  const std::vector<float> paged_steps = step_errors(line, paged.transmittance);
+  // Per level (the coarser of the two a pair reads): the largest step at a page or
+  // level boundary, and elsewhere.
+  std::map<uint32_t, float> at_boundary, elsewhere;
+  uint32_t page_boundaries = 0, level_boundaries = 0;
+  for (size_t i = 1; i < line.points.size(); ++i) {
+    const uint32_t level = uint32_t(std::floor(lod[i])), coarser = std::min(level + 1, levels - 1);
+    const bool level_boundary = uint32_t(std::floor(lod[i - 1])) != level;
+    const bool page_boundary = page_of(i, level) != page_of(i - 1, level) || page_of(i, coarser) != page_of(i - 1, coarser);
+    page_boundaries += page_boundary;
+    level_boundaries += level_boundary;
+    float& largest = (page_boundary || level_boundary ? at_boundary : elsewhere)[coarser];
+    largest = std::max(largest, paged_steps[i]);
+  }
+  EXPECT_GE(page_boundaries, 4u) << "the line crosses pages";
+  EXPECT_GE(level_boundaries, 1u) << "the line crosses levels";
+  int shadowed = 0;
+  for (size_t i = 0; i < line.points.size(); ++i)
+    shadowed += reference_transmittance(line.boxes, light_origin(line.sun, line.points[i]), line.points[i]) < 0.9f;
+  EXPECT_GT(shadowed, int(line.points.size()) / 3) << "the line lies in the box's shadow";
+
+  for (const auto& [level, paged_step] : at_boundary) {
+    scene::Light dense_sun = line.sun;
+    dense_sun.shadow.resolution = int(kVirtual >> level);
+    const std::vector<float> dense_steps = step_errors(line, look_up_seam_line(ctx(), shaders(), line, dense_sun).transmittance);
+    const float dense_step = *std::max_element(dense_steps.begin(), dense_steps.end());
+    std::cout << "[ page seams  ] reading level " << level << " (" << (kVirtual >> level)
+              << "^2): step error at page and level boundaries " << paged_step << ", elsewhere "
+              << elsewhere[level] << "; the dense " << (kVirtual >> level) << "^2 map's largest " << dense_step << "\n";
+    EXPECT_LE(paged_step, dense_step + 1e-3f) << "level " << level;
+  }
+  std::cout << "[ page seams  ] " << line.points.size() << " receivers, " << shadowed << " shadowed; "
+            << page_boundaries << " pairs straddle a page, " << level_boundaries << " a level; " << paged.pages.resident
+            << " pages resident\n";
 }
 
 // ---- Many lights ----

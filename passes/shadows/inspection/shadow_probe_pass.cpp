@@ -62,10 +62,10 @@ void ShadowProbePass::set_texel_samples(const std::vector<TexelSample>& samples)
                          "texel sample results"});
 }
 
-void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows) {
+void ShadowProbePass::add_to_graph(rg::Graph& graph, ShadowInputs& shadows) {
   if (point_count_ == 0 || light_count_ == 0) return;
   struct Data {
-    rg::BufferHandle results;
+    rg::BufferHandle results, page_requests;
   };
   const bool texels = mode_ == Mode::texel_curves;
   const std::string name = texels ? "shadow texel curves" : "shadow probes";
@@ -76,12 +76,14 @@ void ShadowProbePass::add_to_graph(rg::Graph& graph, const ShadowInputs& shadows
       [&](rg::PassBuilder& b, Data& d) {
         d.results = b.write(results, rg::Usage::StorageWrite);
         shadows.declare_reads(b);
+        d.page_requests = shadows.page_requests = shadows.declare_page_requests(b);
       },
       [this, shadows](const Data& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings bindings(ctx_, pipeline_);
         bindings.buffer("Points", points_).buffer("Results", c.buffer(d.results));
         shadows.bind(bindings, c);
+        shadows.bind_page_requests(bindings, c, d.page_requests);
         bindings.push(c.cmd());
         pipeline_.push_constants(c.cmd(), shared::ShadowProbePush{point_count_, light_count_, uint32_t(mode_)});
         pipeline_.dispatch_threads(c.cmd(), point_count_);

@@ -50,8 +50,9 @@ class ShadowProbePass {
   // A results buffer per frame in flight (passes/frame/frames_in_flight.h; 1 by default).
   void set_frames_in_flight(uint32_t count) { results_.set_frames(ctx_, count); }
   // Adds "shadow probes" (or "shadow texel curves") reading the maps; the results
-  // are ready after the frame, in its slot (shadows.frame_slot).
-  void add_to_graph(rg::Graph& graph, const ShadowInputs& shadows);
+  // are ready after the frame, in its slot (shadows.frame_slot). Probes ask paged maps
+  // for the pages they read: shadows.page_requests moves on to the pass's write.
+  void add_to_graph(rg::Graph& graph, ShadowInputs& shadows);
   // results()[light][point], after the frame recorded into `slot` completed (points mode).
   std::vector<std::vector<float>> results(uint32_t slot = 0) const;
   // One result per texel sample, in set_texel_samples() order (texel-curve mode).

@@ -7,8 +7,11 @@
 //    reference (the capture lists, when the frame kept them; else the technique
 //    again): avsm-capture --plot-texel. No filtering: the curve of that one texel,
 //    what a point lookup on the texel's centre ray at that depth returns.
+// Points ask paged maps for the pages they read, as the camera's receivers do, so a
+// capture's probes read converged pages wherever they lie.
 #extension GL_GOOGLE_include_directive : require
 #define AVSM_SHADOW_BINDING 2
+#define AVSM_SHADOW_PAGE_REQUESTS_BINDING 6
 #include "common/shadow_lookup.glsl"
 
 layout(local_size_x = 64) in;
