@@ -17,6 +17,14 @@ Then the viewer's case: the camera orbits the static scene (avsm-capture --orbit
 default 2 degrees a frame). Per frame after the first ones have converged: GPU ms, the
 shadow passes' ms, and the pages built against those resident.
 
+Then a light that moves every frame (avsm-capture --light-orbit, 2 degrees a frame), so
+every page is stale every frame: today's default, and paged maps under each per-frame
+budget of page builds per light (--page-builds). Per configuration: the GPU ms of the frames
+while the light moves, against today's default static frame; the frames it takes,
+after the light stops, until no page request is pending; and the shadow passes' ms per
+step (capture per caster kind, sort, resolve) in the moving frames, in all and per
+page built.
+
 Last, resolution matching at --match-width x --match-height (1280x720), measured by the
 engine (avsm-capture --measure-resolution, capture/resolution.h): the share of lit
 receiver pixels whose texel is at most 1.5 screen pixels wide at its widest, the median
@@ -26,7 +34,8 @@ pools lavapipe's 128 MiB storage range holds for two lights.
 
 usage: bench/avsm/paged.py [--build DIR] [--width W] [--height H] [--rounds R]
                            [--page-size P] [--virtual-res V] [--orbit DEGREES]
-                           [--orbit-frames K] [--match-width W] [--match-height H]
+                           [--orbit-frames K] [--moving-frames K] [--budgets B ...]
+                           [--match-width W] [--match-height H]
 """
 import argparse
 import json
@@ -49,10 +58,10 @@ def configs(args):
             (f"paged {args.virtual_res}/{args.page_size}", paged)]
 
 
-def capture(tool, scene, out, args, flags, frames=4, orbit=0.0):
+def capture(tool, scene, out, args, flags, frames=4, orbit=0.0, light_orbit=0.0):
     subprocess.run([tool, "--scene", scene, "--out", out, "--width", str(args.width), "--height", str(args.height),
-                    "--frames", str(frames), "--frames-in-flight", "1", "--orbit", str(orbit), "--quiet"] + flags,
-                   check=True, capture_output=True)
+                    "--frames", str(frames), "--frames-in-flight", "1", "--orbit", str(orbit),
+                    "--light-orbit", str(light_orbit), "--quiet"] + flags, check=True, capture_output=True)
     timings = json.load(open(os.path.join(out, "timings.json")))
     memory = json.load(open(os.path.join(out, "memory.json")))
     # The frame a renderer draws: without the capture's light pictures (inspection passes).
@@ -72,6 +81,39 @@ def orbit_figures(result, skip):
             "shadow": statistics.median(f["shadow_gpu_ms"] for f in frames),
             "built": statistics.median(f["pages_built"] for f in frames),
             "most built": max(f["pages_built"] for f in frames), "resident": resident}
+
+
+STEPS = ["capture opaque", "capture hair", "capture smoke", "sort", "resolve / build"]
+
+
+def moving_light_figures(result, frames):
+    """The frames while the light moves (timings.json's measured frames 1 .. frames - 2: the
+    first one after the warm-up still builds from the first requests) and after it stops."""
+    moving = result["frames"][1:frames - 1]
+    built = statistics.median(f["pages_built"] for f in moving)
+    steps = {s: statistics.median(f["shadow_step_gpu_ms"].get(s, 0.0) for f in moving) for s in STEPS}
+    return {"frame": statistics.median(f["gpu_ms"] for f in moving),
+            "shadow": statistics.median(f["shadow_gpu_ms"] for f in moving), "built": built, "steps": steps,
+            "converge": len(result["frames"]) - (frames - 1)}
+
+
+def print_moving_light(moving, today, args):
+    print(f"\na moving light: --light-orbit {args.light_orbit} degrees a frame, {args.moving_frames} frames; medians "
+          f"over the moving frames after the first; converge: frames rendered after the light stopped until no "
+          f"page request was pending; per step: ms in a moving frame (ms per page built)")
+    print(f"   {'configuration':<24}{'frame ms':>10}{'x today':>9}{'shadow':>9}{'built':>7}{'converge':>10}   "
+          + "  ".join(f"{s:>20}" for s in STEPS))
+    for name, xs in moving.items():
+        frame = statistics.median(x["frame"] for x in xs)
+        built = statistics.median(x["built"] for x in xs)
+        steps = "  ".join(
+            f"{statistics.median(x['steps'][s] for x in xs):>11.1f}"
+            + (f" ({statistics.median(x['steps'][s] for x in xs) / built:>5.2f})" if built else f"{'':>8}")
+            for s in STEPS)
+        converge = max(x["converge"] for x in xs)
+        print(f"   {name:<24}{frame:>10.1f}{frame / today:>9.2f}{statistics.median(x['shadow'] for x in xs):>9.1f}"
+              f"{built:>7.0f}{converge:>10}   {steps}")
+    print("   target: frame <= 1.5x today's default (static) frame; today's default rebuilds every frame anyway")
 
 
 def mean_abs_error(compare, base, new):
@@ -127,6 +169,10 @@ def main():
     parser.add_argument("--virtual-res", type=int, default=16384)
     parser.add_argument("--orbit", type=float, default=2.0)
     parser.add_argument("--orbit-frames", type=int, default=10)
+    parser.add_argument("--light-orbit", type=float, default=2.0)
+    parser.add_argument("--moving-frames", type=int, default=8)
+    parser.add_argument("--budgets", type=int, nargs="+", default=[8, 16, 32],
+                        help="page builds per frame per light, for the moving light")
     parser.add_argument("--match-width", type=int, default=1280)
     parser.add_argument("--match-height", type=int, default=720)
     args = parser.parse_args()
@@ -141,6 +187,9 @@ def main():
     results = {name: [] for name, _ in rows}
     errors = {name: [] for name, _ in rows}
     orbits = {name: [] for name, _ in orbit_rows}
+    moving_rows = [rows[0]] + [(f"{rows[3][0]}, {b} a frame", rows[3][1] + ["--page-builds", str(b)])
+                               for b in args.budgets]
+    moving = {name: [] for name, _ in moving_rows}
     skip = 2  # measured frames left out of the orbit figures: the paged maps' first builds
     with tempfile.TemporaryDirectory() as work:
         for r in range(args.rounds):
@@ -153,6 +202,10 @@ def main():
                 result = capture(tool, scene, os.path.join(work, f"{r}_orbit_{i}"), args, flags,
                                  frames=args.orbit_frames, orbit=args.orbit)
                 orbits[name].append(orbit_figures(result, skip))
+            for i, (name, flags) in enumerate(moving_rows):
+                result = capture(tool, scene, os.path.join(work, f"{r}_moving_{i}"), args, flags,
+                                 frames=args.moving_frames, light_orbit=args.light_orbit)
+                moving[name].append(moving_light_figures(result, args.moving_frames))
     today = statistics.median(x["frame"] for x in results[rows[0][0]])
     print(f"default scene, {args.width}x{args.height}, 2 lights, AVSM-8; GPU ms, medians of {args.rounds} "
           f"interleaved rounds; converged frame = the fastest of 4 (+ frames rendered again until converged); "
@@ -182,6 +235,7 @@ def main():
         print(f"   {name:<24}{frame:>10.1f}{frame / orbit_today:>9.2f}{shadow:>9.1f}{shadow / dense_rebuild:>9.2f}"
               f"{built:>8.0f}{max(o['most built'] for o in xs):>6}{resident:>10}{share}")
     print("   x dense: the shadow passes against the dense 256 bilinear full rebuild in the same run")
+    print_moving_light(moving, today, args)
     with tempfile.TemporaryDirectory() as work:
         print_resolution(tool, scene, work, args)
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <rendergraph/rendergraph.h>
 #include <rendergraph/vulkan/executor.h>
@@ -59,6 +60,7 @@ SettingsReport settings_report(const CaptureOptions& options, const scene::Scene
   report.frames = options.frames;
   report.frames_in_flight = options.frames_in_flight;
   report.orbit_degrees = options.orbit_degrees;
+  report.light_orbit_degrees = options.light_orbit_degrees;
   report.validation = options.validation;
   report.volume_shading = scene.volume_shading;
   report.compare_volume_shading = options.compare_volume_shading;
@@ -109,13 +111,27 @@ ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>
 // other levels (finer ones, once the first frame's overflow is behind it).
 struct ShadowLoss {
   bool lost = false, grew = false, settling = false;
+  bool building_pages = false;  // the frame built pages (under a page budget: progress)
 };
+
+// --light-orbit: every light of `scene` turned by `radians` about the vertical axis
+// through the scene's centre, as placed lights (ShadowMaps::place_light: a paged map's
+// pages all go stale).
+void place_lights_turned(renderer::SceneRenderer& frame, const scene::Scene& scene, float radians) {
+  const glm::vec3 centre = scene.bounds.center();
+  const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), radians, glm::vec3(0.0f, 1.0f, 0.0f)));
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+    const scene::Light& light = scene.lights[i];
+    frame.place_light(i, centre + turn * (light.position - centre), turn * light.direction);
+  }
+}
 
 // Warns about every light whose frame lost shadowing.
 ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   ShadowLoss loss;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
     loss.settling = loss.settling || (light.pages && light.pages->settling);
+    loss.building_pages = loss.building_pages || (light.pages && light.pages->built > 0);
     if (!light.lost_shadowing()) continue;
     loss.lost = true;
     loss.grew = loss.grew || light.grew;
@@ -323,7 +339,10 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   shadow_options.exponential_interpolation = options.exponential_interpolation;
   // The quality figures and texel curves compare against each light's exact lists.
   shadow_options.keep_reference = options.compare_to_uncompressed || !plots.empty();
-  shadow_options.unlimited_page_builds = true;  // a capture writes converged paged maps only
+  // A capture writes converged paged maps only: it builds every page asked for at once,
+  // or with --page-builds at most that many a frame, rendering again until none is pending.
+  const bool page_budget = options.shadow.page_builds_per_frame.value_or(0) > 0;
+  shadow_options.unlimited_page_builds = !page_budget;
   std::unique_ptr<renderer::SceneRenderer> renderer_storage;
   try {
     renderer_storage = std::make_unique<renderer::SceneRenderer>(ctx, shaders, scene, options.width, options.height,
@@ -361,8 +380,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   uint64_t overflowed_frames = 0;
   renderer::FrameSlots slots(ctx, calibration.mode, options.frames_in_flight);
   FrameTimingLog timing_log;
-  // Frames rendered again at most while a map is unfinished (each grows what it lacked).
-  constexpr uint32_t kMaxFramesAgain = 8;
+  // Frames rendered again at most while a map is unfinished (each grows what it lacked);
+  // under a page budget, while pages asked for are still being built.
+  constexpr uint32_t kMaxFramesAgain = 8, kMaxFramesBuildingPages = 512;
 
   // What each slot's frame in flight is: its number and clock.
   std::vector<uint32_t> slot_frame(slots.count());
@@ -387,6 +407,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // Records frame `index` into the next slot (first finishing the frame it held) and submits it.
   auto submit_frame = [&](uint32_t index) {
     renderer::FrameSlots::Slot& slot = slots.acquire(finished);
+    if (options.light_orbit_degrees != 0.0f && index > 0 && index < options.frames)
+      place_lights_turned(frame, scene, glm::radians(options.light_orbit_degrees * float(index)));
     slot_frame[slot.index] = index;
     slot_clock[slot.index] = record_timed_frame(frame, *slot.executor, slot.cmd, view_of(index), slot.index);
     slots.submit(slot);
@@ -420,7 +442,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   uint32_t frames_again = 0;
   // A paged map's bias settling is waited for too (it only makes the frame finer), but a
   // frame written while it still moves is not an error.
-  for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && frames_again < kMaxFramesAgain; ++frames_again) {
+  const auto may_render_again = [&] {
+    const bool building_pages = page_budget && last_loss.building_pages;
+    return frames_again < (building_pages ? kMaxFramesBuildingPages : kMaxFramesAgain);
+  };
+  for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && may_render_again(); ++frames_again) {
     if (options.progress)
       std::fprintf(stderr, "frame %u: shadow maps unfinished (buffers grown, pages asked for, a page bias settling): rendering it again\n",
                    options.frames);

@@ -34,6 +34,11 @@ struct CaptureOptions {
   // target (scene::orbited): a static scene under a moving camera, as in the viewer. The
   // frames rendered again until the maps are finished keep the last frame's view.
   float orbit_degrees = 0.0f;
+  // --light-orbit DEGREES: frame i turns every light i x DEGREES about the vertical axis
+  // through the scene's centre (positions and directions): a light that moves every
+  // frame, so a paged map's pages are all stale each frame. The frames rendered again
+  // keep the last frame's lights.
+  float light_orbit_degrees = 0.0f;
 
   // Shadow overrides applied to every light (unset: the scene's own settings; cascades
   // only to directional lights, clusters not to point lights: ShadowOverrides::apply(Light&)).

@@ -20,6 +20,8 @@ const char* kUsage =
     "  --frames K       frames to render; timings over all but the first (default 5)\n"
     "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
     "  --orbit DEGREES  turn the camera about its target by this much each frame (default 0)\n"
+    "  --light-orbit DEGREES  turn every light about the vertical axis through the scene's\n"
+    "                   centre by this much each frame (default 0): a moving light\n"
     "  --device NAME    Vulkan device: index or part of its name (env AVSM_DEVICE)\n"
     "  --validation     enable Vulkan validation + synchronization validation\n"
     "  --quiet          no progress on stderr\n"
@@ -52,6 +54,9 @@ const char* kUsage =
     "  --virtual-res R  paged: the virtual map's texels per side, a power of two, 256 to 16384\n"
     "  --page-size P    paged: texels per page side, 32, 64 or 128\n"
     "  --page-pool-mib M  paged: each light's page pool\n"
+    "  --page-builds N  paged: build at most N pages a frame, as the viewer does (default: a\n"
+    "                   capture builds every page asked for at once); frames are rendered\n"
+    "                   again until every page asked for is built\n"
     "  --cascades N     directional lights (only): maps split along the camera's view, 1 to 4\n"
     "  --clusters N     directional and spot lights (not point): casters grouped by their\n"
     "                   light-space bounds, at most N maps (up to 8) of the shadow resolution\n"
@@ -164,6 +169,12 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const std::optional<float> degrees = parse_number<float>(text);
     if (!degrees || !(std::abs(*degrees) <= 90.0f)) usage_error("--orbit expects -90 to 90 degrees per frame, got '" + text + "'");
     options.orbit_degrees = *degrees;
+  } else if (arg == "--light-orbit") {
+    const std::string text = value();
+    const std::optional<float> degrees = parse_number<float>(text);
+    if (!degrees || !(std::abs(*degrees) <= 90.0f))
+      usage_error("--light-orbit expects -90 to 90 degrees per frame, got '" + text + "'");
+    options.light_orbit_degrees = *degrees;
   } else if (arg == "--device") {
     options.device = value();
   } else if (arg == "--validation") {
@@ -222,6 +233,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const uint32_t m = parse_count(arg, value());
     if (m > 4096) usage_error("--page-pool-mib expects at most 4096");
     options.shadow.page_pool_mib = double(m);
+  } else if (arg == "--page-builds") {
+    options.shadow.page_builds_per_frame = parse_in_range(arg, value(), 0, 65536);
   } else if (arg == "--shadow-res") {
     const uint32_t r = parse_count(arg, value());
     if (r > 16384) usage_error("--shadow-res expects at most 16384");
@@ -297,6 +310,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.frames != defaults.frames, "--frames", std::to_string(o.frames));
   with_value(o.frames_in_flight != defaults.frames_in_flight, "--frames-in-flight", std::to_string(o.frames_in_flight));
   with_value(o.orbit_degrees != defaults.orbit_degrees, "--orbit", exact_text(o.orbit_degrees));
+  with_value(o.light_orbit_degrees != defaults.light_orbit_degrees, "--light-orbit", exact_text(o.light_orbit_degrees));
   with_value(o.device != defaults.device, "--device", o.device);
   flag(o.validation, "--validation");
   flag(!o.progress, "--quiet");
@@ -322,6 +336,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   if (shadow.virtual_resolution) with_value(true, "--virtual-res", std::to_string(*shadow.virtual_resolution));
   if (shadow.page_size) with_value(true, "--page-size", std::to_string(*shadow.page_size));
   if (shadow.page_pool_mib) with_value(true, "--page-pool-mib", std::to_string(int(*shadow.page_pool_mib)));
+  if (shadow.page_builds_per_frame) with_value(true, "--page-builds", std::to_string(*shadow.page_builds_per_frame));
   if (shadow.cascades) with_value(true, "--cascades", std::to_string(*shadow.cascades));
   if (shadow.clusters) with_value(true, "--clusters", std::to_string(*shadow.clusters));
   for (const auto& [name, value] : shadow.parameters) with_value(true, "--shadow-param", name + "=" + exact_text(value));

@@ -96,27 +96,29 @@ double FrameTimingLog::add_frame(const FrameClock& clock, const std::vector<rg::
   }
   if (!measured) return wall;
 
-  double total = 0, shadow = 0, inspection = 0;
+  FrameSample frame;
+  frame.wall_ms = wall;
+  frame.submit_wall_ms = completed - recorded;
   for (const rg::vulkan::PassTiming& pass : passes) {
-    if (is_shadow_stage(pass_stage(pass.name))) shadow += pass.gpu_ms;
-    if (is_inspection_pass(pass.name)) inspection += pass.gpu_ms;
+    if (is_shadow_stage(pass_stage(pass.name))) {
+      frame.shadow_gpu_ms += pass.gpu_ms;
+      frame.shadow_step_gpu_ms[std::string(shadow_step(pass.name))] += pass.gpu_ms;
+    }
+    if (is_inspection_pass(pass.name)) frame.inspection_gpu_ms += pass.gpu_ms;
     auto [found, added] = pass_index_.emplace(pass.name, passes_.size());
     if (added) passes_.push_back({pass.name, pass.queue, {}, {}});
     PassSamples& samples = passes_[found->second];
     samples.queue = pass.queue;
     samples.gpu_ms.push_back(pass.gpu_ms);
     samples.cpu_record_ms.push_back(pass.cpu_record_ms);
-    total += pass.gpu_ms;
+    frame.gpu_ms += pass.gpu_ms;
   }
-  frame_gpu_ms_.push_back(total);
-  frame_wall_ms_.push_back(wall);
-  frame_submit_ms_.push_back(completed - recorded);
-  frame_shadow_gpu_ms_.push_back(shadow);
-  frame_inspection_gpu_ms_.push_back(inspection);
-  uint32_t pages_built = 0;
-  for (const passes::LightShadowStats& light : shadows)
-    if (light.pages) pages_built += light.pages->built;
-  frame_pages_built_.push_back(pages_built);
+  for (const passes::LightShadowStats& light : shadows) {
+    if (!light.pages) continue;
+    frame.pages_built += light.pages->built;
+    frame.pages_pending += light.pages->pending;
+  }
+  frames_.push_back(std::move(frame));
   return wall;
 }
 

@@ -77,15 +77,8 @@ class FrameTimingLog {
   const std::vector<PassSamples>& passes() const { return passes_; }  // in the order first seen
   // Each pass's median GPU ms over the measured frames (as in timings.json), by name.
   std::map<std::string, double> median_gpu_ms() const;
-  // Per measured frame: the passes' GPU ms summed, the wall time, and submit to completion.
-  const std::vector<double>& frame_gpu_ms() const { return frame_gpu_ms_; }
-  const std::vector<double>& frame_wall_ms() const { return frame_wall_ms_; }
-  const std::vector<double>& frame_submit_ms() const { return frame_submit_ms_; }
-  // Per measured frame: the shadow passes' and the inspection passes' GPU ms
-  // (pass_stages.h), and the pages built.
-  const std::vector<double>& frame_shadow_gpu_ms() const { return frame_shadow_gpu_ms_; }
-  const std::vector<double>& frame_inspection_gpu_ms() const { return frame_inspection_gpu_ms_; }
-  const std::vector<uint32_t>& frame_pages_built() const { return frame_pages_built_; }
+  // Per measured frame: its GPU ms, wall times, shadow and inspection passes' ms, pages.
+  const std::vector<FrameSample>& frames() const { return frames_; }
   const TraceWriter& trace() const { return trace_; }
   uint32_t frames_logged() const { return frames_logged_; }
 
@@ -95,8 +88,7 @@ class FrameTimingLog {
   uint32_t frames_logged_ = 0;
   std::vector<PassSamples> passes_;
   std::map<std::string, size_t> pass_index_;
-  std::vector<double> frame_gpu_ms_, frame_wall_ms_, frame_submit_ms_, frame_shadow_gpu_ms_, frame_inspection_gpu_ms_;
-  std::vector<uint32_t> frame_pages_built_;
+  std::vector<FrameSample> frames_;
 };
 
 // Everything write_frame_outputs reads; the frame must have completed.

@@ -92,7 +92,9 @@ json to_json(const FrameSample& frame) {
           {"submit_wall_ms", frame.submit_wall_ms},
           {"shadow_gpu_ms", frame.shadow_gpu_ms},
           {"inspection_gpu_ms", frame.inspection_gpu_ms},
-          {"pages_built", frame.pages_built}};
+          {"pages_built", frame.pages_built},
+          {"pages_pending", frame.pages_pending},
+          {"shadow_step_gpu_ms", frame.shadow_step_gpu_ms}};
 }
 
 FrameSample frame_sample_from_json(const json& in) {
@@ -102,6 +104,9 @@ FrameSample frame_sample_from_json(const json& in) {
   if (in.contains("shadow_gpu_ms")) frame.shadow_gpu_ms = value_of<double>(in, "shadow_gpu_ms");
   if (in.contains("inspection_gpu_ms")) frame.inspection_gpu_ms = value_of<double>(in, "inspection_gpu_ms");
   if (in.contains("pages_built")) frame.pages_built = value_of<uint32_t>(in, "pages_built");
+  if (in.contains("pages_pending")) frame.pages_pending = value_of<uint32_t>(in, "pages_pending");
+  if (in.contains("shadow_step_gpu_ms"))
+    for (const auto& [step, ms] : member(in, "shadow_step_gpu_ms").items()) frame.shadow_step_gpu_ms[step] = ms.get<double>();
   return frame;
 }
 
@@ -428,12 +433,15 @@ TimingReport timing_report(const FrameTimingLog& log) {
   TimingReport report;
   for (const FrameTimingLog::PassSamples& pass : log.passes())
     report.passes.push_back({pass.name, pass.queue, spread_of(pass.gpu_ms), spread_of(pass.cpu_record_ms)});
-  report.frame_gpu_ms = spread_of(log.frame_gpu_ms());
-  report.frame_wall_ms = spread_of(log.frame_wall_ms());
-  report.frame_submit_wall_ms = spread_of(log.frame_submit_ms());
-  for (size_t i = 0; i < log.frame_gpu_ms().size(); ++i)
-    report.frames.push_back({log.frame_gpu_ms()[i], log.frame_wall_ms()[i], log.frame_submit_ms()[i],
-                             log.frame_shadow_gpu_ms()[i], log.frame_inspection_gpu_ms()[i], log.frame_pages_built()[i]});
+  report.frames = log.frames();
+  const auto spread_over_frames = [&](double FrameSample::*figure) {
+    std::vector<double> values;
+    for (const FrameSample& frame : report.frames) values.push_back(frame.*figure);
+    return spread_of(std::move(values));
+  };
+  report.frame_gpu_ms = spread_over_frames(&FrameSample::gpu_ms);
+  report.frame_wall_ms = spread_over_frames(&FrameSample::wall_ms);
+  report.frame_submit_wall_ms = spread_over_frames(&FrameSample::submit_wall_ms);
   return report;
 }
 
@@ -618,6 +626,7 @@ json to_json(const SettingsReport& s) {
           {"frames", s.frames},
           {"frames_in_flight", s.frames_in_flight},
           {"orbit_degrees", s.orbit_degrees},
+          {"light_orbit_degrees", s.light_orbit_degrees},
           {"validation", s.validation},
           {"volume_shading",
            {{"mode", scene::to_string(s.volume_shading.mode)},
@@ -642,6 +651,7 @@ SettingsReport settings_report_from_json(const json& in) {
   s.frames = value_of<uint32_t>(in, "frames");
   s.frames_in_flight = value_of<uint32_t>(in, "frames_in_flight");
   if (in.contains("orbit_degrees")) s.orbit_degrees = value_of<float>(in, "orbit_degrees");  // 0 before it was recorded
+  if (in.contains("light_orbit_degrees")) s.light_orbit_degrees = value_of<float>(in, "light_orbit_degrees");
   s.validation = value_of<bool>(in, "validation");
   const json& volumes = member(in, "volume_shading");
   const std::string mode = value_of<std::string>(volumes, "mode");

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,10 @@ struct FrameSample {
   double shadow_gpu_ms = 0;   // the shadow maps' passes (capture, sort, build, mips: pass_stages.h)
   double inspection_gpu_ms = 0;  // passes that only show or measure the frame (is_inspection_pass())
   uint32_t pages_built = 0;   // paged maps' pages built, every light's summed
+  uint32_t pages_pending = 0;  // pages the receivers asked for that coarser levels stood in for
+  // The shadow passes' ms by step (shadow_step(): "capture opaque", "capture hair",
+  // "capture smoke", "sort", "resolve / build", "mips", ...), every light's summed.
+  std::map<std::string, double> shadow_step_gpu_ms;
   bool operator==(const FrameSample&) const = default;
 };
 
@@ -167,6 +172,7 @@ struct SettingsReport {
   uint32_t width = 0, height = 0;
   uint32_t frames = 0, frames_in_flight = 0;
   float orbit_degrees = 0.0f;  // --orbit: the camera turned this much per frame
+  float light_orbit_degrees = 0.0f;  // --light-orbit: the lights turned this much per frame
   bool validation = false;
   scene::VolumeShading volume_shading;  // the scene's, with --volume-shading & co. applied
   bool compare_volume_shading = false;

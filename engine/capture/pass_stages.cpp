@@ -37,6 +37,13 @@ PassStage pass_stage(std::string_view name) {
   return PassStage::other;  // shadow parameters, tonemap, shadow quality, probes, texel curves
 }
 
+std::string_view shadow_step(std::string_view name) {
+  if (!is_light_pass(name)) return "";
+  const size_t capture = name.find(" capture ");
+  if (capture != std::string_view::npos) return name.substr(capture + 1);
+  return to_string(light_pass_stage(name));
+}
+
 std::string_view to_string(PassStage stage) {
   switch (stage) {
     case PassStage::shadow_capture: return "shadow capture";

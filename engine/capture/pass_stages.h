@@ -25,6 +25,11 @@ inline constexpr std::array<PassStage, kPassStageCount> kPassStages = {
 PassStage pass_stage(std::string_view pass_name);
 // "shadow capture", "sort", "resolve / build", "mips", "camera shading", "other".
 std::string_view to_string(PassStage stage);
+// A shadow pass's step, finer than its stage: "capture <caster kind>" (opaque, hair,
+// smoke, ...) for the capture passes, else its stage's name ("shadow capture" for the
+// lists' clears and the fixed build's depth and hair bins, "sort", "resolve / build",
+// "mips"); "" for passes of no light.
+std::string_view shadow_step(std::string_view pass_name);
 // The shadow maps' own stages: capture, sort, build and mips.
 bool is_shadow_stage(PassStage stage);
 // A pass that only shows or measures the frame (light pictures, shadow probes, texel

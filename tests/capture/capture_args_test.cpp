@@ -30,6 +30,7 @@ CaptureOptions every_option_set() {
   o.frames = 2;
   o.frames_in_flight = 1;
   o.orbit_degrees = -2.5f;
+  o.light_orbit_degrees = 1.25f;
   o.validation = true;
   o.device = "llvmpipe";
   o.progress = false;
@@ -49,6 +50,7 @@ CaptureOptions every_option_set() {
   o.shadow.fit = scene::ShadowFit::scene;
   o.shadow.cascades = 3;
   o.shadow.clusters = 1;
+  o.shadow.page_builds_per_frame = 12;
   o.shadow.parameters = {{"slices", 32}, {"depth_bias", 0.1}};
   o.exponential_interpolation = true;
   o.probe_file = "/probes.json";
@@ -93,6 +95,7 @@ TEST(CaptureArgs, BadFlagsNameThemselves) {
   EXPECT_EQ(usage_error_of({"--fit", "box"}), "--fit expects view or scene, got 'box'");
   EXPECT_EQ(usage_error_of({"--volume-step", "1x"}), "--volume-step expects a number of voxels, got '1x'");
   EXPECT_EQ(usage_error_of({"--orbit", "120"}), "--orbit expects -90 to 90 degrees per frame, got '120'");
+  EXPECT_EQ(usage_error_of({"--light-orbit", "x"}), "--light-orbit expects -90 to 90 degrees per frame, got 'x'");
   EXPECT_EQ(usage_error_of({"--cascades", "2", "--clusters", "3"}),
             "--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
   CaptureOptions options;

@@ -103,6 +103,7 @@ SettingsReport sample_settings() {
   s.frames = 3;
   s.frames_in_flight = 1;
   s.orbit_degrees = 1.5f;
+  s.light_orbit_degrees = -0.5f;
   s.validation = true;
   s.volume_shading = {scene::VolumeShading::Mode::reference, 4, 0.5f};
   s.compare_volume_shading = true;
