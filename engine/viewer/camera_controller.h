@@ -34,6 +34,9 @@ class CameraController {
   bool update(const CameraInput& input);
 
   const scene::Camera& camera() const { return camera_; }
+  // Turns the camera about its target around its up axis (a scripted orbit: the control
+  // command "orbit DEGREES", as avsm-capture --orbit turns it).
+  void turn_about_target(float radians) { camera_ = scene::orbited(camera_, radians); }
   CameraMode mode = CameraMode::orbit;
   // World units per second when flying; starts at a tenth of the start distance.
   float fly_speed = 1.0f;

@@ -83,6 +83,10 @@ ControlCommand parse_control_command(const std::string& line) {
   } else if (name == "exposure") {
     command.kind = ControlCommand::Kind::exposure;
     command.exposure = parse_number(argument("a number"), "exposure");
+  } else if (name == "orbit") {
+    command.kind = ControlCommand::Kind::orbit;
+    command.degrees = parse_number(argument("degrees"), "orbit");
+    if (!(std::abs(command.degrees) <= 360.0f)) throw std::invalid_argument("'orbit' expects -360 to 360 degrees");
   } else if (name == "levels") {
     command.kind = ControlCommand::Kind::levels;
     const std::string light = argument("a light index or off");
@@ -91,7 +95,7 @@ ControlCommand parse_control_command(const std::string& line) {
     command.kind = ControlCommand::Kind::quit;
   } else {
     throw std::invalid_argument("unknown command '" + name +
-                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, levels I|off, quit)");
+                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, orbit DEGREES, levels I|off, quit)");
   }
   if (words >> rest) throw std::invalid_argument("'" + name + "': unexpected '" + rest + "'");
   return command;
@@ -122,6 +126,14 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
     const std::optional<scene::ShadowFit> fit = scene::shadow_fit_from_string(value);
     if (!fit) throw std::invalid_argument(what + ": unknown fit '" + value + "' (view, scene)");
     o.fit = *fit;
+  } else if (field == "layout") {
+    const std::optional<scene::ShadowLayout> layout = scene::shadow_layout_from_string(value);
+    if (!layout) throw std::invalid_argument(what + ": unknown layout '" + value + "' (dense, paged)");
+    o.layout = *layout;
+  } else if (field == "kernel") {
+    const std::optional<scene::ShadowKernel> kernel = scene::shadow_kernel_from_string(value);
+    if (!kernel) throw std::invalid_argument(what + ": unknown kernel '" + value + "' (none, box, gaussian)");
+    o.kernel = *kernel;
   } else if (field == "cascades") {
     o.cascades = parse_whole_in(value, what, 1, 4);
   } else if (field == "clusters") {
@@ -135,7 +147,7 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
     if (!(glm::length(direction) > 0.0f)) throw std::invalid_argument(what + ": a direction needs a length, got '" + value + "'");
     o.direction = direction;
   } else {
-    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, fit, cascades, clusters, on, position, direction)");
+    throw std::invalid_argument("unknown light field '" + field + "' (technique, nodes, resolution, filter, sort, build, fit, layout, kernel, cascades, clusters, on, position, direction)");
   }
 }
 

@@ -11,9 +11,12 @@
 //   light I FIELD VALUE      set a panel field of light I: technique (avsm, ...), nodes,
 //                            resolution, filter (point, ...), sort (on/off), build (lists,
 //                            fixed), fit (view, scene), cascades (1-4), clusters (0-8, 0 and
-//                            1 off), on (on/off), position X,Y,Z (spot, point), direction
+//                            1 off), layout (dense, paged), kernel (none, box, gaussian),
+//                            on (on/off), position X,Y,Z (spot, point), direction
 //                            X,Y,Z (directional, spot; normalised)
 //   exposure V               the tonemapper's exposure
+//   orbit DEGREES            turn the camera about its target (as a drag does; the next
+//                            frame shows it)
 //   levels I|off             tint light I's receivers by the shadow map level they read
 //                            (the panel's "shadow levels" overlay), or stop
 //   quit                     stop (the exit status still reports validation messages)
@@ -29,13 +32,14 @@
 namespace avsm::viewer {
 
 struct ControlCommand {
-  enum class Kind { frame, inspect, screenshot, light, exposure, levels, quit };
+  enum class Kind { frame, inspect, screenshot, light, exposure, orbit, levels, quit };
   Kind kind = Kind::frame;
   glm::vec2 pixel{0.0f};             // inspect
   std::filesystem::path directory;   // screenshot
   uint32_t light = 0;                // light
   std::string field, value;          // light
   float exposure = 1.0f;             // exposure
+  float degrees = 0.0f;              // orbit
   std::optional<uint32_t> overlay_light;  // levels (nullopt: off)
 };
 

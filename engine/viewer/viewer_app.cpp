@@ -315,6 +315,11 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       settings_.exposure = command.exposure;
       apply({.exposure_changed = true});
       break;
+    case ControlCommand::Kind::orbit:
+      camera_.turn_about_target(glm::radians(command.degrees));
+      scene_dirty_ = true;
+      reply["camera"] = {camera_.camera().position.x, camera_.camera().position.y, camera_.camera().position.z};
+      break;
     case ControlCommand::Kind::levels:
       if (command.overlay_light && *command.overlay_light >= live_->scene().lights.size())
         throw std::invalid_argument("levels " + std::to_string(*command.overlay_light) + ": the scene has " +

@@ -180,6 +180,9 @@ TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(cascades.value, "3");
   EXPECT_EQ(parse_control_command("light 2 clusters 4").field, "clusters");
   EXPECT_FLOAT_EQ(parse_control_command("exposure 0.5").exposure, 0.5f);
+  const ControlCommand orbit = parse_control_command("orbit -2.5");
+  EXPECT_EQ(orbit.kind, ControlCommand::Kind::orbit);
+  EXPECT_FLOAT_EQ(orbit.degrees, -2.5f);
   EXPECT_EQ(parse_control_command("quit").kind, ControlCommand::Kind::quit);
 }
 
@@ -188,6 +191,9 @@ TEST(ControlCommands, RejectsMalformedLinesWithAReason) {
   EXPECT_THROW(parse_control_command("inspect 12"), std::invalid_argument);
   EXPECT_THROW(parse_control_command("frame now"), std::invalid_argument);
   EXPECT_THROW(parse_control_command("light x technique avsm"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("orbit"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("orbit left"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("orbit 400"), std::invalid_argument);
   SceneOverrides overrides;
   EXPECT_THROW(set_light_field(overrides, 0, "technique", "best"), std::invalid_argument);
   EXPECT_THROW(set_light_field(overrides, 0, "colour", "red"), std::invalid_argument);
@@ -199,11 +205,13 @@ TEST(ControlCommands, RejectsMalformedLinesWithAReason) {
   for (const char* bad : {"9", "-1", "all"})
     EXPECT_THROW(set_light_field(overrides, 0, "clusters", bad), std::invalid_argument) << bad;
   EXPECT_THROW(set_light_field(overrides, 0, "fit", "camera"), std::invalid_argument);
+  EXPECT_THROW(set_light_field(overrides, 0, "layout", "sparse"), std::invalid_argument);
+  EXPECT_THROW(set_light_field(overrides, 0, "kernel", "tent"), std::invalid_argument);
   EXPECT_FALSE(overrides.lights[0].cascades);  // a refused value sets nothing
   EXPECT_FALSE(overrides.lights[0].clusters);
 }
 
-TEST(ControlCommands, CascadesClustersAndFitReachTheLight) {
+TEST(ControlCommands, CascadesClustersFitLayoutAndKernelReachTheLight) {
   SceneOverrides overrides;
   set_light_field(overrides, 0, "cascades", "3");
   set_light_field(overrides, 1, "clusters", "4");
@@ -218,6 +226,12 @@ TEST(ControlCommands, CascadesClustersAndFitReachTheLight) {
   EXPECT_EQ(scene.lights[1].shadow.clusters, 4);
   EXPECT_EQ(scene.lights[1].shadow.cascades, 2);
   EXPECT_EQ(scene.lights[1].shadow.fit, scene::ShadowFit::scene);
+  set_light_field(overrides, 1, "layout", "paged");
+  set_light_field(overrides, 1, "kernel", "none");
+  overrides.apply(scene);
+  EXPECT_EQ(scene.lights[1].shadow.layout, scene::ShadowLayout::paged);
+  EXPECT_EQ(scene.lights[1].shadow.kernel, scene::ShadowKernel::none);
+  EXPECT_EQ(scene.lights[0].shadow.layout, scene::ShadowLayout::dense);
   set_light_field(overrides, 0, "clusters", "0");  // 0 is a value (off), not "unset"
   overrides.apply(scene);
   EXPECT_EQ(overrides.lights[0].clusters, 0);
