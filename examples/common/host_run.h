@@ -78,6 +78,10 @@ inline avsm::Light make_light(const Options& options) {
     light.virtual_resolution = 4096;
     light.page_size = 64;
     light.page_pool_mib = 8.0f;
+    // Every page asked for in the next frame: the example checks its second frame's shadows
+    // against the geometry (an interactive host keeps the default budget, so that a frame
+    // whose light moved stays within its cost).
+    light.page_builds_per_frame = 0;
   }
   return light;
 }

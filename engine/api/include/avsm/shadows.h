@@ -142,13 +142,14 @@ struct Light {
   // the lookups ask for are built, and kept from frame to frame. The shading pass must
   // ask (AVSM_SHADOW_PAGE_REQUESTS_BINDING, ShadowLookupBuffers::page_requests); pages
   // arrive a frame after they are asked for, at most page_builds_per_frame of them per
-  // frame (0: no limit). AVSM from capture lists only, no cascades or clusters, and
+  // frame (0: no limit; the default keeps a frame whose light moved within 1.5x a dense
+  // frame's cost in the engine's default scene: docs/shadows.md). AVSM from capture lists only, no cascades or clusters, and
   // directional lights fitted around the casters (not fit_to_view).
   bool paged = false;
   uint32_t virtual_resolution = 16384;
   uint32_t page_size = 64;
   float page_pool_mib = 32.0f;
-  uint32_t page_builds_per_frame = 0;
+  uint32_t page_builds_per_frame = 16;
 
   bool operator==(const Light&) const = default;
 };
