@@ -191,6 +191,7 @@ SettingList settings_of(const capture::SettingsReport& s) {
                 {"frames", std::to_string(s.frames)},
                 {"frames_in_flight", std::to_string(s.frames_in_flight)},
                 {"orbit_degrees", number_text(s.orbit_degrees)},
+                {"light_orbit_degrees", number_text(s.light_orbit_degrees)},
                 {"validation", bool_text(s.validation)},
                 {"volume_shading.mode", scene::to_string(s.volume_shading.mode)},
                 {"volume_shading.resolution_divisor", std::to_string(s.volume_shading.resolution_divisor)},

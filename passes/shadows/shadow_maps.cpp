@@ -169,10 +169,11 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   }
   light.first_map = uint32_t(maps_.size());
   light.map_count = uint32_t(maps.size());
+  const std::shared_ptr<PageTable> pages = is_paged(light) ? create_page_table(light) : nullptr;
   for (MapState& map : maps) {
     map.record = light.views == shared::kViewsSingle ? index : record_count_++;
     map.map_state = initial_map_state(light);
-    if (is_paged(light)) create_page_state(map);
+    if (pages) create_page_state(map, pages);
     create_frame_buffers(map);
     map.lookups_read_lists = light.technique->reads_capture_lists() || options_.keep_reference;
     maps_.push_back(std::move(map));

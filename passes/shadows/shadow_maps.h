@@ -163,6 +163,9 @@ class ShadowMaps {
     uint32_t first_map = 0, map_count = 1;
     uint32_t lowered_from = 0;  // resolution before the budget lowered it; 0: not lowered
     std::vector<float> cascade_ends;  // the last frame's, cascaded lights only
+    // Paged: the pages the frame being declared builds, every face's (its first map plans
+    // them for all: they share one pool).
+    std::vector<PageBuild> planned_page_builds;
   };
   // What a frame declared for a map, which its figures are read against when it
   // completes (later frames may already have grown the capture).
@@ -198,10 +201,13 @@ class ShadowMaps {
     std::vector<DeclaredMap> declared;  // per frame slot: its last frame's
     uint64_t capacity = 0;        // capture segments of the map (paged: of each page build)
     LightShadowStats stats;       // the last frame's
-    // Paged maps (shadow.layout "paged"): the virtual map's pages, its page table (a
-    // region of the atlas at atlas_offset), where the pool starts in the atlas, where its
-    // request bits start (in words), and per frame slot the counters of its page builds.
-    std::unique_ptr<PageTable> pages;
+    // Paged maps (shadow.layout "paged"): the light's pages (its maps, a point light's
+    // faces, share one table and pool), which face of it this map is, its page table (a
+    // region of the atlas at atlas_offset), where the light's pool starts in the atlas
+    // (after its first map's table), where its request bits start (in words), and per
+    // frame slot the counters of its page builds.
+    std::shared_ptr<PageTable> pages;
+    uint32_t page_face = 0;
     gpu::Buffer page_table;
     uint64_t page_pool_offset = 0;
     uint32_t page_requests_offset = shared::kNoPageRequests;
@@ -244,11 +250,13 @@ class ShadowMaps {
   ShadowCasters select_casters(const ShadowCasters& all, const std::vector<uint32_t>& objects) const;
   // shadow_maps_pages.cpp: paged maps (shadow.layout "paged").
   static bool is_paged(const LightState& light) { return light.light.shadow.layout == scene::ShadowLayout::paged; }
-  uint32_t page_slots(const MapState& map) const;  // the pool's pages: the light's pool bytes over its maps
+  // The light's pool in pages, held in the atlas after its first map's table.
+  uint32_t pool_slots_in_atlas(const MapState& map) const { return map.page_face == 0 ? map.pages->slots() : 0u; }
   uint64_t page_table_bytes(const MapState& map) const;
   uint64_t page_counter_stride() const;
   uint64_t paged_atlas_bytes(const MapState& map) const;
-  void create_page_state(MapState& map) const;
+  std::shared_ptr<PageTable> create_page_table(const LightState& light) const;
+  void create_page_state(MapState& map, std::shared_ptr<PageTable> pages) const;
   void create_page_requests();
   rg::BufferHandle add_page_requests_clear(rg::Graph& graph, uint32_t slot) const;
   void add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
@@ -258,6 +266,7 @@ class ShadowMaps {
   ShadowCasters page_casters(const MapState& map, const ShadowCasters& all, const std::vector<UvRect>& footprints,
                              const PageKey& page) const;
   void finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats);
+  void finish_page_requests(MapState& map, uint32_t slot, LightShadowStats& stats);
   // shadow_maps_finish.cpp: a completed frame's figures.
   FixedBuildStats fixed_build_stats(const MapState& map, uint32_t slot) const;
   LightShadowStats finish_map(MapState& map, uint32_t slot, bool& remake);

@@ -135,11 +135,11 @@ void ShadowMaps::create_atlas() {
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
     if (!light.technique->has_map()) continue;
-    if (map.pages) {  // the page table, then the pool
+    if (map.pages) {  // the page table, then (the light's first map) the light's pool
       const uint64_t table = page_table_bytes(map);
       map.map = gpu::Buffer::region(atlas_, map.atlas_offset, paged_atlas_bytes(map), map.prefix + " paged avsm map");
       map.page_table = gpu::Buffer::region(atlas_, map.atlas_offset, table, map.prefix + " page table");
-      map.page_pool_offset = map.atlas_offset + table;
+      map.page_pool_offset = map.page_face == 0 ? map.atlas_offset + table : maps_[light.first_map].page_pool_offset;
       continue;
     }
     map.map = gpu::Buffer::region(atlas_, map.atlas_offset, light.technique->map_bytes(light.light.shadow, map.map_state),

@@ -20,11 +20,6 @@ uint64_t ShadowMaps::page_counter_stride() const {
   return round_up(16, std::max<uint64_t>(ctx_.info().min_storage_buffer_offset_alignment, 16));
 }
 
-uint32_t ShadowMaps::page_slots(const MapState& map) const {
-  const LightState& light = lights_[map.light];
-  return paged_pool_slots(light.light.shadow, light.map_count);
-}
-
 uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
   const scene::ShadowSettings& s = lights_[map.light].light.shadow;
   return round_up(uint64_t(shared::page_table_entries(uint32_t(s.virtual_resolution), uint32_t(s.page_size))) * 4,
@@ -32,14 +27,23 @@ uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
 }
 
 uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
-  return page_table_bytes(map) + uint64_t(page_slots(map)) * paged_slot_bytes(lights_[map.light].light.shadow);
+  return page_table_bytes(map) + uint64_t(pool_slots_in_atlas(map)) * paged_slot_bytes(lights_[map.light].light.shadow);
 }
 
-void ShadowMaps::create_page_state(MapState& map) const {
-  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
-  map.pages = std::make_unique<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size), page_slots(map),
-                                          paged_fallback_level(s, lights_[map.light].map_count));
-  if (options_.required_page_level >= 0) map.pages->require_level(uint32_t(options_.required_page_level));
+// One table and pool for all of a light's maps: a point light's faces take the slots
+// their receivers ask for, from one pool of shadow.page_pool_mib.
+std::shared_ptr<PageTable> ShadowMaps::create_page_table(const LightState& light) const {
+  const scene::ShadowSettings& s = light.light.shadow;
+  auto pages = std::make_shared<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size),
+                                           paged_pool_slots(s, 1), paged_fallback_level(s, light.map_count),
+                                           light.map_count);
+  if (options_.required_page_level >= 0) pages->require_level(uint32_t(options_.required_page_level));
+  return pages;
+}
+
+void ShadowMaps::create_page_state(MapState& map, std::shared_ptr<PageTable> pages) const {
+  map.pages = std::move(pages);
+  map.page_face = uint32_t(std::max(map.face, 0));
   map.page_counters.set_frames(ctx_, frames_in_flight());
   map.page_counters.create(ctx_, {map.pages->slots() * page_counter_stride(),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -53,7 +57,7 @@ void ShadowMaps::create_page_requests() {
     map.page_requests_offset = shared::kNoPageRequests;
     if (!map.pages) continue;
     map.page_requests_offset = page_request_words_;
-    page_request_words_ += (map.pages->entries() + 31) / 32;
+    page_request_words_ += (map.pages->face_entries() + 31) / 32;
   }
   page_requests_ = {};
   if (page_request_words_ == 0) return;
@@ -83,14 +87,19 @@ rg::BufferHandle ShadowMaps::add_page_requests_clear(rg::Graph& graph, uint32_t 
 // resolved into its slot; then the page table, which the frame's lookups read.
 void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
                                  ShadowInputs& inputs) {
-  const LightState& light = lights_[map.light];
+  LightState& light = lights_[map.light];
   const scene::ShadowSettings& settings = light.light.shadow;
-  const uint32_t budget = options_.unlimited_page_builds ? 0u : uint32_t(settings.page_builds_per_frame);
+  // The light's first map plans every face's builds at once: a page of one face may take
+  // the slot of another's, whose table must not be declared before that.
+  if (map.page_face == 0)
+    light.planned_page_builds =
+        map.pages->plan_builds(options_.unlimited_page_builds ? 0u : uint32_t(settings.page_builds_per_frame));
   DeclaredMap& declared = map.declared[slot];
   declared = {map.capacity, map.map_state, true, casters.strands.segment_count};
-  declared.page_builds = map.pages->plan_builds(budget);
+  for (const PageBuild& build : light.planned_page_builds)
+    if (build.key.face == map.page_face) declared.page_builds.push_back(build);
   declared.pages = map.pages->stats();
-  declared.page_table = map.pages->table_words();
+  declared.page_table = map.pages->face_table_words(map.page_face);
   const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
   const uint64_t bytes_per_slot = paged_slot_bytes(settings);
   std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
@@ -113,12 +122,16 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
     rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
     inputs.maps.push_back(builder.add_to_graph({graph, prefix, lists, handle, view, settings, map.map_state}, lists));
   }
-  // The whole pool, as the lookups read it: kept pages too, built in earlier frames. The
-  // pages built above are regions of it, which the graph orders before the lookups by
-  // their own handles; this import carries the rest from frame to frame.
-  const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
-      atlas_, map.page_pool_offset, page_slots(map) * bytes_per_slot, map.prefix + " page pool")));
-  inputs.maps.push_back(rg::vulkan::import(graph, map.prefix + " page pool", pool, after, after));
+  // The light's whole pool (imported once, with its first map), as the lookups read it:
+  // kept pages too, built in earlier frames. The pages built above are regions of it,
+  // which the graph orders before the lookups by their own handles; this import carries
+  // the rest from frame to frame.
+  if (map.page_face == 0) {
+    const std::string name = "light " + std::to_string(map.light) + " page pool";
+    const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
+        gpu::Buffer::region(atlas_, map.page_pool_offset, map.pages->slots() * bytes_per_slot, name)));
+    inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));
+  }
   // The page table, as plan_builds() left it: pages built above are already in it.
   rg::BufferHandle table = rg::vulkan::import(graph, map.prefix + " page table", map.page_table, rewritten_after(after), after);
   struct Data {
@@ -126,7 +139,7 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   };
   inputs.maps.push_back(graph.add_pass<Data>(map.prefix + " page table", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b, Data& d) { d.table = b.write(table, rg::Usage::TransferDst); },
-      [words = map.pages->table_words()](const Data& d, rg::PassContext& c) {
+      [words = declared.page_table](const Data& d, rg::PassContext& c) {
         constexpr size_t kPerCall = (64 << 10) / sizeof(uint32_t);  // vkCmdUpdateBuffer's limit
         const gpu::BufferRange target = c.buffer(d.table);
         for (size_t first = 0; first < words.size(); first += kPerCall) {
@@ -168,7 +181,7 @@ uint32_t ShadowMaps::casters_changed(std::span<const scene::Bounds> world_bounds
     if (!map.pages) continue;
     std::vector<UvRect> footprints;
     for (const scene::Bounds& bounds : world_bounds) footprints.push_back(light_footprint(map.view, bounds));
-    invalidated += map.pages->invalidate_overlapping(footprints);
+    invalidated += map.pages->invalidate_overlapping(footprints, map.page_face);
   }
   return invalidated;
 }
@@ -199,17 +212,7 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
     const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
     map.capacity = std::max(map.capacity, std::min(limit, round_up(most + most / 4, 1024)));
   }
-  stats.pages = declared.pages;
-  stats.pages->pending = 0;
-  if (page_requests_) {
-    const auto* bits = static_cast<const uint32_t*>(page_requests_[slot].mapped()) + map.page_requests_offset;
-    const uint32_t words = (map.pages->entries() + 31) / 32;
-    // What the frame's receivers asked for and did not find (its table, not today's).
-    for (uint32_t e = 0; e < map.pages->entries(); ++e)
-      if ((bits[e / 32] >> (e % 32) & 1u) != 0 && declared.page_table[e] == shared::kPageAbsent) ++stats.pages->pending;
-    map.pages->add_requests({bits, words});
-    stats.pages->settling = map.pages->stats().settling;  // its requests moved the bias
-  }
+  if (map.page_face == 0) finish_page_requests(map, slot, stats);  // every face's: the light's table
   const uint64_t texels = uint64_t(declared.map_state.layout.resolution) * declared.map_state.layout.resolution;
   stats.capture_capacity = declared.capacity;
   stats.capture_requested = most;  // of the largest page build, against one page build's capacity
@@ -217,7 +220,29 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
   stats.overflowed = overflowed;
   stats.next_capture_capacity = map.capacity;
   // Rendering again does better while requested pages wait (the budget, a growing bias).
-  stats.grew = overflowed || map.pages->has_pending_requests();
+  stats.grew = overflowed || (map.page_face == 0 && map.pages->has_pending_requests());
+}
+
+// The light's page figures, from its first map, and every face's requests of the frame
+// completed in `slot` into the light's table.
+void ShadowMaps::finish_page_requests(MapState& map, uint32_t slot, LightShadowStats& stats) {
+  stats.pages = map.declared[slot].pages;
+  stats.pages->pending = 0;
+  if (!page_requests_) return;
+  const LightState& light = lights_[map.light];
+  const uint32_t entries = map.pages->face_entries(), words = (entries + 31) / 32;
+  std::vector<std::span<const uint32_t>> faces;
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) {
+    const MapState& face = maps_[m];
+    const auto* bits = static_cast<const uint32_t*>(page_requests_[slot].mapped()) + face.page_requests_offset;
+    // What the frame's receivers asked for and did not find (its table, not today's).
+    const std::vector<uint32_t>& table = face.declared[slot].page_table;
+    for (uint32_t e = 0; e < entries; ++e)
+      if ((bits[e / 32] >> (e % 32) & 1u) != 0 && table[e] == shared::kPageAbsent) ++stats.pages->pending;
+    faces.emplace_back(bits, words);
+  }
+  map.pages->add_requests(faces);
+  stats.pages->settling = map.pages->stats().settling;  // its requests moved the bias
 }
 
 }  // namespace avsm::passes

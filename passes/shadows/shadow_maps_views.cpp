@@ -10,10 +10,9 @@ void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const gl
   LightState& light = lights_.at(index);
   light.light.position = position;
   light.light.direction = direction;
-  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) {
-    maps_[m].view = initial_view(maps_[m]);
-    if (maps_[m].pages) maps_[m].pages->invalidate_all();  // every page saw the light from where it was
-  }
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) maps_[m].view = initial_view(maps_[m]);
+  // Every page (every face's: they share the table) saw the light from where it was.
+  if (maps_[light.first_map].pages) maps_[light.first_map].pages->invalidate_all();
   // Maps fitted to the camera are fitted again by the next frame (update_views).
   views_[index] = maps_[light.first_map].view;
 }

@@ -100,6 +100,63 @@ TEST(PageTableTest, AFullPoolEvictsTheLeastRecentlyRequestedPages) {
   EXPECT_FALSE(table.converged());
 }
 
+// A point light's six faces share one pool: every face keeps its root; a busy face takes
+// the slots an idle one does not need, and the least recently requested page of any face
+// gives its slot up; each face reads its own words, and its requests its own bits.
+TEST(PageTableTest, FacesShareOnePoolAndEachKeepsItsRoot) {
+  constexpr uint32_t kFaces = 6;
+  PageTable table(256, 64, 10, ~0u, kFaces);  // per face: 4x4, 2x2 and 1 page (21 entries)
+  ASSERT_EQ(table.face_entries(), 21u);
+  ASSERT_EQ(table.entries(), 21u * kFaces);
+  EXPECT_EQ(table.key(table.entry({1, {1, 0}, 4})), (PageKey{1, {1, 0}, 4}));
+  EXPECT_EQ(table.plan_builds(0).size(), kFaces) << "every face's root first";
+  const auto face_bits = [&](uint32_t face, const std::vector<PageKey>& keys) {
+    std::vector<uint32_t> bits((table.face_entries() + 31) / 32, 0u);
+    for (PageKey key : keys) {
+      key.face = face;
+      const uint32_t local = table.entry(key) - face * table.face_entries();
+      bits[local / 32] |= 1u << (local % 32);
+    }
+    return bits;
+  };
+  // Face 2 asks for four pages, face 5 for two: six of the four free slots' worth.
+  std::vector<std::vector<uint32_t>> bits(kFaces, face_bits(0, {}));
+  bits[2] = face_bits(2, {{0, {0, 0}}, {0, {1, 0}}, {0, {0, 1}}, {0, {1, 1}}});
+  bits[5] = face_bits(5, {{1, {0, 0}}, {1, {1, 0}}});
+  const auto add = [&] {
+    const std::vector<std::span<const uint32_t>> spans(bits.begin(), bits.end());
+    table.add_requests(spans);
+  };
+  add();
+  const std::vector<PageBuild> builds = table.plan_builds(0);
+  EXPECT_EQ(builds.size(), 4u);
+  EXPECT_EQ(table.stats().unserved, 2u);
+  // Coarsest first, over the faces: face 5's level-1 pages before face 2's level-0 ones.
+  ASSERT_GE(builds.size(), 2u);
+  EXPECT_EQ(builds[0].key.face, 5u);
+  EXPECT_EQ(builds[1].key.face, 5u);
+  for (uint32_t face = 0; face < kFaces; ++face) EXPECT_TRUE(table.resident(table.entry({2, {0, 0}, face})));
+  // Face 5 stops asking: face 2's pages take its slots, the roots stay.
+  bits[5] = face_bits(5, {});
+  add();
+  table.plan_builds(0);
+  EXPECT_EQ(table.stats().evicted, 2u);
+  EXPECT_EQ(table.stats().resident, 10u);
+  EXPECT_EQ(table.stats().pending, 0u);
+  EXPECT_EQ(table.stats().unserved, 0u);
+  for (const PageKey& key : {PageKey{0, {0, 0}, 2}, PageKey{0, {1, 1}, 2}}) EXPECT_TRUE(table.resident(table.entry(key)));
+  EXPECT_FALSE(table.resident(table.entry({1, {0, 0}, 5})));
+  // Each face's words are its own entries; slots are the pool's.
+  const std::vector<uint32_t> face2 = table.face_table_words(2);
+  ASSERT_EQ(face2.size(), table.face_entries());
+  EXPECT_EQ(face2[table.entry({0, {1, 1}, 2}) - 2 * table.face_entries()], table.table_words()[table.entry({0, {1, 1}, 2})]);
+  EXPECT_NE(face2[0], shared::kPageAbsent);
+  // A change seen by one face invalidates that face's pages only.
+  // Its level-0 page (0, 0) and its root.
+  EXPECT_EQ(table.invalidate_overlapping(std::vector<UvRect>{{glm::vec2(0.0f), glm::vec2(0.1f)}}, 2), 2u);
+  EXPECT_TRUE(table.resident(table.entry({2, {0, 0}, 3})));
+}
+
 TEST(PageTableTest, InvalidatedPagesLeaveTheTableAndAreBuiltAgainWhenAskedFor) {
   PageTable table(256, 64, 8);
   table.plan_builds(0);

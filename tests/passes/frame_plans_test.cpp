@@ -53,6 +53,7 @@ struct RecordedFrames {
   std::vector<size_t> completed_before;
   size_t completed = 0;                              // frames whose fence the host has waited for
   uint32_t built = 0, evicted = 0, invalidated = 0;  // the paged sun's pages, over the frames finished
+  uint32_t point_built = 0, point_evicted = 0;        // the paged point light's, its six faces together
 };
 
 void render(renderer::SceneRenderer& renderer, renderer::FrameSlots& slots, const passes::View& view, int frames,
@@ -64,6 +65,9 @@ void render(renderer::SceneRenderer& renderer, renderer::FrameSlots& slots, cons
     recorded.built += pages.built;
     recorded.evicted += pages.evicted;
     recorded.invalidated += pages.invalidated;
+    const passes::PageStats& point = *renderer.shadows().frame_stats()[2].pages;
+    recorded.point_built += point.built;
+    recorded.point_evicted += point.evicted;
   };
   for (int i = 0; i < frames; ++i) {
     renderer::FrameSlots::Slot& slot = slots.acquire(finished);
@@ -85,8 +89,8 @@ void render(renderer::SceneRenderer& renderer, renderer::FrameSlots& slots, cons
 
 }  // namespace
 
-// The default scene (meshes, smoke, hair) with the sun paged in a pool of 14 pages and
-// the spot dense, two frames in flight: frames that build the first pages, then a camera
+// The default scene (meshes, smoke, hair) with the sun paged in a pool of 14 pages, the
+// spot dense and a point light paged (six faces in one pool of 24), two frames in flight: frames that build the first pages, then a camera
 // that goes round the stage (its pages evict others from their slots), then a box that
 // moves (pages invalidated and built again in place). Every frame's plan is valid, and every import's initial
 // state is what the frames before left in its memory.
@@ -106,6 +110,18 @@ TEST_F(FramePlansTest, PagedAndDenseFramesCarryTheirStateFromFrameToFrame) {
   sun.page_size = 32;
   sun.page_pool_mib = 14.0 * 32 * 32 * 32 / double(1 << 20);  // 14 AVSM-8 pages of 32^2
   scene.lights[1].shadow.layout = scene::ShadowLayout::dense;
+  // A paged point light above the stage: its six faces share a pool of 24 pages, so the
+  // faces the camera turns to take slots from those it turns away from.
+  scene::Light point = scene.lights[1];
+  point.name = "point";
+  point.type = scene::LightType::point;
+  point.position = glm::vec3(0.0f, 2.8f, 0.0f);
+  point.range = 12.0f;
+  point.shadow.layout = scene::ShadowLayout::paged;
+  point.shadow.virtual_resolution = 1024;
+  point.shadow.page_size = 32;
+  point.shadow.page_pool_mib = 24.0 * 32 * 32 * 32 / double(1 << 20);
+  scene.lights.push_back(point);
 
   renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight);
   renderer.set_frames_in_flight(2);
@@ -130,9 +146,12 @@ TEST_F(FramePlansTest, PagedAndDenseFramesCarryTheirStateFromFrameToFrame) {
   render(renderer, slots, passes::make_view(camera, kFrameWidth, kFrameHeight), 3, recorded);
 
   std::cout << "[ frame plans ] " << recorded.graphs.size() << " frames; the paged sun built " << recorded.built
-            << " pages, evicted " << recorded.evicted << ", invalidated " << recorded.invalidated << "\n";
+            << " pages, evicted " << recorded.evicted << ", invalidated " << recorded.invalidated
+            << "; the paged point light's faces built " << recorded.point_built << ", evicted " << recorded.point_evicted
+            << "\n";
   EXPECT_GT(recorded.evicted, 0u) << "the camera's move should give some slots to finer pages";
   EXPECT_GT(recorded.invalidated, 0u) << "the box's move should invalidate pages";
+  EXPECT_GT(recorded.point_built, 6u) << "the point light's faces build more than their roots";
 
   std::vector<rg_test::PlannedFrame> frames;
   for (size_t f = 0; f < recorded.graphs.size(); ++f)

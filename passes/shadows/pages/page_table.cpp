@@ -26,17 +26,20 @@ bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
 
 }  // namespace
 
-PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level)
-    : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots) {
+PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level,
+                     uint32_t faces)
+    : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots), faces_(faces) {
   if (!is_power_of_two(virtual_resolution) || !is_power_of_two(page_size) || page_size > virtual_resolution)
     throw std::invalid_argument("page table: a virtual resolution of " + std::to_string(virtual_resolution) +
                                 " texels does not split into pages of " + std::to_string(page_size));
   if (slots == 0) throw std::invalid_argument("page table: a pool of no pages");
+  if (faces == 0) throw std::invalid_argument("page table: no faces");
   levels_ = shared::page_level_count(virtual_resolution, page_size);
   fallback_level_ = std::min(fallback_level, levels_ - 1);
   for (uint32_t level = 0; level <= levels_; ++level)
     level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, level));
-  pages_.resize(level_first_.back());
+  face_entries_ = level_first_.back();
+  pages_.resize(size_t(face_entries_) * faces);
   table_.assign(pages_.size(), shared::kPageAbsent);
   slot_owner_.assign(slots, kNoSlot);
   for (uint32_t s = slots; s-- > 0;) free_slots_.push_back(s);  // slot 0 handed out first
@@ -45,28 +48,36 @@ PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t s
 
 uint32_t PageTable::entry(const PageKey& key) const {
   const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, key.level);
-  if (key.level >= levels_ || key.page.x >= grid || key.page.y >= grid)
+  if (key.level >= levels_ || key.page.x >= grid || key.page.y >= grid || key.face >= faces_)
     throw std::out_of_range("page table: no page (" + std::to_string(key.page.x) + ", " + std::to_string(key.page.y) +
-                            ") at level " + std::to_string(key.level));
-  return level_first_[key.level] + key.page.y * grid + key.page.x;
+                            ") at level " + std::to_string(key.level) + " of face " + std::to_string(key.face));
+  return key.face * face_entries_ + level_first_[key.level] + key.page.y * grid + key.page.x;
 }
 
 PageKey PageTable::key(uint32_t entry) const {
   if (entry >= entries()) throw std::out_of_range("page table: no entry " + std::to_string(entry));
-  const uint32_t level = uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), entry) - level_first_.begin()) - 1;
+  const uint32_t face = entry / face_entries_, local = entry % face_entries_;
+  const uint32_t level = uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), local) - level_first_.begin()) - 1;
   const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, level);
-  const uint32_t index = entry - level_first_[level];
-  return {level, {index % grid, index / grid}};
+  const uint32_t index = local - level_first_[level];
+  return {level, {index % grid, index / grid}, face};
 }
 
-void PageTable::add_requests(std::span<const uint32_t> bits) {
+std::vector<uint32_t> PageTable::face_table_words(uint32_t face) const {
+  const auto first = table_.begin() + ptrdiff_t(face) * face_entries_;
+  return {first, first + face_entries_};
+}
+
+void PageTable::add_requests(std::span<const std::span<const uint32_t>> faces) {
   ++request_clock_;
   uint32_t requested = 0;
   for (uint32_t e = 0; e < entries(); ++e) {
     Page& page = pages_[e];
-    const uint32_t word = e / 32;
-    page.requested = (word < bits.size() && (bits[word] >> (e % 32) & 1u) != 0) ||
-                     (required_level_ < levels_ && e >= level_first_[required_level_] && e < level_first_[required_level_ + 1]);
+    const uint32_t face = e / face_entries_, local = e % face_entries_, word = local / 32;
+    const std::span<const uint32_t> bits = face < faces.size() ? faces[face] : std::span<const uint32_t>();
+    page.requested = (word < bits.size() && (bits[word] >> (local % 32) & 1u) != 0) ||
+                     (required_level_ < levels_ && local >= level_first_[required_level_] &&
+                      local < level_first_[required_level_ + 1]);
     if (!page.requested) continue;
     page.last_request = request_clock_;
     ++requested;
@@ -78,7 +89,7 @@ void PageTable::add_requests(std::span<const uint32_t> bits) {
 void PageTable::require_level(uint32_t level) {
   if (level >= levels_) throw std::out_of_range("page table: no level " + std::to_string(level));
   required_level_ = level;
-  add_requests({});
+  add_requests(std::span<const std::span<const uint32_t>>());
 }
 
 bool PageTable::has_pending_requests() const {
@@ -121,7 +132,7 @@ void PageTable::adapt_lod_bias() {
 
 bool PageTable::needs_build(uint32_t entry) const {
   const Page& page = pages_[entry];
-  return (page.requested || entry == root()) && (page.slot == kNoSlot || !page.current);
+  return (page.requested || is_root(entry)) && (page.slot == kNoSlot || !page.current);
 }
 
 void PageTable::assign(uint32_t entry, uint32_t slot) {
@@ -147,16 +158,20 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   stats.settling = stats_.settling;
   stats.invalidated = invalidated_since_plan_;
   invalidated_since_plan_ = 0;
-  // Wanted: coarsest level first (their entries come last), so the stand-ins for
-  // missing fine pages improve first.
+  // Wanted: coarsest level first, every face's (within a face its entries come last), so
+  // the stand-ins for missing fine pages improve first.
   std::vector<uint32_t> wanted;
   for (uint32_t e = entries(); e-- > 0;)
     if (needs_build(e)) wanted.push_back(e);
+  const auto level_of = [&](uint32_t e) {
+    return uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), e % face_entries_) - level_first_.begin());
+  };
+  std::stable_sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) { return level_of(a) > level_of(b); });
   // Slots to take back, least recently requested first: resident pages nobody asked for
-  // in the last frame (never the root).
+  // in the last frame, of any face (never a face's root).
   std::vector<uint32_t> evictable;
-  for (uint32_t e = 0; e < root(); ++e)
-    if (pages_[e].slot != kNoSlot && !pages_[e].requested) evictable.push_back(e);
+  for (uint32_t e = 0; e < entries(); ++e)
+    if (pages_[e].slot != kNoSlot && !pages_[e].requested && !is_root(e)) evictable.push_back(e);
   std::stable_sort(evictable.begin(), evictable.end(),
                    [&](uint32_t a, uint32_t b) { return pages_[a].last_request < pages_[b].last_request; });
   size_t next_evictable = 0;
@@ -200,7 +215,7 @@ void PageTable::invalidate(uint32_t entry) {
   if (page.slot == kNoSlot) return;
   ++invalidated_since_plan_;
   page.current = false;
-  if (entry == root()) return;
+  if (is_root(entry)) return;
   free_slots_.push_back(page.slot);
   release(entry);
 }
@@ -209,9 +224,9 @@ void PageTable::invalidate_all() {
   for (uint32_t e = 0; e < entries(); ++e) invalidate(e);
 }
 
-uint32_t PageTable::invalidate_overlapping(std::span<const UvRect> rects) {
+uint32_t PageTable::invalidate_overlapping(std::span<const UvRect> rects, uint32_t face) {
   uint32_t count = 0;
-  for (uint32_t e = 0; e < entries(); ++e) {
+  for (uint32_t e = face * face_entries_; e < (face + 1) * face_entries_; ++e) {
     if (pages_[e].slot == kNoSlot) continue;
     const UvRect page = window(key(e), 1.0f);
     if (std::none_of(rects.begin(), rects.end(), [&](const UvRect& r) { return r.overlaps(page); })) continue;

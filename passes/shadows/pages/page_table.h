@@ -1,7 +1,9 @@
 #pragma once
-// A paged map's pages on the CPU (shadow.layout "paged"; the layout the GPU reads is
-// shaders/shared/pages.h): which page of which level holds which slot of the fixed
-// pool, what the receivers asked for, and which pages to build next.
+// A paged light's pages on the CPU (shadow.layout "paged"; the layout the GPU reads is
+// shaders/shared/pages.h): which page of which level of which face holds which slot of
+// the light's fixed pool, what the receivers asked for, and which pages to build next.
+// A point light's six faces are six virtual maps that share one pool: a face that sees
+// nothing holds only its coarsest page, and a busy face takes the slots it needs.
 //
 // Each frame the camera's receivers mark the pages their lookups read (request bits,
 // read back when the frame completes: add_requests()). The next frame declared builds
@@ -26,10 +28,12 @@
 
 namespace avsm::passes {
 
-// Where a page sits: its level (0 the finest) and its place in that level's grid.
+// Where a page sits: its level (0 the finest), its place in that level's grid, and its
+// face (a point light's cube face; 0 for a light of one map).
 struct PageKey {
   uint32_t level = 0;
   glm::uvec2 page{0u};
+  uint32_t face = 0;
   bool operator==(const PageKey&) const = default;
 };
 
@@ -58,22 +62,28 @@ struct PageStats {
 class PageTable {
  public:
   // Throws std::invalid_argument unless page_size divides virtual_resolution (both
-  // powers of two) and slots >= 1. `fallback_level`: the coarsest level receivers ask for
-  // (passes/shadows/shadow_settings.h), so the bias never grows past it (further would
-  // not shrink the requests); the last level when not given.
-  PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level = ~0u);
+  // powers of two), slots >= 1 and faces >= 1. `fallback_level`: the coarsest level
+  // receivers ask for (passes/shadows/shadow_settings.h), so the bias never grows past it
+  // (further would not shrink the requests); the last level when not given. `faces`
+  // virtual maps of that size share the pool (their entries one face after another).
+  PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level = ~0u,
+            uint32_t faces = 1);
 
   uint32_t virtual_resolution() const { return virtual_resolution_; }
   uint32_t fallback_level() const { return fallback_level_; }
   uint32_t page_size() const { return page_size_; }
   uint32_t levels() const { return levels_; }
-  uint32_t entries() const { return uint32_t(pages_.size()); }
+  uint32_t entries() const { return uint32_t(pages_.size()); }  // every face's
+  uint32_t faces() const { return faces_; }
+  uint32_t face_entries() const { return face_entries_; }
   uint32_t slots() const { return slots_; }
   uint32_t entry(const PageKey& key) const;
   PageKey key(uint32_t entry) const;
 
-  // The request bits of a completed frame: bit i of word i / 32 asks for entry i.
-  void add_requests(std::span<const uint32_t> bits);
+  // The request bits of a completed frame, per face: bit i of word i / 32 of a face's
+  // span asks for that face's entry i. A table of one face may take its span alone.
+  void add_requests(std::span<const std::span<const uint32_t>> faces);
+  void add_requests(std::span<const uint32_t> bits) { add_requests(std::span(&bits, 1)); }
   // Every page of `level` counts as asked for from now on (whatever the requests say).
   void require_level(uint32_t level);
   // The pages the next frame builds: at most `budget` (0: every one that fits the pool).
@@ -82,15 +92,18 @@ class PageTable {
   // root excepted, which is rebuilt first) and is built again when next requested.
   void invalidate(uint32_t entry);
   void invalidate_all();
-  // Invalidates every resident page whose window (widened by a texel of its level: hair
-  // ribbons are widened to a texel) overlaps one of `rects`; returns how many.
-  uint32_t invalidate_overlapping(std::span<const UvRect> rects);
+  // Invalidates every resident page of `face` whose window (widened by a texel of its
+  // level: hair ribbons are widened to a texel) overlaps one of `rects` (that face's uv);
+  // returns how many.
+  uint32_t invalidate_overlapping(std::span<const UvRect> rects, uint32_t face = 0);
   // The part of the map's uv square that page `key` covers, widened by `margin_texels`
   // texels of its level on every side.
   UvRect window(const PageKey& key, float margin_texels = 0.0f) const;
 
-  // The page table as the GPU reads it: a word per entry, 0 or slot + 1.
+  // The page table as the GPU reads it: a word per entry, 0 or slot + 1; per face, the
+  // words of its entries (its own table in the atlas; the slots are the shared pool's).
   const std::vector<uint32_t>& table_words() const { return table_; }
+  std::vector<uint32_t> face_table_words(uint32_t face) const;
   bool resident(uint32_t entry) const { return pages_.at(entry).slot != kNoSlot; }
   // Requested pages that are missing or stale (after add_requests(): the next frame has
   // pages to build, or cannot hold them).
@@ -112,14 +125,16 @@ class PageTable {
     bool requested = false;  // in the last frame's requests
     uint64_t last_request = 0;
   };
-  uint32_t root() const { return entries() - 1; }
+  // A face's coarsest page: always resident.
+  bool is_root(uint32_t entry) const { return entry % face_entries_ == face_entries_ - 1; }
   bool needs_build(uint32_t entry) const;
   void assign(uint32_t entry, uint32_t slot);
   void release(uint32_t entry);
   void adapt_lod_bias();
   bool overflowed_lately(float bias) const;
 
-  uint32_t virtual_resolution_, page_size_, levels_, slots_;
+  uint32_t virtual_resolution_, page_size_, levels_, slots_, faces_;
+  uint32_t face_entries_ = 0;
   uint32_t fallback_level_ = 0;  // also the most the bias grows to, in levels
   std::vector<uint32_t> level_first_;  // entry of each level's first page
   std::vector<Page> pages_;
