@@ -30,14 +30,14 @@ using PagedMapsTest = testing::GpuTest;
 
 constexpr uint32_t kFrameWidth = 96, kFrameHeight = 54;
 
-// The default scene's two lights (a directional sun fitted to the scene, a spot), AVSM-8
-// bilinear without mips or kernel, in `layout`.
-scene::Scene default_scene(scene::ShadowLayout layout, int resolution) {
+// The default scene's two lights (a directional sun fitted to the scene, a spot), AVSM
+// (8 nodes unless told) bilinear without mips or kernel, in `layout`.
+scene::Scene default_scene(scene::ShadowLayout layout, int resolution, int nodes = 8) {
   scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
   for (scene::Light& light : scene.lights) {
     scene::ShadowSettings& s = light.shadow;
     s.technique = "avsm";
-    s.nodes = 8;
+    s.nodes = nodes;
     s.resolution = resolution;
     s.filter = scene::ShadowFilter::bilinear;
     s.kernel = scene::ShadowKernel::none;
@@ -100,60 +100,66 @@ glm::vec4 uv_rectangle(const passes::LightView& view, const scene::Bounds& box) 
 }  // namespace
 
 // A 512^2 virtual map in pages of 32 with level 2 (128^2) all resident: every texel of
-// every page is the 128^2 dense map's, for the sun and the spot (smoke, hair, meshes).
+// every page is the 128^2 dense map's, for the sun and the spot (smoke, hair, meshes),
+// at every AVSM node count.
 TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit) {
-  constexpr uint32_t kVirtual = 512, kPage = 32, kLevel = 2, kDense = kVirtual >> kLevel, kVec4s = 2;  // AVSM-8
-  const scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense));
-  scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense));
-  for (scene::Light& light : paged_scene.lights) {
-    light.shadow.virtual_resolution = int(kVirtual);
-    light.shadow.page_size = int(kPage);
-  }
-  const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
-  renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight);
-  renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight,
-                                {.unlimited_page_builds = true, .required_page_level = int(kLevel)});
-  render_frames(ctx(), dense, view, 2);  // the second frame's capture has room for every segment
-  render_frames(ctx(), paged, view, 3);  // pages whose capture overflowed are built again
-  for (uint32_t light = 0; light < 2; ++light) {
-    const std::string name = dense_scene.lights[light].name;
-    ASSERT_FALSE(dense.shadows().frame_stats()[light].overflowed) << name;
-    const passes::LightShadowStats& stats = paged.shadows().frame_stats()[light];
-    ASSERT_TRUE(stats.pages) << name;
-    ASSERT_FALSE(stats.overflowed) << name;
-    const std::vector<uint32_t> dense_map = read_words(ctx(), dense.shadows().avsm_map(light));
-    const std::vector<uint32_t> paged_map = read_words(ctx(), paged.shadows().avsm_map(light));
-    ASSERT_EQ(dense_map.size(), size_t(kDense) * kDense * kVec4s * 4) << name;
-    const uint32_t grid = kDense / kPage;
-    const uint32_t first = shared::page_table_level_first(kVirtual, kPage, kLevel);
-    const uint32_t table_words = uint32_t((shared::page_table_entries(kVirtual, kPage) * 4 + 255) / 256 * 256 / 4);
-    size_t differing = 0, shadowed = 0;
-    for (uint32_t py = 0; py < grid; ++py)
-      for (uint32_t px = 0; px < grid; ++px) {
-        const uint32_t word = paged_map.at(first + py * grid + px);
-        ASSERT_NE(word, shared::kPageAbsent) << name << ": page (" << px << ", " << py << ") is not resident";
-        const size_t slot_base = table_words + size_t(word - 1) * kPage * kPage * kVec4s * 4;
-        for (uint32_t y = 0; y < kPage; ++y)
-          for (uint32_t x = 0; x < kPage; ++x) {
-            const size_t dense_texel = (size_t(py * kPage + y) * kDense + px * kPage + x) * kVec4s * 4;
-            const size_t page_texel = slot_base + (size_t(y) * kPage + x) * kVec4s * 4;
-            ASSERT_LT(page_texel + kVec4s * 4 - 1, paged_map.size()) << name;
-            const bool same = std::memcmp(&dense_map[dense_texel], &paged_map[page_texel], kVec4s * 16) == 0;
-            // The last node's transmittance (high 16 bits) below 1: something casts there.
-            shadowed += (dense_map[dense_texel + kVec4s * 4 - 1] >> 16) < 0xffffu;
-            if (!same && differing++ < 3) {
-              std::ostringstream words;
-              for (uint32_t w = 0; w < kVec4s * 4; ++w)
-                words << std::hex << " " << dense_map[dense_texel + w] << "/" << paged_map[page_texel + w];
-              ADD_FAILURE() << name << ": texel (" << px * kPage + x << ", " << py * kPage + y
-                            << ") differs; nodes dense/paged:" << words.str();
+  constexpr uint32_t kVirtual = 512, kPage = 32, kLevel = 2, kDense = kVirtual >> kLevel;
+  for (const int nodes : {4, 8, 12, 16}) {
+    SCOPED_TRACE("AVSM-" + std::to_string(nodes));
+    const uint32_t kVec4s = uint32_t(nodes) / 4;  // a word per node, four to a vec4
+    const scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense), nodes);
+    scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense), nodes);
+    for (scene::Light& light : paged_scene.lights) {
+      light.shadow.virtual_resolution = int(kVirtual);
+      light.shadow.page_size = int(kPage);
+    }
+    const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
+    renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight);
+    renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight,
+                                  {.unlimited_page_builds = true, .required_page_level = int(kLevel)});
+    render_frames(ctx(), dense, view, 2);  // the second frame's capture has room for every segment
+    render_frames(ctx(), paged, view, 3);  // pages whose capture overflowed are built again
+    for (uint32_t light = 0; light < 2; ++light) {
+      const std::string name = dense_scene.lights[light].name;
+      ASSERT_FALSE(dense.shadows().frame_stats()[light].overflowed) << name;
+      const passes::LightShadowStats& stats = paged.shadows().frame_stats()[light];
+      ASSERT_TRUE(stats.pages) << name;
+      ASSERT_FALSE(stats.overflowed) << name;
+      const std::vector<uint32_t> dense_map = read_words(ctx(), dense.shadows().avsm_map(light));
+      const std::vector<uint32_t> paged_map = read_words(ctx(), paged.shadows().avsm_map(light));
+      ASSERT_EQ(dense_map.size(), size_t(kDense) * kDense * kVec4s * 4) << name;
+      const uint32_t grid = kDense / kPage;
+      const uint32_t first = shared::page_table_level_first(kVirtual, kPage, kLevel);
+      const uint32_t table_words = uint32_t((shared::page_table_entries(kVirtual, kPage) * 4 + 255) / 256 * 256 / 4);
+      size_t differing = 0, shadowed = 0;
+      for (uint32_t py = 0; py < grid; ++py)
+        for (uint32_t px = 0; px < grid; ++px) {
+          const uint32_t word = paged_map.at(first + py * grid + px);
+          ASSERT_NE(word, shared::kPageAbsent) << name << ": page (" << px << ", " << py << ") is not resident";
+          const size_t slot_base = table_words + size_t(word - 1) * kPage * kPage * kVec4s * 4;
+          for (uint32_t y = 0; y < kPage; ++y)
+            for (uint32_t x = 0; x < kPage; ++x) {
+              const size_t dense_texel = (size_t(py * kPage + y) * kDense + px * kPage + x) * kVec4s * 4;
+              const size_t page_texel = slot_base + (size_t(y) * kPage + x) * kVec4s * 4;
+              ASSERT_LT(page_texel + kVec4s * 4 - 1, paged_map.size()) << name;
+              const bool same = std::memcmp(&dense_map[dense_texel], &paged_map[page_texel], kVec4s * 16) == 0;
+              // The last node's transmittance (high 16 bits) below 1: something casts there.
+              shadowed += (dense_map[dense_texel + kVec4s * 4 - 1] >> 16) < 0xffffu;
+              if (!same && differing++ < 3) {
+                std::ostringstream words;
+                for (uint32_t w = 0; w < kVec4s * 4; ++w)
+                  words << std::hex << " " << dense_map[dense_texel + w] << "/" << paged_map[page_texel + w];
+                ADD_FAILURE() << name << ": texel (" << px * kPage + x << ", " << py * kPage + y
+                              << ") differs; nodes dense/paged:" << words.str();
+              }
             }
-          }
-      }
-    EXPECT_EQ(differing, 0u) << name;
-    std::cout << "[ paged exact ] " << name << ": " << grid * grid << " pages of level " << kLevel << ", " << shadowed
-              << " shadowed texels, " << differing << " differ from the dense " << kDense << "^2 map\n";
-    EXPECT_GT(shadowed, 500u) << name << ": not vacuous";
+        }
+      EXPECT_EQ(differing, 0u) << name;
+      std::cout << "[ paged exact ] AVSM-" << nodes << " " << name << ": " << grid * grid << " pages of level " << kLevel
+                << ", " << shadowed << " shadowed texels, " << differing << " differ from the dense " << kDense
+                << "^2 map\n";
+      EXPECT_GT(shadowed, 500u) << name << ": not vacuous";
+    }
   }
 }
 
