@@ -126,6 +126,22 @@ void place_lights_turned(renderer::SceneRenderer& frame, const scene::Scene& sce
   }
 }
 
+// The exact reference is a dense map's capture lists: a paged light's pages keep none
+// (the viewer's inspector shows a paged light's curve without one).
+void refuse_paged_references(const CaptureOptions& options, const scene::Scene& scene, const std::vector<TexelPlot>& plots) {
+  const auto refuse = [&](size_t light, const std::string& flag) {
+    throw std::runtime_error(options.scene.string() + ": " + passes::light_display_name(scene.lights[light], light) +
+                             ": " + flag + " measures against the exact reference, which paged maps do not keep; set "
+                             "shadow.layout to \"dense\" (--shadow-layout dense) for it");
+  };
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    if (scene.lights[i].shadow.layout != scene::ShadowLayout::paged) continue;
+    if (options.compare_to_uncompressed) refuse(i, "--compare-to uncompressed");
+    for (const TexelPlot& plot : plots)
+      if (plot.light_index == i) refuse(i, "--plot-texel " + plot.spec);
+  }
+}
+
 // Warns about every light whose frame lost shadowing.
 ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   ShadowLoss loss;
@@ -318,6 +334,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   std::vector<TexelPlot> plots = options.plot_texels;
   resolve_texel_plots(plots, scene);
+  refuse_paged_references(options, scene, plots);
   if (options.progress)
     std::fprintf(stderr, "scene %s: %zu meshes, %zu hair grooms, %zu volumes, %zu lights\n", options.scene.c_str(),
                  scene.meshes.size(), scene.hair.size(), scene.volumes.size(), scene.lights.size());

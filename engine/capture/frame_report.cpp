@@ -398,11 +398,14 @@ LightSettings light_settings_from_json(const json& in) {
 std::string describe(const rg::PlannedResource& r) {
   if (r.kind == rg::ResourceKind::Buffer) return std::to_string(r.buffer.size) + " bytes";
   const rg::TextureDesc& d = r.texture;
-  std::string text = std::to_string(d.width) + "x" + std::to_string(d.height);
-  if (d.depth > 1) text += "x" + std::to_string(d.depth);
-  text += " " + rg::format_name(d.format);
-  if (d.mip_levels > 1) text += " mips " + std::to_string(d.mip_levels);
-  if (d.array_layers > 1) text += " layers " + std::to_string(d.array_layers);
+  // Appended piece by piece: "x" + std::to_string(...) trips GCC 12's -Wrestrict
+  // false positive once this is inlined.
+  std::string text = std::to_string(d.width);
+  text.append("x").append(std::to_string(d.height));
+  if (d.depth > 1) text.append("x").append(std::to_string(d.depth));
+  text.append(" ").append(rg::format_name(d.format));
+  if (d.mip_levels > 1) text.append(" mips ").append(std::to_string(d.mip_levels));
+  if (d.array_layers > 1) text.append(" layers ").append(std::to_string(d.array_layers));
   return text;
 }
 

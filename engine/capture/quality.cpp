@@ -245,8 +245,14 @@ std::vector<CurveNode> texel_nodes(gpu::Context& ctx, const passes::ShadowMaps& 
   if (!map || !shadows.technique(light).stores_avsm_nodes()) return {};
   const passes::AvsmMapLayout& layout = shadows.map_layout(light);
   const passes::LightView& view = shadows.light_views().at(light);
-  const std::vector<glm::vec4> curve =
-      read_map_vec4s(ctx, map, layout.texel_base(0, x, y), layout.vec4s_per_texel());
+  // A paged map's texel: in the page of the finest resident level over it.
+  uint64_t first = layout.texel_base(0, x, y);
+  if (shadows.is_paged(light)) {
+    const std::optional<passes::ShadowMaps::PagedTexel> paged = shadows.paged_texel(light, x, y);
+    if (!paged) return {};
+    first = paged->map_vec4;
+  }
+  const std::vector<glm::vec4> curve = read_map_vec4s(ctx, map, first, layout.vec4s_per_texel());
   std::vector<CurveNode> nodes;
   for (uint32_t i = 0; i < layout.nodes; ++i) {
     const passes::AvsmMapLayout::Node stored =

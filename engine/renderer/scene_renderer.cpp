@@ -260,6 +260,11 @@ void SceneRenderer::enable_quality() {
   if (!shadows_.has_reference())
     throw std::logic_error("SceneRenderer::enable_quality: the shadow maps must keep the reference "
                            "(ShadowOptions::keep_reference)");
+  for (uint32_t light = 0; light < light_count_; ++light)
+    if (!shadows_.has_reference(light))
+      throw std::invalid_argument(passes::light_display_name(lights_.at(light), light) +
+                                  ": its maps are paged, which keep no exact reference to measure against; set "
+                                  "shadow.layout to \"dense\" for the quality figures");
   if (!quality_) quality_ = std::make_unique<passes::ShadowQualityPass>(ctx_, shaders_);
   quality_->set_frames_in_flight(frames_in_flight());
   quality_->set_size(width_, height_, light_count_);

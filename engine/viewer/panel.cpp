@@ -83,7 +83,7 @@ void plot_curve(const TexelCurve& curve) {
     for (size_t i = 0; i < values.size() && i < curve.depths.size(); ++i) points.push_back(at(curve.depths[i], values[i]));
     draw.AddPolyline(points.data(), int(points.size()), colour, ImDrawFlags_None, thickness);
   };
-  polyline(curve.reference_values, kReferenceColour, 2.5f);
+  if (!curve.reference_values.empty()) polyline(curve.reference_values, kReferenceColour, 2.5f);
   polyline(curve.technique_values, kTechniqueColour, 1.5f);
   for (const capture::CurveNode& node : curve.nodes)
     if (node.depth >= curve.near_depth && node.depth <= curve.far_depth)
@@ -93,9 +93,11 @@ void plot_curve(const TexelCurve& curve) {
   if (ImGui::IsItemHovered()) {
     const float depth = curve.near_depth + (ImGui::GetIO().MousePos.x - origin.x) / size.x * span;
     const size_t k = size_t(std::clamp((depth - curve.near_depth) / span, 0.0f, 1.0f) * float(curve.depths.size() - 1));
-    if (k < curve.technique_values.size())
+    if (k < curve.reference_values.size())
       ImGui::SetTooltip("depth %.3f\n%s %.4f\nexact %.4f", curve.depths[k], curve.technique.c_str(),
                         curve.technique_values[k], curve.reference_values[k]);
+    else if (k < curve.technique_values.size())
+      ImGui::SetTooltip("depth %.3f\n%s %.4f", curve.depths[k], curve.technique.c_str(), curve.technique_values[k]);
   }
 }
 
@@ -453,7 +455,12 @@ void Panel::draw_inspection(const PanelView& view, PanelRequests& requests) {
     ImGui::Text("light %u '%s' texel (%u, %u): %s", curve.light, curve.light_name.c_str(), curve.texel.x,
                 curve.texel.y, curve.technique.c_str());
     if (curve.has_values()) {
-      ImGui::Text("max |T - T_exact| %.4f; white: exact, red: technique", curve.max_difference());
+      if (curve.exact)
+        ImGui::Text("max |T - T_exact| %.4f; white: exact, red: technique", curve.max_difference());
+      else if (curve.level)
+        ImGui::Text("paged: level %u's texel, red; no exact curve (pages keep no capture lists)", *curve.level);
+      else
+        ImGui::Text("paged: no resident page holds this texel");
       plot_curve(curve);
     } else {
       ImGui::TextDisabled("rendering...");

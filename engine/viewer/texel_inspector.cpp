@@ -105,12 +105,16 @@ void TexelInspector::read_results(const std::vector<passes::TexelSampleResult>& 
     if (next + curve.depths.size() > results.size()) return;  // not the frame these curves asked for
     curve.technique_values.clear();
     curve.reference_values.clear();
+    const bool known = curve.light < shadows.light_count() && curve.light < scene.lights.size();
+    curve.exact = known && shadows.has_reference(curve.light);
     for (size_t k = 0; k < curve.depths.size(); ++k, ++next) {
       curve.technique_values.push_back(results[next].technique);
-      curve.reference_values.push_back(results[next].reference);
+      if (curve.exact) curve.reference_values.push_back(results[next].reference);
     }
-    if (curve.light < shadows.light_count() && curve.light < scene.lights.size())
-      curve.nodes = capture::texel_nodes(ctx, shadows, curve.light, curve.texel.x, curve.texel.y);
+    if (!known) continue;
+    curve.nodes = capture::texel_nodes(ctx, shadows, curve.light, curve.texel.x, curve.texel.y);
+    curve.level.reset();
+    if (const auto paged = shadows.paged_texel(curve.light, curve.texel.x, curve.texel.y)) curve.level = paged->level;
   }
 }
 
@@ -132,6 +136,8 @@ void TexelInspector::write_json(const fs::path& path) const {
                       {"depths", c.depths},
                       {"technique_values", c.technique_values},
                       {"reference_values", c.reference_values},
+                      {"exact", c.exact},
+                      {"level", c.level ? nlohmann::json(*c.level) : nlohmann::json(nullptr)},
                       {"max_abs_difference", c.max_difference()},
                       {"nodes", nodes}});
   }

@@ -35,6 +35,11 @@ struct TexelCurve {
   std::vector<float> depths;  // capture::kCurveSamples, near to far
   std::vector<float> technique_values, reference_values;  // empty until a frame evaluated them
   std::vector<capture::CurveNode> nodes;                  // AVSM lights: the texel's stored nodes
+  // False for paged lights: their pages keep no capture lists, so no exact curve
+  // (reference_values stay empty). A paged light's curve is that of the finest resident
+  // level over the texel: `level`.
+  bool exact = true;
+  std::optional<uint32_t> level;
   bool has_values() const { return !technique_values.empty(); }
   float max_difference() const;  // max |technique - reference| over the samples
 };

@@ -58,10 +58,6 @@ void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene
                                   std::to_string(virtual_resolution) + " texels is wider than this device's viewports (" +
                                   std::to_string(device.max_viewport_dimension) +
                                   "); lower shadow.virtual_resolution (--virtual-res)");
-    if (options.keep_reference && lights[i].shadow.layout == scene::ShadowLayout::paged)
-      throw std::invalid_argument(light_display_name(lights[i], i) +
-                                  ": the exact reference (--compare-to, texel plots, the viewer's pixel inspection) "
-                                  "reads dense capture lists; set shadow.layout to \"dense\" for it");
   }
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
@@ -175,7 +171,8 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
     map.map_state = initial_map_state(light);
     if (pages) create_page_state(map, pages);
     create_frame_buffers(map);
-    map.lookups_read_lists = light.technique->reads_capture_lists() || options_.keep_reference;
+    // Paged maps keep no lists: their pages' are gone once resolved (no exact reference).
+    map.lookups_read_lists = light.technique->reads_capture_lists() || (options_.keep_reference && !pages);
     maps_.push_back(std::move(map));
     maps_.back().view = initial_view(maps_.back());
   }

@@ -152,6 +152,18 @@ class ShadowMaps {
   // paged ones. What reads a map may skip a frame whose revision it has already read.
   uint64_t map_revision(uint32_t light) const;
   bool has_reference() const { return options_.keep_reference; }
+  // Light `light`'s lookups have an exact reference: the frame keeps references and its
+  // maps are dense (a paged map's pages keep no capture lists).
+  bool has_reference(uint32_t light) const { return options_.keep_reference && !is_paged(lights_.at(light)); }
+  // Where paged light `light`'s level-0 texel (x, y) of its first map is held, as the
+  // CPU's table says (the frames declared since it may have moved pages): the finest
+  // level with a resident page over it, and that level's texel's first vec4 in
+  // avsm_map(light). Nullopt for dense lights and texels no level holds.
+  struct PagedTexel {
+    uint32_t level = 0;
+    uint64_t map_vec4 = 0;
+  };
+  std::optional<PagedTexel> paged_texel(uint32_t light, uint32_t x, uint32_t y) const;
   // Bytes of the one buffer every map lives in.
   uint64_t atlas_bytes() const { return atlas_ ? atlas_.size() : 0; }
 

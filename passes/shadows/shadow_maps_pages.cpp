@@ -167,6 +167,24 @@ ShadowCasters ShadowMaps::page_casters(const MapState& map, const ShadowCasters&
   return select_casters(all, overlapping);
 }
 
+std::optional<ShadowMaps::PagedTexel> ShadowMaps::paged_texel(uint32_t light, uint32_t x, uint32_t y) const {
+  const MapState& map = maps_[lights_.at(light).first_map];
+  if (!map.pages) return std::nullopt;
+  const PageTable& pages = *map.pages;
+  const uint32_t size = pages.page_size(), nodes = uint32_t(lights_[light].light.shadow.nodes);
+  if (x >= pages.virtual_resolution() || y >= pages.virtual_resolution()) return std::nullopt;
+  for (uint32_t level = 0; level < pages.levels(); ++level) {
+    const glm::uvec2 texel = glm::uvec2(x, y) >> level;
+    const uint32_t word = pages.table_words()[pages.entry({level, texel / size, map.page_face})];
+    if (word == shared::kPageAbsent) continue;
+    const glm::uvec2 in_page = texel % size;
+    const uint64_t slot_vec4 = (map.page_pool_offset - map.atlas_offset) / sizeof(glm::vec4) +
+                               uint64_t(word - 1) * shared::page_slot_vec4s(size, nodes);
+    return PagedTexel{level, slot_vec4 + (uint64_t(in_page.y) * size + in_page.x) * (nodes / 4)};
+  }
+  return std::nullopt;
+}
+
 uint64_t ShadowMaps::map_revision(uint32_t light) const {
   const LightState& state = lights_.at(light);
   uint64_t revision = 0;

@@ -49,7 +49,7 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
   g.list_heads_offset = uint32_t(map.list_heads_offset / sizeof(uint32_t));
   g.list_nodes_offset = uint32_t(map.list_nodes_offset / kCaptureSegmentBytes);
   g.views = shared::kViewsSingle;
-  g.reference = options_.keep_reference ? record_count_ + map.record : kNoReference;
+  g.reference = has_reference(map.light) ? record_count_ + map.record : kNoReference;
   light.technique->fill(g, settings, v);
   if (map.pages) {  // the virtual map (shared/pages.h)
     g.resolution = map.pages->virtual_resolution();
@@ -81,7 +81,7 @@ std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
     g.views = light.views;
     g.first_view = first.record;
     g.view_count = light.map_count;
-    g.reference = options_.keep_reference ? record_count_ + i : kNoReference;
+    g.reference = has_reference(i) ? record_count_ + i : kNoReference;
     if (light.views == shared::kViewsCube) g.view_select = glm::vec4(light.light.position, 0.0f);
     if (light.views == shared::kViewsCascades) {
       const glm::mat4 world_from_view = glm::inverse(camera.view);

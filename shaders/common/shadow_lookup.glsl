@@ -184,6 +184,17 @@ bool shadow_page_texel(GpuShadow s, uint level, ivec2 texel, out GpuShadow page,
   return true;
 }
 
+// The finest level whose page over level-0 texel `texel` is resident, and where that
+// level's texel over it is (as shadow_page_texel()): a paged map's stored curve at a
+// texel, for texel curves and the viewer's inspector. False when no level holds it.
+bool shadow_paged_finest_texel(GpuShadow s, ivec2 texel, out GpuShadow page, out ivec2 page_texel) {
+  for (uint level = 0u; level < 32u; ++level) {  // a constant bound: lavapipe miscompiles per-lane ones
+    if (level >= s.mip_count) break;
+    if (shadow_page_texel(s, level, texel >> level, page, page_texel)) return true;
+  }
+  return false;
+}
+
 bool shadow_filters_with_kernel(GpuShadow s, uint receiver) {
   return receiver == kReceiverSurface && s.kernel != kKernelNone;
 }

@@ -256,7 +256,7 @@ TEST(GateSettings, TheSameSettingsPass) {
   ASSERT_EQ(checks.size(), 1u);
   EXPECT_EQ(checks[0].name, "settings");
   EXPECT_EQ(checks[0].verdict, Verdict::pass);
-  EXPECT_EQ(checks[0].base, "52 settings");  // 19 of the frame, 16 of the sun, 17 of the spot (a parameter)
+  EXPECT_EQ(checks[0].base, "53 settings");  // 20 of the frame, 16 of the sun, 17 of the spot (a parameter)
 }
 
 TEST(GateSettings, EachDifferenceFailsNamingTheSetting) {

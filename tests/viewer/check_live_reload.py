@@ -18,6 +18,9 @@ edits the copies as a user would in an editor:
   7. a click on the smoke, whose curves must be evaluated (inspect.json);
   8. the shadow level overlay of light 0 (the sun, a dense map: every receiver reads
      level 0, red): the sky, no receiver, is dimmed and the floor turns red; then off;
+  9. the sun switched to paged maps and the smoke clicked again: the sun's curve is its
+     finest resident page's (a level, stored nodes) with no exact curve, the spot's
+     still has one;
 and finally quits: the exit status is 0 only without validation messages.
 The viewer runs under XVFB_RUN (xvfb-run).
 """
@@ -167,6 +170,24 @@ def main():
         fail("the level overlay did not tint the floor red (level 0 of the sun's dense map)")
     viewer.send("levels off")
     viewer.frame()
+
+    # 9: a paged sun, inspected: its curve is its finest resident page's, without an exact one.
+    for field, value in (("layout", "paged"), ("kernel", "none"), ("fit", "scene")):
+        viewer.send(f"light 0 {field} {value}")
+    viewer.frame(expect=["scene_reloaded"])
+    for _ in range(3):  # the pages the receivers ask for arrive a frame later
+        viewer.frame()
+    answer = viewer.send(f"inspect {plume_pixel(view_width, view_height)}")
+    if answer["inspect"] is None:
+        fail("nothing under the smoke pixel with the sun paged")
+    viewer.frame()
+    viewer.send(f"screenshot {work / 'paged_inspected'}")
+    curves = check_inspection(work / "paged_inspected" / "inspect.json")
+    sun = next((c for c in curves if c["light"] == 0), None)
+    if sun is None or sun["exact"] or sun["reference_values"] or sun["level"] is None or not sun["nodes"]:
+        fail(f"the paged sun's curve should come from a resident page (a level, nodes) without an exact curve: {sun}")
+    if any(c["light"] != 0 and not c["exact"] for c in curves):
+        fail("a dense light lost its exact curve when the sun became paged")
 
     viewer.send("quit")
     status = viewer.process.wait(timeout=60)

@@ -31,8 +31,14 @@ void main() {
     ivec2 texel = ivec2(sample_.xy);
     uint reference = shadows[light].reference;
     uint entries[2] = uint[2](light, reference == kNoReference ? light : reference);
-    for (int i = 0; i < 2; ++i)  // one call site: the texel lookup is compiled once
-      results[2u * point + uint(i)] = shadow_texel_transmittance(shadows[entries[i]], 0u, texel, sample_.z);
+    for (int i = 0; i < 2; ++i) {  // one call site: the texel lookup is compiled once
+      // A paged map's curve is its finest resident level's over the texel (no reference:
+      // kNoReference, so the technique twice).
+      GpuShadow s = shadows[entries[i]];
+      ivec2 at = texel;
+      bool held = !shadow_is_paged(s) || shadow_paged_finest_texel(shadows[entries[i]], texel, s, at);
+      results[2u * point + uint(i)] = held ? shadow_texel_transmittance(s, 0u, at, sample_.z) : 1.0;
+    }
     return;
   }
   if (pc.mode == kProbeSurfacePoints) {  // as the opaque pass looks surfaces up (soft kernels included)
