@@ -53,6 +53,24 @@ TEST(PassStages, EveryPassNameOfTheEngineHasItsStage) {
     EXPECT_EQ(to_string(pass_stage(name)), to_string(stage)) << "pass '" << name << "'";
 }
 
+// Finer than stages, for timings.json's per-frame shadow_step_gpu_ms: the capture split by
+// caster kind, pages included.
+TEST(PassStages, ShadowStepsSplitTheCaptureByCasterKind) {
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"light 0 page 7/1,1 capture opaque", "capture opaque"},
+      {"light 0 page 5/3,4 capture hair", "capture hair"},
+      {"light 12 face 5 page 2/0,0 capture smoke", "capture smoke"},
+      {"light 1 capture opaque", "capture opaque"},
+      {"light 0 page 7/1,1 clear lists", "shadow capture"},
+      {"light 1 page 6/2,2 sort lists", "sort"},
+      {"light 0 page 6/0,1 avsm resolve", "resolve / build"},
+      {"light 0 avsm mips level 1", "mips"},
+      {"opaque", ""},
+      {"shadow probes", ""},
+  };
+  for (const auto& [name, step] : expected) EXPECT_EQ(shadow_step(name), step) << "pass '" << name << "'";
+}
+
 TEST(PassStages, StageTimesSumTheirPassesMedians) {
   TimingReport timings;
   auto pass = [](std::string name, double median) {
