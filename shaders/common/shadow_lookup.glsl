@@ -210,15 +210,25 @@ struct ShadowLevels {
   float blend;
 };
 
+// A paged lookup at lod L + f blends level L + 1 in over the last quarter of the level
+// only (f from 0.75 to 1; a band, as engines fade cascades into each other): elsewhere it
+// reads, and asks for, one level. Blending across the whole level read twice the taps
+// and asked for both levels' pages everywhere. Returns L + 1's weight.
+const float kPagedBlendBand = 0.25;
+float shadow_paged_coarser_weight(float lod) {
+  return clamp((fract(lod) - (1.0 - kPagedBlendBand)) / kPagedBlendBand, 0.0, 1.0);
+}
+
 ShadowLevels shadow_lookup_levels(GpuShadow s, vec3 p, vec2 uv, float d, uint receiver) {
   ShadowLevels read = ShadowLevels(0u, 1, 0.0);
   if (shadow_is_paged(s)) {
-    // Trilinear between the two levels around the receiver's; while one of them is not
-    // resident, the finest resident level above stands in alone.
+    // Trilinear between the two levels around the receiver's, in the band before the
+    // next level; while one of them is not resident, the finest resident level above
+    // stands in alone.
     float lod = shadow_paged_lod(s, p, d, receiver);
     uint level = uint(floor(lod));
-    read.blend = lod - float(level);
-    read.count = level + 1u < s.mip_count ? 2 : 1;
+    read.blend = shadow_paged_coarser_weight(lod);
+    read.count = read.blend > 0.0 && level + 1u < s.mip_count ? 2 : 1;
     uint resident = shadow_paged_resident_level(s, uv, level, true);
     if (read.count == 2 && shadow_paged_resident_level(s, uv, level + 1u, true) != level + 1u) read.count = 1;
     if (resident != level) read.count = 1;
@@ -331,9 +341,9 @@ float shadow_transmittance(GpuShadow s, vec3 p) { return shadow_transmittance_fi
 
 // For surfaces: the point moved along its normal (towards the light's side) by a
 // few texels, so a surface does not shadow itself through its own blocker segment.
-// A paged map's receiver between levels L and L + 1 (lod L + f) moves by L's texel
-// times 1 + f: the finer level's texel where it reads that level alone, the coarser's
-// where it reads that one alone, and a blend that follows the levels' weights between.
+// A paged map's receiver between levels L and L + 1 moves by L's texel times 1 + the
+// coarser level's weight: the finer level's texel where it reads that level alone, the
+// coarser's where it reads that one alone, and a blend that follows the weights between.
 // (The coarser level's texel throughout made the offset double where the lod crosses a
 // whole level, a step the seam test saw: tests/passes/light_maps_test.cpp.)
 vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
@@ -342,7 +352,7 @@ vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   float texel = shadow_texel_size(s, d);
   if (shadow_is_paged(s)) {
     float lod = shadow_paged_lod(s, p, d, kReceiverSurface);
-    texel *= exp2(floor(lod)) * (1.0 + fract(lod));
+    texel *= exp2(floor(lod)) * (1.0 + shadow_paged_coarser_weight(lod));
   }
   return p + n * (s.camera_position.w * texel);
 }
