@@ -6,10 +6,12 @@
   orbit.py VIEWER [--size WxH] [--frames N] [--degrees D] [--rounds R] [--scene FILE]
 
 Drives `VIEWER --control` under xvfb-run (viewer_control.py). Paged runs first switch
-both lights to paged maps through the panel's fields ('light I layout paged', ...). Then
-each frame is 'orbit D' and 'frame'. A 'frame' reply comes once the frame is submitted,
-so the time between the replies of the frames after the warm-up ones, over their count,
-is the steady frame time as a user orbiting the camera sees it. The layouts' runs are
+both lights to paged maps through the panel's fields ('light I layout paged', ...). The
+camera stands still until no page request is pending (the viewer builds at most
+page_builds_per_frame pages a frame, so a paged map converges over frames). Then each
+frame is 'orbit D' and 'frame'. A 'frame' reply comes once the frame is submitted, so
+the time between the replies of the frames after the first few, over their count, is the
+steady frame time as a user orbiting the camera sees it. The layouts' runs are
 interleaved (dense, paged, dense, paged, ...) so both see the same machine load.
 """
 import argparse
@@ -18,7 +20,8 @@ import time
 
 from viewer_control import ControlledViewer
 
-WARM_UP = 4  # frames before the timed ones: pipelines, first uploads, a paged map's first pages
+WARM_UP = 4  # orbit frames before the timed ones (the pages the first turns ask for)
+MAX_SETTLING_FRAMES = 80  # a still camera's frames until no page request is pending
 LAYOUTS = {
     "dense": [],
     "paged": [f"light {i} {field} {value}" for i in (0, 1)
@@ -31,6 +34,14 @@ def orbit_frame_ms(viewer, layout, args):
     run = ControlledViewer(viewer, arguments, reply_timeout=600)
     for command in LAYOUTS[layout]:
         run.send(command)
+    settled = 0
+    for _ in range(MAX_SETTLING_FRAMES):
+        answer = run.frame()
+        settled = settled + 1 if answer.get("pages_pending", 0) == 0 else 0
+        if settled == 3:  # the requests lag a frame: pending 0 three times in a row
+            break
+    else:
+        raise SystemExit(f"{layout} maps still had pages pending after {MAX_SETTLING_FRAMES} frames")
     replied = []
     for _ in range(args.frames):
         run.send(f"orbit {args.degrees}")

@@ -3,8 +3,9 @@
 // tests and tools that have no input devices (under Xvfb nobody clicks). After each
 // command the viewer prints one JSON line on stdout. Commands:
 //   frame                    poll the watched files, render a scene frame, present; the
-//                            reply also counts the validation messages so far and gives
-//                            the view's size ("view": [W, H], the frame's)
+//                            reply also counts the validation messages so far, gives
+//                            the view's size ("view": [W, H], the frame's) and the pages
+//                            paged maps' receivers asked for and did not find ("pages_pending")
 //   inspect X,Y              click pixel (X, Y) of the view (x right, y down; a pixel of
 //                            the frame, not the window): plot its texel curves
 //   screenshot DIR           write one avsm-capture frame's outputs, window.png and layout.json
