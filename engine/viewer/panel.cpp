@@ -18,6 +18,7 @@ constexpr std::array kFilters{scene::ShadowFilter::point, scene::ShadowFilter::b
                               scene::ShadowFilter::trilinear};
 constexpr std::array kNodeCounts{4, 8, 12, 16};
 constexpr std::array kResolutions{64, 128, 256, 512, 1024, 2048};
+constexpr std::array kKernels{scene::ShadowKernel::none, scene::ShadowKernel::box, scene::ShadowKernel::gaussian};
 constexpr std::array kCascadeCounts{1, 2, 3, 4};
 constexpr std::array kClusterCounts{0, 2, 3, 4, 5, 6, 7, 8};
 
@@ -61,6 +62,7 @@ const std::vector<std::string>& technique_names() {
   return names;
 }
 std::string filter_name(scene::ShadowFilter f) { return std::string(scene::to_string(f)); }
+std::string kernel_name(scene::ShadowKernel k) { return std::string(scene::to_string(k)); }
 std::string number_name(int n) { return std::to_string(n); }
 
 // The technique's curve (red) over the exact one (white) across the light's depth
@@ -110,11 +112,14 @@ void draw_light_switches(const scene::Light& light, LightOverride& o, PanelReque
   bool sort = shadow.sort;
   if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
   ImGui::SameLine();
+  // Paged maps build AVSM from capture lists: untick "paged maps" to change these.
+  ImGui::BeginDisabled(shadow.layout == scene::ShadowLayout::paged);
   bool fixed = shadow.build == scene::ShadowBuild::fixed;
   if (ImGui::Checkbox("fixed-memory build", &fixed))
     o.build = fixed ? scene::ShadowBuild::fixed : scene::ShadowBuild::lists, requests.scene_edited = true;
   if (auto t = choose("technique", shadow.technique, technique_names(), technique_name))
     o.technique = *t, requests.scene_edited = true;
+  ImGui::EndDisabled();
   if (auto n = choose("nodes", shadow.nodes, kNodeCounts, number_name)) o.nodes = *n, requests.scene_edited = true;
   if (auto r = choose("map resolution", shadow.resolution, kResolutions, number_name))
     o.resolution = *r, requests.scene_edited = true;
@@ -140,6 +145,31 @@ void draw_light_placement(const scene::Light& light, LightOverride& o, PanelRequ
   }
 }
 
+// Dense or paged maps (docs/shadows.md, "Paged maps"), and a dense map's soft-shadow
+// kernel. Paged maps build AVSM from capture lists only; ticking them also sets what they
+// need (no kernel, no cascades or clusters, fitted to the scene), so the edit does not fail.
+void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
+  const scene::ShadowSettings& shadow = light.shadow;
+  bool paged = shadow.layout == scene::ShadowLayout::paged;
+  const bool can_page = shadow.technique == "avsm" && shadow.build == scene::ShadowBuild::lists;
+  ImGui::BeginDisabled(!paged && !can_page);
+  if (ImGui::Checkbox("paged maps", &paged)) {
+    o.layout = paged ? scene::ShadowLayout::paged : scene::ShadowLayout::dense;
+    if (paged) {
+      o.kernel = scene::ShadowKernel::none;
+      o.cascades = 1;
+      o.clusters = 0;
+      if (light.type != scene::LightType::point) o.fit = scene::ShadowFit::scene;
+    }
+    requests.scene_edited = true;
+  }
+  ImGui::EndDisabled();
+  if (!paged && !can_page && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("paged maps build AVSM from capture lists: set the technique to avsm and untick the fixed-memory build");
+  if (paged) return;  // pages match texels to pixels: no kernel
+  if (auto k = choose("kernel", shadow.kernel, kKernels, kernel_name)) o.kernel = *k, requests.scene_edited = true;
+}
+
 // Shadow fit, cascades and clusters. The renderer refuses some combinations (cascades
 // follow the camera, so they need fit view and exclude clusters); the panel disables
 // the controls that would make one rather than let an edit fail.
@@ -148,6 +178,10 @@ void draw_light_fitting(const scene::Light& light, const scene::SceneShadows& sc
   if (light.type == scene::LightType::point) return;  // a cube covers every way: nothing to fit
   const scene::ShadowSettings& shadow = light.shadow;
   const bool cascaded = shadow.cascades > 1, clustered = shadow.clusters > 1;
+  // A paged map is one virtual map over the scene: no fitting to the view, no cascades
+  // or clusters (untick "paged maps" for them).
+  const bool paged = shadow.layout == scene::ShadowLayout::paged;
+  ImGui::BeginDisabled(paged);
 
   int fit = shadow.fit == scene::ShadowFit::view ? 0 : 1;
   if (ImGui::RadioButton("fit view", &fit, 0)) o.fit = scene::ShadowFit::view, requests.scene_edited = true;
@@ -174,6 +208,7 @@ void draw_light_fitting(const scene::Light& light, const scene::SceneShadows& sc
   if (auto c = choose("clusters", shadow.clusters, kClusterCounts, cluster_name))
     o.clusters = *c, requests.scene_edited = true;
   ImGui::EndDisabled();
+  ImGui::EndDisabled();  // paged
 }
 
 // The light's first map as the light sees it; a click on a texel plots its curve.
@@ -286,6 +321,7 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
       const passes::LightShadowStats* light_stats =
           i < stats.size() && stats[i].light == light.name ? &stats[i] : nullptr;
       draw_light_switches(light, o, requests);
+      draw_light_layout(light, o, requests);
       draw_light_placement(light, o, requests);
       draw_light_fitting(light, scene.shadows, o, requests);
       if (light_stats) ImGui::TextWrapped("%s", map_summary(*light_stats).c_str());
