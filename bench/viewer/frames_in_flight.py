@@ -13,7 +13,7 @@ import argparse
 import statistics
 import time
 
-from viewer_control import ControlledViewer
+from viewer_control import ControlledViewer, steady_frame_ms
 
 WARM_UP = 3  # frames before the timed ones (pipelines, first uploads)
 
@@ -25,9 +25,8 @@ def frame_time_ms(viewer, frames_in_flight, size, frames, scene):
     for _ in range(frames):
         run.frame()
         replied.append(time.monotonic())
-    if run.quit() != 0:
-        raise SystemExit(f"the viewer failed (status {run.process.returncode}): run {' '.join(run.command)} to see why")
-    return (replied[-1] - replied[WARM_UP - 1]) / (frames - WARM_UP) * 1000.0
+    run.quit_or_exit()
+    return steady_frame_ms(replied, WARM_UP)
 
 
 def main():

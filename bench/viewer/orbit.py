@@ -18,7 +18,7 @@ import argparse
 import statistics
 import time
 
-from viewer_control import ControlledViewer
+from viewer_control import ControlledViewer, steady_frame_ms
 
 WARM_UP = 4  # orbit frames before the timed ones (the pages the first turns ask for)
 MAX_SETTLING_FRAMES = 80  # a still camera's frames until no page request is pending
@@ -49,9 +49,8 @@ def orbit_frame_ms(viewer, layout, args):
         if answer.get("error"):
             raise SystemExit(f"the viewer reported an error with {layout} maps: {answer['error']}")
         replied.append(time.monotonic())
-    if run.quit() != 0:
-        raise SystemExit(f"the viewer failed (status {run.process.returncode}): run {' '.join(run.command)} to see why")
-    return (replied[-1] - replied[WARM_UP - 1]) / (args.frames - WARM_UP) * 1000.0
+    run.quit_or_exit()
+    return steady_frame_ms(replied, WARM_UP)
 
 
 def main():

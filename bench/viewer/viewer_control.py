@@ -17,6 +17,13 @@ import threading
 from pathlib import Path
 
 
+def steady_frame_ms(replied, warm_up):
+    """A frame's ms from the times of successive 'frame' replies: a reply comes once its frame
+    is submitted, so the time from the reply of frame `warm_up` to the last over the frames
+    in between is the steady frame time, whatever the frames in flight."""
+    return (replied[-1] - replied[warm_up - 1]) / (len(replied) - warm_up) * 1000.0
+
+
 class ViewerError(Exception):
     """The viewer exited, hung, or answered what a script did not expect."""
 
@@ -74,6 +81,12 @@ class ControlledViewer:
         except subprocess.TimeoutExpired:
             self.kill()
             raise ViewerError(f"the viewer did not exit within {timeout} s of 'quit' (stopped it)")
+
+    def quit_or_exit(self):
+        """Stops the viewer; ends the script, saying how to see why, when it failed."""
+        if self.quit() != 0:
+            raise SystemExit(f"the viewer failed (status {self.process.returncode}): "
+                             f"run {' '.join(self.command)} to see why")
 
     def kill(self):
         try:

@@ -46,6 +46,15 @@ glm::vec3 parse_vec3(const std::string& text, const std::string& what) {
   return v;
 }
 
+// One of a setting's names, read by the scene file's own parser (`from_string`); `names`
+// lists them in the message, when given.
+template <typename T>
+T parse_name(const std::string& text, std::optional<T> (*from_string)(std::string_view), const std::string& what,
+             const char* kind, const char* names = nullptr) {
+  if (const std::optional<T> value = from_string(text)) return *value;
+  throw std::invalid_argument(what + ": unknown " + kind + " '" + text + "'" + (names ? std::string(" (") + names + ")" : ""));
+}
+
 bool parse_on_off(const std::string& text, const std::string& what) {
   if (text == "on") return true;
   if (text == "off") return false;
@@ -109,9 +118,7 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
       throw std::invalid_argument(what + ": unknown technique '" + value + "' (" + passes::shadow_technique_names() + ")");
     o.technique = value;
   } else if (field == "filter") {
-    const std::optional<scene::ShadowFilter> filter = scene::shadow_filter_from_string(value);
-    if (!filter) throw std::invalid_argument(what + ": unknown filter '" + value + "'");
-    o.filter = *filter;
+    o.filter = parse_name(value, scene::shadow_filter_from_string, what, "filter");
   } else if (field == "nodes") {
     o.nodes = parse_whole(value, what);
   } else if (field == "resolution") {
@@ -119,21 +126,13 @@ void set_light_field(SceneOverrides& overrides, uint32_t light, const std::strin
   } else if (field == "sort") {
     o.sort = parse_on_off(value, what);
   } else if (field == "build") {
-    const std::optional<scene::ShadowBuild> build = scene::shadow_build_from_string(value);
-    if (!build) throw std::invalid_argument(what + ": unknown build '" + value + "' (lists, fixed)");
-    o.build = *build;
+    o.build = parse_name(value, scene::shadow_build_from_string, what, "build", "lists, fixed");
   } else if (field == "fit") {
-    const std::optional<scene::ShadowFit> fit = scene::shadow_fit_from_string(value);
-    if (!fit) throw std::invalid_argument(what + ": unknown fit '" + value + "' (view, scene)");
-    o.fit = *fit;
+    o.fit = parse_name(value, scene::shadow_fit_from_string, what, "fit", "view, scene");
   } else if (field == "layout") {
-    const std::optional<scene::ShadowLayout> layout = scene::shadow_layout_from_string(value);
-    if (!layout) throw std::invalid_argument(what + ": unknown layout '" + value + "' (dense, paged)");
-    o.layout = *layout;
+    o.layout = parse_name(value, scene::shadow_layout_from_string, what, "layout", "dense, paged");
   } else if (field == "kernel") {
-    const std::optional<scene::ShadowKernel> kernel = scene::shadow_kernel_from_string(value);
-    if (!kernel) throw std::invalid_argument(what + ": unknown kernel '" + value + "' (none, box, gaussian)");
-    o.kernel = *kernel;
+    o.kernel = parse_name(value, scene::shadow_kernel_from_string, what, "kernel", "none, box, gaussian");
   } else if (field == "cascades") {
     o.cascades = parse_whole_in(value, what, 1, 4);
   } else if (field == "clusters") {

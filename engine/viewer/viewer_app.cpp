@@ -103,7 +103,6 @@ class ViewerApp {
   // Waits for the scene frames in flight and reads their results (before the renderer
   // changes, and before anything reads the last frame's outputs).
   void finish_scene_frames();
-  uint32_t pages_pending() const;
   void present(const ImDrawData& draw_data);
   void record_window(renderer::FrameSlots::Slot& slot, uint32_t image, const ImDrawData& draw_data, bool read_back);
   // The window graph's passes; each returns the swapchain image's new version.
@@ -285,7 +284,8 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       reply["scene_reloaded"] = scene_reloaded_;
       reply["error"] = live_->error() ? nlohmann::json(live_->error()->summary()) : nlohmann::json(nullptr);
       reply["validation_messages"] = ctx_.validation_log().count();
-      reply["pages_pending"] = pages_pending();
+      // The last finished frame's (timing_log_ holds that frame alone).
+      reply["pages_pending"] = timing_log_.frames().empty() ? 0u : timing_log_.frames().back().pages_pending;
 #ifdef __GLIBC__
       // What the program holds, unlike resident memory, which freed heap pages still count in.
       const struct mallinfo2 heap = mallinfo2();
@@ -590,15 +590,6 @@ void ViewerApp::scene_frame_finished(renderer::FrameSlots::Slot& slot) {
     inspector_.read_results(renderer.texel_results(), ctx_, renderer.shadows(), live_->scene());
   window_.set_title("avsm-viewer - " + scene_file_.filename().string() + " - " +
                     std::to_string(int(wall)) + " ms per frame");
-}
-
-// The pages the last finished frame's receivers asked for and did not find, every paged
-// light's: 0 once the paged maps have converged.
-uint32_t ViewerApp::pages_pending() const {
-  uint32_t pending = 0;
-  for (const passes::LightShadowStats& light : live_->renderer().shadows().frame_stats())
-    if (light.pages) pending += light.pages->pending;
-  return pending;
 }
 
 void ViewerApp::finish_scene_frames() {

@@ -163,10 +163,7 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   std::vector<uint32_t> wanted;
   for (uint32_t e = entries(); e-- > 0;)
     if (needs_build(e)) wanted.push_back(e);
-  const auto level_of = [&](uint32_t e) {
-    return uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), e % face_entries_) - level_first_.begin());
-  };
-  std::stable_sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) { return level_of(a) > level_of(b); });
+  std::stable_sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) { return key(a).level > key(b).level; });
   // Slots to take back, least recently requested first: resident pages nobody asked for
   // in the last frame, of any face (never a face's root).
   std::vector<uint32_t> evictable;

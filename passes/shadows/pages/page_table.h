@@ -74,7 +74,6 @@ class PageTable {
   uint32_t page_size() const { return page_size_; }
   uint32_t levels() const { return levels_; }
   uint32_t entries() const { return uint32_t(pages_.size()); }  // every face's
-  uint32_t faces() const { return faces_; }
   uint32_t face_entries() const { return face_entries_; }
   uint32_t slots() const { return slots_; }
   uint32_t entry(const PageKey& key) const;
