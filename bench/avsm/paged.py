@@ -30,12 +30,16 @@ engine (avsm-capture --measure-resolution, capture/resolution.h): the share of l
 receiver pixels whose texel is at most 1.5 screen pixels wide at its widest, the median
 and 95th percentile widths, and the resident texels against the lit receiver pixels
 (summed over the lights), for today's default, the paged default pool and the largest
-pools lavapipe's 128 MiB storage range holds for two lights.
+pools lavapipe's 128 MiB storage range holds for two lights. Then the same figures on a
+large scene (content/examples/cascades.scene.json, a 150 m avenue) for its sun paged at
+16384, 65536 and 262144 texels (clipmap windows around the camera beyond 4096), beside
+its own dense cascades.
 
 usage: bench/avsm/paged.py [--build DIR] [--width W] [--height H] [--rounds R]
                            [--page-size P] [--virtual-res V] [--orbit DEGREES]
                            [--orbit-frames K] [--moving-frames K] [--budgets B ...]
-                           [--match-width W] [--match-height H]
+                           [--match-width W] [--match-height H] [--clipmap-pool MIB]
+                           [--only resolution|clipmap]
 """
 import argparse
 import json
@@ -159,6 +163,29 @@ def print_resolution(tool, scene, work, args):
     print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels")
 
 
+def print_clipmap(tool, work, args):
+    """A large scene (content/examples/cascades.scene.json, a 150 m avenue; its sun paged over the
+    scene) where the virtual resolution, not the pool, bounds the texels near the camera."""
+    scene = os.path.join(ROOT, "content", "examples", "cascades.scene.json")
+    base = ["--shadow-layout", "paged", "--kernel", "none", "--fit", "scene", "--cascades", "1",
+            "--filter", "trilinear", "--page-size", str(args.page_size), "--page-pool-mib", str(args.clipmap_pool)]
+    rows = [("dense 1024 cascades x3", ["--shadow-res", "1024"])] + \
+           [(f"paged {v}", base + ["--virtual-res", str(v)]) for v in (16384, 65536, 262144)]
+    print(f"\na large scene: content/examples/cascades.scene.json (150 m), {args.match_width}x{args.match_height}, "
+          f"the sun paged over the scene with a {args.clipmap_pool} MiB pool; beyond 4096 texels a level keeps a "
+          f"window around the camera (clipmap), beyond the device's viewports its pages are cropped projections")
+    print(f"   {'configuration':<24}{'matched':>9}{'median':>8}{'p95':>7}{'finest level read':>19}"
+          f"{'pages asked/resident':>22}")
+    for i, (name, flags) in enumerate(rows):
+        resolution, pages = resolution_figures(tool, scene, os.path.join(work, f"clipmap_{i}"), args.match_width,
+                                               args.match_height, flags)
+        light = resolution["lights"][0]
+        finest = next((level for level, n in enumerate(light["receivers_per_level"]) if n), "-")
+        asked = f"{pages[0]['requested']}/{pages[0]['resident']}" if pages else "-"
+        print(f"   {name:<24}{100 * light['matched_fraction']:>8.1f}%{light['median_texel_pixels']:>8.2f}"
+              f"{light['p95_texel_pixels']:>7.2f}{finest:>19}{asked:>22}")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -175,6 +202,8 @@ def main():
                         help="page builds per frame per light, for the moving light")
     parser.add_argument("--match-width", type=int, default=1280)
     parser.add_argument("--match-height", type=int, default=720)
+    parser.add_argument("--clipmap-pool", type=int, default=100, help="MiB: the large scene's sun pool")
+    parser.add_argument("--only", choices=["resolution", "clipmap"], help="print this table alone")
     args = parser.parse_args()
     tool = os.path.join(args.build, "tools", "avsm-capture")
     compare = os.path.join(args.build, "tools", "avsm-compare")
@@ -182,6 +211,10 @@ def main():
     if not os.path.exists(tool):
         sys.exit(f"{tool} not found: build first")
     os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
+    if args.only:
+        with tempfile.TemporaryDirectory() as work:
+            (print_resolution(tool, scene, work, args) if args.only == "resolution" else print_clipmap(tool, work, args))
+        return
     rows = configs(args)
     orbit_rows = [rows[0], rows[1], rows[3]]
     results = {name: [] for name, _ in rows}
@@ -238,6 +271,7 @@ def main():
     print_moving_light(moving, today, args)
     with tempfile.TemporaryDirectory() as work:
         print_resolution(tool, scene, work, args)
+        print_clipmap(tool, work, args)
 
 
 if __name__ == "__main__":

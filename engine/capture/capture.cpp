@@ -151,7 +151,15 @@ ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t ind
     if (!light.lost_shadowing()) continue;
     loss.lost = true;
     loss.grew = loss.grew || light.grew;
-    if (light.overflowed)
+    if (light.page_slot_full)
+      std::fprintf(stderr,
+                   "avsm-capture: warning: frame %u: light '%s': a page's capture asked for %llu segments and its "
+                   "slot holds %llu; the rest were dropped (lighter shadows) and the page is built again; raise "
+                   "the technique's page_segments (--shadow-param page_segments=N) or the page level "
+                   "(shadow.page_lod_bias)\n",
+                   index + 1, light.light.c_str(), (unsigned long long)light.capture_requested,
+                   (unsigned long long)light.capture_capacity);
+    else if (light.overflowed)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s' asked for %llu capture segments but had room for "
                    "%llu; the rest were dropped (lighter shadows); next frame: %llu\n",
@@ -184,7 +192,12 @@ std::string unfinished_maps_error(const std::vector<passes::LightShadowStats>& l
   for (const passes::LightShadowStats& light : lights) {
     if (!light.lost_shadowing()) continue;
     const std::string who = " light '" + light.light + "': ";
-    if (light.overflowed)
+    if (light.page_slot_full)
+      text += who + "a page's capture lists need " + std::to_string(light.capture_requested) +
+              " segments and its slot holds " + std::to_string(light.capture_capacity) +
+              "; raise the technique's page_segments (--shadow-param page_segments=N) and the pool "
+              "(shadow.page_pool_mib), or read coarser pages (shadow.page_lod_bias);";
+    else if (light.overflowed)
       text += who + "its capture lists need " + std::to_string(light.capture_requested) + " segments and may hold " +
               std::to_string(light.capture_capacity) + " (the device's storage buffer range); lower its " +
               "shadow.resolution (--shadow-res) or build its map without lists (shadow.build fixed, --build fixed);";

@@ -52,6 +52,7 @@ const char* kUsage =
     "  --shadow-layout dense|paged  dense maps rebuilt every frame, or paged virtual maps whose\n"
     "                   pages the camera's receivers ask for, built once into a fixed pool\n"
     "  --virtual-res R  paged: the virtual map's texels per side, a power of two, 256 to 16384\n"
+    "                   (to 262144 for directional lights, whose finest levels follow the camera)\n"
     "  --page-size P    paged: texels per page side, 32, 64 or 128\n"
     "  --page-pool-mib M  paged: each light's page pool\n"
     "  --page-builds N  paged: build at most N pages a frame, as the viewer does (default: a\n"
@@ -223,7 +224,7 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.shadow.layout = parse_choice(arg, value(), scene::shadow_layout_from_string, "dense or paged");
   } else if (arg == "--virtual-res") {
     const uint32_t r = parse_count(arg, value());
-    if (r < 256 || r > 16384 || (r & (r - 1)) != 0) usage_error("--virtual-res expects a power of two, 256 to 16384");
+    if (r < 256 || r > 262144 || (r & (r - 1)) != 0) usage_error("--virtual-res expects a power of two, 256 to 262144");
     options.shadow.virtual_resolution = int(r);
   } else if (arg == "--page-size") {
     const uint32_t p = parse_count(arg, value());

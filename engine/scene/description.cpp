@@ -303,7 +303,8 @@ ShadowOverrides read_shadow_overrides(ObjectReader& object) {
   shadow.clusters = whole_number("clusters", [](int n) { return n >= 0 && n <= 8; }, "0 (off) to 8 maps");
   shadow.layout = optional_choice<ShadowLayout>(object, "layout", {{"dense", ShadowLayout::dense}, {"paged", ShadowLayout::paged}});
   shadow.virtual_resolution = whole_number(
-      "virtual_resolution", [](int r) { return r >= 256 && r <= 16384 && (r & (r - 1)) == 0; }, "a power of two, 256 to 16384 texels");
+      "virtual_resolution", [](int r) { return r >= 256 && r <= 262144 && (r & (r - 1)) == 0; },
+      "a power of two, 256 to 16384 texels (to 262144 for directional lights)");
   shadow.page_size = whole_number("page_size", [](int p) { return p == 32 || p == 64 || p == 128; }, "32, 64 or 128 texels");
   if (object.optional("page_pool_mib")) {
     shadow.page_pool_mib = object.number("page_pool_mib");

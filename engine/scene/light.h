@@ -59,7 +59,7 @@ struct ShadowSettings {
   // that they are finite numbers.
   std::map<std::string, double> parameters;
   ShadowLayout layout = ShadowLayout::dense;
-  int virtual_resolution = 16384;  // paged: level-0 texels per side, a power of two, 256 to 16384
+  int virtual_resolution = 16384;  // paged: level-0 texels per side, a power of two, 256 to 16384 (262144 directional)
   int page_size = 64;              // paged: texels per page side: 32, 64 or 128
   double page_pool_mib = 32.0;     // paged: the light's page pool (a point light's six faces share it)
   float page_lod_bias = 0.0f;      // paged: levels added to every receiver's request (> 0: coarser)

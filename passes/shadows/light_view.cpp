@@ -147,14 +147,31 @@ LightView finish_view(LightView v, uint32_t resolution) {
 
 }  // namespace
 
-LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size) {
+LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size,
+                    uint32_t max_viewport) {
   LightView v = virtual_view;
   const float scale = float(1u << level);
   v.texel_size_base *= scale;
   v.texel_size_per_depth *= scale;
-  v.raster_resolution = std::max(virtual_view.resolution >> level, 1u);
-  v.raster_origin = page * page_size;
   v.resolution = page_size;
+  const uint32_t raster = std::max(virtual_view.resolution >> level, 1u);
+  if (raster <= max_viewport) {
+    v.raster_resolution = raster;
+    v.raster_origin = page * page_size;
+    return v;
+  }
+  // Clip x, y (before the divide by w, so a spot light's too) moved and scaled so that the
+  // page's part of the raster's [-1, 1] becomes the whole of it.
+  const float pages = float(raster / page_size);
+  const glm::vec2 centre = (glm::vec2(page) + 0.5f) / pages * 2.0f - 1.0f;
+  glm::mat4 crop(1.0f);
+  crop[0][0] = crop[1][1] = pages;
+  crop[3][0] = -centre.x * pages;
+  crop[3][1] = -centre.y * pages;
+  v.light_from_world = crop * virtual_view.light_from_world;
+  v.world_from_light = glm::inverse(v.light_from_world);
+  v.raster_resolution = 0;
+  v.raster_origin = glm::uvec2(0u);
   return v;
 }
 

@@ -44,8 +44,13 @@ struct LightView {
 };
 
 // Page `page` (in pages) of level `level` of a paged map whose level 0 is
-// `virtual_view` (its resolution the virtual one): a window of page_size texels.
-LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size);
+// `virtual_view` (its resolution the virtual one): a window of page_size texels. A level
+// no wider than `max_viewport` texels is rasterized whole with the page as its render
+// area (raster_origin), so that the page holds exactly the texels a dense map of that
+// level would; a wider one (a directional light's clipmap levels) has a projection of
+// its own, cropped to the page.
+LightView page_view(const LightView& virtual_view, uint32_t level, glm::uvec2 page, uint32_t page_size,
+                    uint32_t max_viewport);
 
 // What `box` covers of the map's uv square seen from the light, conservatively (the
 // rectangle around its corners' projections, clipped to the square): empty when it lies

@@ -45,20 +45,9 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
 
 void ShadowMaps::set_lights(const std::vector<scene::Light>& lights, const scene::Bounds& casters,
                             const ShadowOptions& options, const std::vector<CasterObject>& objects) {
-  for (size_t i = 0; i < lights.size(); ++i) {
-    check_light_settings(lights[i], i);
-    // A page is rasterized with its level's whole raster as the viewport, moved so the
-    // page lands on the framebuffer (passes/shadows/capture/capture_lists.h).
-    const int virtual_resolution = lights[i].shadow.virtual_resolution;
-    const gpu::DeviceInfo& device = ctx_.info();
-    if (lights[i].shadow.layout == scene::ShadowLayout::paged &&
-        (uint32_t(virtual_resolution) > device.max_viewport_dimension ||
-         -float(virtual_resolution) < device.viewport_bounds_min))
-      throw std::invalid_argument(light_display_name(lights[i], i) + ": a virtual map of " +
-                                  std::to_string(virtual_resolution) + " texels is wider than this device's viewports (" +
-                                  std::to_string(device.max_viewport_dimension) +
-                                  "); lower shadow.virtual_resolution (--virtual-res)");
-  }
+  // (A paged level wider than the device's viewports is captured page by page with
+  // cropped projections: page_view().)
+  for (size_t i = 0; i < lights.size(); ++i) check_light_settings(lights[i], i);
   if (options.smoke_samples_per_segment < 1 || options.smoke_samples_per_segment > 255)
     throw std::invalid_argument("smoke capture: " + std::to_string(options.smoke_samples_per_segment) +
                                 " samples per segment; use 1 to 255");

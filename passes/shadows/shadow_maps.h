@@ -189,6 +189,7 @@ class ShadowMaps {
     std::vector<PageBuild> page_builds;  // paged maps: the pages it built
     PageStats pages;                     // and the pool as it left it
     std::vector<uint32_t> page_table;    // the table its lookups read
+    glm::uvec2 page_window_centre{0u};   // where the table's clipmap windows were
     // The regions its graph imported, which must outlive its execution (held by pointer:
     // the graph keeps their addresses).
     std::vector<std::unique_ptr<gpu::Buffer>> page_buffers;
@@ -248,6 +249,7 @@ class ShadowMaps {
   // shadow_maps_views.cpp: the light views.
   LightView initial_view(const MapState& map) const;
   void update_views(const View& camera);
+  void move_page_windows(const View& camera);
   // shadow_maps_records.cpp: the frame's GpuShadow records.
   GpuShadow gpu_shadow(const MapState& map, const View& camera) const;
   std::vector<GpuShadow> frame_records(const View& camera) const;
@@ -258,11 +260,17 @@ class ShadowMaps {
   CaptureLists add_capture_lists(rg::Graph& graph, const std::string& prefix, const LightView& view, bool sort,
                                  uint64_t capacity, rg::BufferHandle counter, const ShadowCasters& casters) const;
   void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
+  void add_list_copy(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                     const gpu::Buffer& target_heads, const gpu::Buffer& target_nodes, uint32_t resolution,
+                     uint64_t node_bytes, ShadowInputs& inputs) const;
+  void add_page_list_copy(rg::Graph& graph, DeclaredMap& declared, const MapState& map, const PageBuild& page,
+                          const std::string& prefix, const CaptureLists& lists, ShadowInputs& inputs) const;
   ShadowCasters casters_of(const MapState& map, const ShadowCasters& all) const;
   ShadowCasters select_casters(const ShadowCasters& all, const std::vector<uint32_t>& objects) const;
   // shadow_maps_pages.cpp: paged maps (shadow.layout "paged").
   static bool is_paged(const LightState& light) { return light.light.shadow.layout == scene::ShadowLayout::paged; }
   // The light's pool in pages, held in the atlas after its first map's table.
+  void place_list_pool(MapState& map, uint64_t& heads, uint64_t& nodes);
   uint32_t pool_slots_in_atlas(const MapState& map) const { return map.page_face == 0 ? map.pages->slots() : 0u; }
   uint64_t page_table_bytes(const MapState& map) const;
   uint64_t page_counter_stride() const;

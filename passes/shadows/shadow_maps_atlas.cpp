@@ -63,8 +63,8 @@ TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
 // What a map takes of the atlas: its bytes, aligned as the atlas places it (0: no map).
 uint64_t ShadowMaps::atlas_bytes(const MapState& map) const {
   const LightState& light = lights_[map.light];
+  if (is_paged(light)) return round_up(paged_atlas_bytes(map), kAtlasAlignment);  // a table at least
   if (!light.technique->has_map()) return 0;
-  if (is_paged(light)) return round_up(paged_atlas_bytes(map), kAtlasAlignment);
   return round_up(light.technique->map_bytes(light.light.shadow, map.map_state), kAtlasAlignment);
 }
 
@@ -134,7 +134,6 @@ void ShadowMaps::create_atlas() {
              gpu::MemoryLocation::DeviceLocal, "shadow map atlas", "the lights' shadow.resolution or nodes"});
   for (MapState& map : maps_) {
     const LightState& light = lights_[map.light];
-    if (!light.technique->has_map()) continue;
     if (map.pages) {  // the page table, then (the light's first map) the light's pool
       const uint64_t table = page_table_bytes(map);
       map.map = gpu::Buffer::region(atlas_, map.atlas_offset, paged_atlas_bytes(map), map.prefix + " paged avsm map");
@@ -154,6 +153,13 @@ std::string ShadowMaps::list_readers() const {
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     const MapState& first = maps_[lights_[i].first_map];
     if (!first.lookups_read_lists) continue;
+    if (first.pages) {  // a pool of pages of lists
+      const scene::ShadowSettings& s = lights_[i].light.shadow;
+      named.emplace_back(uint64_t(first.pages->slots()) * paged_slot_bytes(s) / 4,
+                         light_display_name(lights_[i].light, i) + " page pool of " +
+                             std::to_string(int(s.page_pool_mib)) + " MiB (shadow.page_pool_mib)");
+      continue;
+    }
     const uint64_t side = first.map_state.layout.resolution;
     named.emplace_back(side * side * lights_[i].map_count,
                        light_display_name(lights_[i].light, i) + " " + std::to_string(side) + "x" + std::to_string(side) +
@@ -174,6 +180,10 @@ void ShadowMaps::create_list_buffers() {
                                                            ctx_.info().max_storage_buffer_range / readers);
   uint64_t heads = 0, nodes = 0;
   for (MapState& map : maps_) {
+    if (map.pages && map.lookups_read_lists) {  // a pool of pages of lists, one per light
+      place_list_pool(map, heads, nodes);
+      continue;
+    }
     const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
     const uint64_t limit = (map.lookups_read_lists ? share : options_.capture_limit_bytes) / kCaptureSegmentBytes;
     // A first guess of 8 segments per texel; finish_frame() grows it to what the scene needs.
@@ -202,10 +212,32 @@ void ShadowMaps::create_list_buffers() {
   for (MapState& map : maps_) {
     if (!map.lookups_read_lists) continue;
     const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
-    map.list_heads = gpu::Buffer::region(list_heads_, map.list_heads_offset, texels * sizeof(uint32_t), map.prefix + " looked-up list heads");
-    map.list_nodes = gpu::Buffer::region(list_nodes_, map.list_nodes_offset, map.capacity * kCaptureSegmentBytes,
+    // A paged map's regions: its light's whole pool (each page build copies into its slot).
+    const uint64_t slots = map.pages ? map.pages->slots() : 1;
+    map.list_heads = gpu::Buffer::region(list_heads_, map.list_heads_offset, slots * texels * sizeof(uint32_t),
+                                         map.prefix + " looked-up list heads");
+    map.list_nodes = gpu::Buffer::region(list_nodes_, map.list_nodes_offset, slots * map.capacity * kCaptureSegmentBytes,
                                          map.prefix + " looked-up list nodes");
   }
+}
+
+// A paged light's pool of lists (shadow.technique "uncompressed"): per slot, a page's
+// heads and paged_list_slot_segments() segments, placed with the light's first map and
+// shared by its faces. Its page captures hold no more than a slot.
+void ShadowMaps::place_list_pool(MapState& map, uint64_t& heads, uint64_t& nodes) {
+  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
+  map.capacity = paged_list_slot_segments(s);
+  if (map.page_face != 0) {
+    const MapState& first = maps_[lights_[map.light].first_map];
+    map.list_heads_offset = first.list_heads_offset;
+    map.list_nodes_offset = first.list_nodes_offset;
+    return;
+  }
+  const uint64_t slots = map.pages->slots(), texels = uint64_t(s.page_size) * uint64_t(s.page_size);
+  map.list_heads_offset = heads;
+  map.list_nodes_offset = nodes;
+  heads += round_up(slots * texels * sizeof(uint32_t), kAtlasAlignment);
+  nodes += round_up(slots * map.capacity * kCaptureSegmentBytes, kAtlasAlignment);
 }
 
 }  // namespace avsm::passes

@@ -88,6 +88,7 @@ void add_map_stats(LightShadowStats& light, const LightShadowStats& map) {
   light.capture_requested += map.capture_requested;
   light.capture_bytes += map.capture_bytes;
   light.overflowed = light.overflowed || map.overflowed;
+  light.page_slot_full = light.page_slot_full || map.page_slot_full;
   light.next_capture_capacity += map.next_capture_capacity;
   light.grew = light.grew || map.grew;
   if (map.dsm_pool) {
@@ -160,6 +161,9 @@ void ShadowMaps::finish_frame(uint32_t slot) {
     for (gpu::Buffer* replaced : {&atlas_, &list_heads_, &list_nodes_}) retired_.retire(std::move(*replaced));
     create_list_buffers();
     create_atlas();
+    // The new buffers hold none of the pages the tables list: every page is built again.
+    for (const LightState& light : lights_)
+      if (maps_[light.first_map].pages) maps_[light.first_map].pages->invalidate_all();
   }
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     LightShadowStats& stats = per_light[i];
@@ -173,6 +177,9 @@ void ShadowMaps::finish_frame(uint32_t slot) {
     stats.lowered_from = light.lowered_from;
     for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m)
       stats.map_bytes += maps_[m].map ? maps_[m].map.size() : 0;  // after a pool growth: the new map
+    const MapState& first = maps_[light.first_map];
+    if (first.pages && first.lookups_read_lists)  // a pool of pages of lists, in the list buffers
+      stats.map_bytes += first.list_heads.size() + first.list_nodes.size();
     stats_[i] = stats;
   }
 }

@@ -89,18 +89,25 @@ CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const std::string& 
 // buffers, which every camera pass binds whole.
 void ShadowMaps::add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists,
                                ShadowInputs& inputs) const {
+  add_list_copy(graph, map.prefix, lists, map.list_heads, map.list_nodes, map.view.resolution,
+                map.capacity * kCaptureSegmentBytes, inputs);
+}
+
+// The same into regions `target_heads` and `target_nodes` (of the looked-up list buffers)
+// of lists captured at `resolution`, `node_bytes` of their nodes.
+void ShadowMaps::add_list_copy(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
+                               const gpu::Buffer& target_heads, const gpu::Buffer& target_nodes, uint32_t resolution,
+                               uint64_t node_bytes, ShadowInputs& inputs) const {
   const rg::ImportState after = rg::ImportState::of(rg::Usage::StorageRead);
-  rg::BufferHandle heads = rg::vulkan::import(graph, map.prefix + " looked-up list heads", map.list_heads,
+  rg::BufferHandle heads = rg::vulkan::import(graph, prefix + " looked-up list heads", target_heads,
                                               rewritten_after(after), after);
-  rg::BufferHandle nodes = rg::vulkan::import(graph, map.prefix + " looked-up list nodes", map.list_nodes,
+  rg::BufferHandle nodes = rg::vulkan::import(graph, prefix + " looked-up list nodes", target_nodes,
                                               rewritten_after(after), after);
   struct Data {
     rg::TextureHandle source_heads;
     rg::BufferHandle source_nodes, heads, nodes;
   };
-  const uint32_t resolution = map.view.resolution;
-  const uint64_t node_bytes = map.capacity * kCaptureSegmentBytes;
-  const Data& copy = graph.add_pass<Data>(map.prefix + " copy lists", rg::QueueType::Transfer,
+  const Data& copy = graph.add_pass<Data>(prefix + " copy lists", rg::QueueType::Transfer,
       [&](rg::PassBuilder& b, Data& d) {
         d.source_heads = b.read(lists.heads, rg::Usage::TransferSrc);
         d.source_nodes = b.read(lists.nodes, rg::Usage::TransferSrc);

@@ -21,22 +21,28 @@ uint64_t ShadowMaps::page_counter_stride() const {
 }
 
 uint64_t ShadowMaps::page_table_bytes(const MapState& map) const {
-  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
-  return round_up(uint64_t(shared::page_table_entries(uint32_t(s.virtual_resolution), uint32_t(s.page_size))) * 4,
-                  kAtlasAlignment);
+  const scene::Light& light = lights_[map.light].light;
+  const uint32_t entries = shared::page_table_entries(uint32_t(light.shadow.virtual_resolution),
+                                                      uint32_t(light.shadow.page_size), paged_window_pages(light));
+  return round_up(uint64_t(entries) * 4, kAtlasAlignment);
 }
 
+// The table, then (the light's first map) the pool of AVSM pages; a pool of lists lives
+// in the looked-up list buffers instead (create_list_buffers()).
 uint64_t ShadowMaps::paged_atlas_bytes(const MapState& map) const {
-  return page_table_bytes(map) + uint64_t(pool_slots_in_atlas(map)) * paged_slot_bytes(lights_[map.light].light.shadow);
+  const scene::ShadowSettings& s = lights_[map.light].light.shadow;
+  if (paged_keeps_lists(s)) return page_table_bytes(map);
+  return page_table_bytes(map) + uint64_t(pool_slots_in_atlas(map)) * paged_slot_bytes(s);
 }
 
 // One table and pool for all of a light's maps: a point light's faces take the slots
 // their receivers ask for, from one pool of shadow.page_pool_mib.
 std::shared_ptr<PageTable> ShadowMaps::create_page_table(const LightState& light) const {
   const scene::ShadowSettings& s = light.light.shadow;
+  const uint32_t window = paged_window_pages(light.light);
   auto pages = std::make_shared<PageTable>(uint32_t(s.virtual_resolution), uint32_t(s.page_size),
-                                           paged_pool_slots(s, 1), paged_fallback_level(s, light.map_count),
-                                           light.map_count);
+                                           paged_pool_slots(s, 1), paged_fallback_level(s, light.map_count, window),
+                                           light.map_count, window);
   if (options_.required_page_level >= 0) pages->require_level(uint32_t(options_.required_page_level));
   return pages;
 }
@@ -100,7 +106,8 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
     if (build.key.face == map.page_face) declared.page_builds.push_back(build);
   declared.pages = map.pages->stats();
   declared.page_table = map.pages->face_table_words(map.page_face);
-  const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+  declared.page_window_centre = map.pages->window_centre();
+  const bool lists = map.lookups_read_lists;  // pages of capture lists (the uncompressed reference)
   const uint64_t bytes_per_slot = paged_slot_bytes(settings);
   std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
   if (!declared.page_builds.empty())
@@ -110,17 +117,24 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
     const PageBuild& page = declared.page_builds[i];
     const std::string prefix = map.prefix + " page " + std::to_string(page.key.level) + "/" +
                                std::to_string(page.key.page.x) + "," + std::to_string(page.key.page.y);
-    const LightView view = page_view(map.view, page.key.level, page.key.page, uint32_t(settings.page_size));
+    const LightView view = page_view(map.view, page.key.level, page.key.page, uint32_t(settings.page_size),
+                                     ctx_.info().max_viewport_dimension);
     const gpu::Buffer& counter_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
         gpu::Buffer::region(map.page_counters[slot], i * page_counter_stride(), 16, prefix + " capture counter")));
     rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-    CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter,
-                                           page_casters(map, casters, footprints, page.key));
+    CaptureLists page_lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter,
+                                                page_casters(map, casters, footprints, page.key));
+    if (lists) {
+      add_page_list_copy(graph, declared, map, page, prefix, page_lists, inputs);
+      continue;
+    }
     const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
         atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
     rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
-    inputs.maps.push_back(builder.add_to_graph({graph, prefix, lists, handle, view, settings, map.map_state}, lists));
+    const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+    inputs.maps.push_back(
+        builder.add_to_graph({graph, prefix, page_lists, handle, view, settings, map.map_state}, page_lists));
   }
   // The light's whole pool (imported once, with its first map), as the lookups read it:
   // kept pages too, built in earlier frames. The pages built above are regions of it,
@@ -128,9 +142,15 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   // the rest from frame to frame.
   if (map.page_face == 0) {
     const std::string name = "light " + std::to_string(map.light) + " page pool";
-    const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
-        gpu::Buffer::region(atlas_, map.page_pool_offset, map.pages->slots() * bytes_per_slot, name)));
-    inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));
+    if (lists) {
+      const rg::ImportState read = rg::ImportState::of(rg::Usage::StorageRead);
+      inputs.lists.push_back(rg::vulkan::import(graph, name + " heads", map.list_heads, read, read));
+      inputs.lists.push_back(rg::vulkan::import(graph, name + " nodes", map.list_nodes, read, read));
+    } else {
+      const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
+          gpu::Buffer::region(atlas_, map.page_pool_offset, map.pages->slots() * bytes_per_slot, name)));
+      inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));
+    }
   }
   // The page table, as plan_builds() left it: pages built above are already in it.
   rg::BufferHandle table = rg::vulkan::import(graph, map.prefix + " page table", map.page_table, rewritten_after(after), after);
@@ -148,6 +168,20 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
         }
       })
       .table);
+}
+
+// A page of lists: its capture's heads and nodes copied into its slot of the light's
+// pool of lists (regions of the looked-up list buffers), where lookups walk them from
+// then on.
+void ShadowMaps::add_page_list_copy(rg::Graph& graph, DeclaredMap& declared, const MapState& map, const PageBuild& page,
+                                    const std::string& prefix, const CaptureLists& lists, ShadowInputs& inputs) const {
+  const uint64_t texels = uint64_t(map.map_state.layout.resolution) * map.map_state.layout.resolution;
+  const uint64_t head_bytes = texels * sizeof(uint32_t), node_bytes = map.capacity * kCaptureSegmentBytes;
+  const gpu::Buffer& heads = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
+      list_heads_, map.list_heads_offset + page.slot * head_bytes, head_bytes, prefix + " looked-up list heads")));
+  const gpu::Buffer& nodes = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
+      list_nodes_, map.list_nodes_offset + page.slot * node_bytes, node_bytes, prefix + " looked-up list nodes")));
+  add_list_copy(graph, prefix, lists, heads, nodes, map.map_state.layout.resolution, node_bytes, inputs);
 }
 
 ShadowCasters ShadowMaps::page_casters(const MapState& map, const ShadowCasters& all,
@@ -175,7 +209,9 @@ std::optional<ShadowMaps::PagedTexel> ShadowMaps::paged_texel(uint32_t light, ui
   if (x >= pages.virtual_resolution() || y >= pages.virtual_resolution()) return std::nullopt;
   for (uint32_t level = 0; level < pages.levels(); ++level) {
     const glm::uvec2 texel = glm::uvec2(x, y) >> level;
-    const uint32_t word = pages.table_words()[pages.entry({level, texel / size, map.page_face})];
+    const PageKey key{level, texel / size, map.page_face};
+    if (!pages.has_entry(key)) continue;  // outside a clipmap level's window
+    const uint32_t word = pages.table_words()[pages.entry(key)];
     if (word == shared::kPageAbsent) continue;
     const glm::uvec2 in_page = texel % size;
     const uint64_t slot_vec4 = (map.page_pool_offset - map.atlas_offset) / sizeof(glm::vec4) +
@@ -215,6 +251,7 @@ uint32_t ShadowMaps::caster_moved(uint32_t object, const scene::Bounds& bounds) 
 // page is built again with more room), and its receivers' requests for the next frame.
 void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& stats) {
   const DeclaredMap& declared = map.declared[slot];
+  const bool lists = map.lookups_read_lists;
   uint64_t most = 0;
   bool overflowed = false;
   for (size_t i = 0; i < declared.page_builds.size(); ++i) {
@@ -223,10 +260,13 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
     most = std::max<uint64_t>(most, counter);
     if (counter <= declared.capacity) continue;
     overflowed = true;
-    // Rebuilt when asked for again, unless the lists cannot grow any more (then reported).
-    if (declared.capacity < options_.capture_limit_bytes / kCaptureSegmentBytes) map.pages->invalidate(declared.page_builds[i].entry);
+    // Rebuilt when asked for again, with more room unless the lists cannot grow any more
+    // (then reported); a page of lists holds what its slot holds, and is reported until
+    // page_segments is raised.
+    if (lists || declared.capacity < options_.capture_limit_bytes / kCaptureSegmentBytes)
+      map.pages->invalidate(declared.page_builds[i].entry);
   }
-  if (most > map.capacity) {
+  if (most > map.capacity && !lists) {
     const uint64_t limit = options_.capture_limit_bytes / kCaptureSegmentBytes;
     map.capacity = std::max(map.capacity, std::min(limit, round_up(most + most / 4, 1024)));
   }
@@ -238,7 +278,8 @@ void ShadowMaps::finish_pages(MapState& map, uint32_t slot, LightShadowStats& st
   stats.overflowed = overflowed;
   stats.next_capture_capacity = map.capacity;
   // Rendering again does better while requested pages wait (the budget, a growing bias).
-  stats.grew = overflowed || (map.page_face == 0 && map.pages->has_pending_requests());
+  stats.grew = (overflowed && !lists) || (map.page_face == 0 && map.pages->has_pending_requests());
+  stats.page_slot_full = overflowed && lists;
 }
 
 // The light's page figures, from its first map, and every face's requests of the frame
@@ -259,7 +300,7 @@ void ShadowMaps::finish_page_requests(MapState& map, uint32_t slot, LightShadowS
       if ((bits[e / 32] >> (e % 32) & 1u) != 0 && table[e] == shared::kPageAbsent) ++stats.pages->pending;
     faces.emplace_back(bits, words);
   }
-  map.pages->add_requests(faces);
+  map.pages->add_requests(faces, map.declared[slot].page_window_centre);
   stats.pages->settling = map.pages->stats().settling;  // its requests moved the bias
 }
 

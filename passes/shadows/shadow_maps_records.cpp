@@ -61,6 +61,9 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
     g.page_lod_bias = settings.page_lod_bias + map.pages->lod_bias();
     g.page_volume_lod_bias = settings.page_volume_lod_bias;
     g.page_fallback_level = map.pages->fallback_level();
+    g.page_window = map.pages->window_pages();
+    g.page_window_centre = map.pages->window_centre();
+    if (map.lookups_read_lists) g.page_slot_nodes = uint32_t(map.capacity);  // its pool's slots of lists
   } else {
     g.page_requests_offset = shared::kNoPageRequests;
   }

@@ -51,6 +51,20 @@ void ShadowMaps::update_views(const View& camera) {
     }
   }
   for (uint32_t i = 0; i < lights_.size(); ++i) views_[i] = maps_[lights_[i].first_map].view;
+  move_page_windows(camera);
+}
+
+// A directional light's paged map keeps its finest levels as windows around the camera
+// (shared/pages.h): they follow it, in whole pages.
+void ShadowMaps::move_page_windows(const View& camera) {
+  for (const LightState& light : lights_) {
+    MapState& map = maps_[light.first_map];
+    if (!map.pages || map.pages->window_pages() == 0) continue;
+    const glm::vec4 clip = map.view.light_from_world * glm::vec4(camera.camera_position, 1.0f);
+    const glm::vec2 uv = glm::clamp(glm::vec2(clip) / clip.w * 0.5f + 0.5f, 0.0f, 1.0f);
+    const uint32_t last = map.pages->virtual_resolution() - 1;
+    map.pages->move_window(glm::min(glm::uvec2(uv * float(map.pages->virtual_resolution())), glm::uvec2(last)));
+  }
 }
 
 std::vector<LightView> ShadowMaps::map_views(uint32_t light) const {

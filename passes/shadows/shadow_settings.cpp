@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "passes/shadows/capture/capture_lists.h"
 #include "passes/shadows/techniques/techniques.h"
 #include "shared/pages.h"
 #include "shared/shadow.h"
@@ -47,7 +48,9 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
   auto refuse = [&](const std::string& why) {
     throw std::invalid_argument(who + ": shadow.layout \"paged\" " + why);
   };
-  if (s.technique != "avsm") refuse("builds AVSM maps only; set shadow.technique to \"avsm\" or shadow.layout to \"dense\"");
+  if (s.technique != "avsm" && !paged_keeps_lists(s))
+    refuse("builds AVSM maps, or keeps the uncompressed reference's lists; set shadow.technique to \"avsm\" or "
+           "\"uncompressed\", or shadow.layout to \"dense\"");
   if (s.build != scene::ShadowBuild::lists)
     refuse("builds pages from capture lists; set shadow.build to \"lists\" or shadow.layout to \"dense\"");
   if (s.cascades > 1 || s.clusters > 1)
@@ -59,14 +62,28 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
   if (s.page_size != 32 && s.page_size != 64 && s.page_size != 128)
     refuse("pages are 32, 64 or 128 texels wide, not " + std::to_string(s.page_size) + "; set shadow.page_size");
   const int v = s.virtual_resolution;
-  if (v < 256 || v > 16384 || (v & (v - 1)) != 0 || v < s.page_size)
-    refuse("needs a virtual resolution that is a power of two, 256 to 16384 texels and at least a page, not " +
+  const int most = int(paged_max_virtual_resolution(light));
+  if (v < 256 || v > most || (v & (v - 1)) != 0 || v < s.page_size)
+    refuse("needs a virtual resolution that is a power of two, 256 to " + std::to_string(most) + " texels " +
+           (most > 16384 ? "" : "(beyond 16384 for directional lights) ") + "and at least a page, not " +
            std::to_string(v) + "; set shadow.virtual_resolution");
   if (!(s.page_pool_mib > 0.0)) refuse("needs a page pool; set shadow.page_pool_mib above 0");
   if (s.page_builds_per_frame < 0) refuse("needs shadow.page_builds_per_frame of 0 (no limit) or more");
 }
 
+bool paged_keeps_lists(const scene::ShadowSettings& s) {
+  const ShadowTechnique* technique = find_shadow_technique(s.technique);
+  return technique != nullptr && technique->reads_capture_lists();
+}
+
+uint64_t paged_list_slot_segments(const scene::ShadowSettings& s) {
+  const uint64_t per_texel = uint64_t(shadow_technique(s.technique).parameter(s, kPageSegmentsParameter));
+  return uint64_t(s.page_size) * uint64_t(s.page_size) * per_texel;
+}
+
 uint64_t paged_slot_bytes(const scene::ShadowSettings& s) {
+  const uint64_t texels = uint64_t(s.page_size) * uint64_t(s.page_size);
+  if (paged_keeps_lists(s)) return texels * sizeof(uint32_t) + paged_list_slot_segments(s) * kCaptureSegmentBytes;
   return uint64_t(shared::page_slot_vec4s(uint32_t(s.page_size), uint32_t(s.nodes))) * 16;  // vec4s of 16 bytes
 }
 
@@ -75,7 +92,16 @@ uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps) {
   return uint32_t(std::clamp<uint64_t>(pool / paged_slot_bytes(s), 1, 1u << 20));
 }
 
-uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps) {
+uint32_t paged_window_pages(const scene::Light& light) {
+  if (light.type != scene::LightType::directional || light.shadow.page_size <= 0) return 0;
+  return kClipmapWindowTexels / uint32_t(light.shadow.page_size);
+}
+
+uint32_t paged_max_virtual_resolution(const scene::Light& light) {
+  return light.type == scene::LightType::directional ? 262144u : 16384u;
+}
+
+uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps, uint32_t window) {
   const uint32_t virtual_res = uint32_t(s.virtual_resolution), page = uint32_t(s.page_size);
   const uint32_t levels = shared::page_level_count(virtual_res, page);
   uint32_t level = 0;
@@ -83,7 +109,9 @@ uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps) {
   // The pages of `level` and every level above it, against the pool.
   const uint32_t slots = paged_pool_slots(s, maps);
   while (level + 1 < levels &&
-         shared::page_table_entries(virtual_res, page) - shared::page_table_level_first(virtual_res, page, level) > slots)
+         shared::page_table_entries(virtual_res, page, window) -
+                 shared::page_table_level_first(virtual_res, page, window, level) >
+             slots)
     ++level;
   return level;
 }

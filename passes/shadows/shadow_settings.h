@@ -42,7 +42,17 @@ void check_light_settings(const scene::Light& light, size_t index);
 // The part of check_light_settings() for shadow.layout "paged" (`who` names the light).
 void check_paged_settings(const scene::Light& light, const std::string& who);
 
-// The bytes of one page of a paged map: page_size^2 AVSM texels of shadow.nodes.
+// Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose
+// lookups walk them) rather than AVSM curves.
+bool paged_keeps_lists(const scene::ShadowSettings& s);
+// Capture segments one page of lists holds: the technique's parameter "page_segments"
+// per texel (passes/shadows/techniques/uncompressed/uncompressed.cpp). Fixed with the pool,
+// so a page whose capture asks for more is reported as overflowed, and built again when
+// next asked for.
+inline constexpr const char* kPageSegmentsParameter = "page_segments";
+uint64_t paged_list_slot_segments(const scene::ShadowSettings& s);
+// The bytes of one page of a paged map: page_size^2 AVSM texels of shadow.nodes, or a
+// page of capture lists (a head per texel and paged_list_slot_segments() segments).
 uint64_t paged_slot_bytes(const scene::ShadowSettings& s);
 // A paged light's pool in pages of each of its `maps` virtual maps (a point light's six
 // faces split it evenly).
@@ -51,8 +61,21 @@ uint32_t paged_pool_slots(const scene::ShadowSettings& s, uint32_t maps);
 // dense map of shadow.resolution, so that however far the pool's LOD bias goes, receivers
 // read no coarser texels than the dense map has and an overflow never loses a shadow that
 // map shows. The pool (of each of `maps` virtual maps) must hold that level and the ones
-// above; where it cannot, the finest coarser level it holds.
-uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps);
+// above (of a clipmap level, its window: `window` pages per side); where it cannot, the
+// finest coarser level it holds.
+uint32_t paged_fallback_level(const scene::ShadowSettings& s, uint32_t maps, uint32_t window = 0);
+
+// Texels per side of a clipmap level's window: a directional light's paged map covers
+// the scene, and its levels finer than this keep only the pages around the camera
+// (shared/pages.h). 4096 texels at the finest matched level span about 3x the distance
+// from the camera to what it looks at, with a 60° field of view at 1280 pixels.
+inline constexpr uint32_t kClipmapWindowTexels = 4096;
+// Pages per side of a paged light's clipmap windows: directional lights'; 0 for others.
+uint32_t paged_window_pages(const scene::Light& light);
+// The largest virtual resolution of a light's paged map: a directional light's levels
+// beyond the window are windows, so its table stays small; a whole level of 16384 texels
+// in pages of 32 is a table of 350,000 words.
+uint32_t paged_max_virtual_resolution(const scene::Light& light);
 
 // "light 2 'key'": how messages name a light.
 std::string light_display_name(const scene::Light& light, size_t index);

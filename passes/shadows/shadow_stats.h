@@ -52,6 +52,7 @@ struct LightShadowStats {
   uint64_t capture_requested = 0;       // segments the captures asked for
   uint64_t capture_bytes = 0;           // heads + node buffer this frame
   bool overflowed = false;              // requested > capacity: segments were dropped
+  bool page_slot_full = false;          // paged lists: a page's capture outgrew its slot (page_segments)
   uint64_t next_capture_capacity = 0;   // after growth
   std::optional<DsmPoolStats> dsm_pool;  // technique dsm only
   std::optional<FixedBuildStats> fixed_build;  // build fixed only (the lists above are then

@@ -103,13 +103,14 @@ const uint kReceiverVolume = 2u;   // smoke: a paged map's page_volume_lod_bias 
 
 bool shadow_is_paged(GpuShadow s) { return s.page_size != kDenseLayout; }
 
-// Page-table entry of the page holding `texel` of `level`, and its word (0: absent).
+// Page-table entry of the page holding `texel` of `level` (kNoPageEntry outside a
+// clipmap level's window), and its word (0: absent).
 uint shadow_page_entry(GpuShadow s, uint level, ivec2 texel) {
-  uvec2 page = uvec2(texel) / s.page_size;
-  return page_table_level_first(s.resolution, s.page_size, level) +
-         page.y * page_grid(s.resolution, s.page_size, level) + page.x;
+  return page_table_entry(s.resolution, s.page_size, s.page_window, level, uvec2(texel) / s.page_size,
+                          s.page_window_centre);
 }
 uint shadow_page_word(GpuShadow s, uint entry) {
+  if (entry == kNoPageEntry) return kPageAbsent;
   return floatBitsToUint(shadow_atlas[s.map_offset + entry / 4u][entry % 4u]);
 }
 
@@ -117,7 +118,7 @@ uint shadow_page_word(GpuShadow s, uint entry) {
 // most receivers ask for pages their neighbours already asked for).
 void shadow_request_page(GpuShadow s, uint entry) {
 #ifdef AVSM_SHADOW_PAGE_REQUESTS_BINDING
-  if (s.page_requests_offset == kNoPageRequests) return;
+  if (s.page_requests_offset == kNoPageRequests || entry == kNoPageEntry) return;
   uint word = s.page_requests_offset + entry / 32u, bit = 1u << (entry % 32u);
   if ((shadow_page_requests[word] & bit) == 0u) atomicOr(shadow_page_requests[word], bit);
 #endif
@@ -143,10 +144,12 @@ float shadow_paged_lod(GpuShadow s, vec3 p, float d, uint receiver) {
 }
 
 // The finest level at or above `level` whose pages hold all four bilinear taps around
-// uv; `mark`: ask for the pages of `level` itself. The coarsest level is one page that
-// is always resident, so there is always an answer.
+// uv; `mark`: ask for the pages of `level` itself, or, where they lie outside its
+// clipmap window, of the finest coarser level whose window holds them. The coarsest
+// level is one page that is always resident, so there is always an answer.
 uint shadow_paged_resident_level(GpuShadow s, vec2 uv, uint level, bool mark) {
   uint found = s.mip_count - 1u;
+  bool ask = mark;
   for (uint k = 0u; k < kMaxPageLevels; ++k) {  // a constant bound: lavapipe miscompiles per-lane ones
     uint l = level + k;
     if (l >= s.mip_count - 1u) break;
@@ -155,11 +158,13 @@ uint shadow_paged_resident_level(GpuShadow s, vec2 uv, uint level, bool mark) {
     ivec2 lo = clamp(base, ivec2(0), ivec2(size - 1)), hi = clamp(base + 1, ivec2(0), ivec2(size - 1));
     uint e00 = shadow_page_entry(s, l, lo), e10 = shadow_page_entry(s, l, ivec2(hi.x, lo.y));
     uint e01 = shadow_page_entry(s, l, ivec2(lo.x, hi.y)), e11 = shadow_page_entry(s, l, hi);
-    if (mark && k == 0u) {
+    bool in_window = e00 != kNoPageEntry && e10 != kNoPageEntry && e01 != kNoPageEntry && e11 != kNoPageEntry;
+    if (ask && in_window) {
       shadow_request_page(s, e00);
       if (e10 != e00) shadow_request_page(s, e10);
       if (e01 != e00) shadow_request_page(s, e01);
       if (e11 != e10 && e11 != e01) shadow_request_page(s, e11);
+      ask = false;
     }
     if (shadow_page_word(s, e00) != kPageAbsent && shadow_page_word(s, e10) != kPageAbsent &&
         shadow_page_word(s, e01) != kPageAbsent && shadow_page_word(s, e11) != kPageAbsent) {
@@ -171,13 +176,16 @@ uint shadow_paged_resident_level(GpuShadow s, vec2 uv, uint level, bool mark) {
 }
 
 // Where texel `texel` of `level` lives: the record of its page's slot (a dense map of
-// page_size texels, one level) and the texel in it. False when the page is absent.
+// page_size texels, one level; or, for the uncompressed reference, its capture lists)
+// and the texel in it. False when the page is absent.
 bool shadow_page_texel(GpuShadow s, uint level, ivec2 texel, out GpuShadow page, out ivec2 page_texel) {
   page = s;
   page_texel = texel;
   uint word = shadow_page_word(s, shadow_page_entry(s, level, texel));
   if (word == kPageAbsent) return false;
   page.map_offset = s.page_pool_offset + (word - 1u) * page_slot_vec4s(s.page_size, s.node_count);
+  page.list_heads_offset = s.list_heads_offset + (word - 1u) * s.page_size * s.page_size;
+  page.list_nodes_offset = s.list_nodes_offset + (word - 1u) * s.page_slot_nodes;
   page.resolution = s.page_size;
   page.mip_count = 1u;
   page_texel = texel % int(s.page_size);
@@ -353,6 +361,11 @@ vec3 shadow_surface_point(GpuShadow s, vec3 p, vec3 normal, vec3 to_light) {
   if (shadow_is_paged(s)) {
     float lod = shadow_paged_lod(s, p, d, kReceiverSurface);
     texel *= exp2(floor(lod)) * (1.0 + shadow_paged_coarser_weight(lod));
+    // AVSM nodes keep depth in 16 bits over the light's depth range (shared/map_layouts.h):
+    // the offset clears two of those steps too, which the finest levels of a large map's
+    // texels do not (a 262144 map over a 150 m avenue: 2.4 mm texels, 3 mm steps, and
+    // streaks of self-shadowing on the lit ground without this).
+    texel = max(texel, 2.0 * (s.depth_range.y - s.depth_range.x) / 65535.0);
   }
   return p + n * (s.camera_position.w * texel);
 }

@@ -71,6 +71,7 @@ using uint = uint32_t;
 #define GPU_FUNCTION inline
 
 namespace avsm::shared {
+using glm::clamp;
 using glm::max;
 using glm::min;
 }  // namespace avsm::shared

@@ -68,6 +68,9 @@ GPU_CONST(uint, kMaxViewsPerLight, 8u)
   F(uint, page_requests_offset) /* paged: its request bits' first word, or kNoPageRequests */              \
   F(float, page_lod_bias)   /* paged: levels added to every receiver's (coarser when > 0) */                 \
   F(uint, page_fallback_level) /* paged: the coarsest level receivers ask for (passes/shadows/shadow_settings.h) */ \
+  F(uint, page_window)      /* paged: pages per side of a clipmap level's window, 0: whole levels */        \
+  F(uvec2, page_window_centre) /* paged: the level-0 texel the windows are centred on (the camera's) */      \
+  F(uint, page_slot_nodes)  /* paged lists (uncompressed): capture segments per slot of the light's pool */   \
   F(uint, padding1)                                                                                          \
   F(uint, padding2)                                                                                          \
   F(uint, padding3)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include "shared/pages.h"
@@ -30,13 +31,69 @@ TEST(PageTableTest, LevelsRunFromTheVirtualResolutionDownToOnePage) {
   const PageTable table(1024, 64, 8);
   EXPECT_EQ(table.levels(), 5u);  // 1024, 512, 256, 128, 64 texels
   EXPECT_EQ(table.entries(), 16u * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1);
-  EXPECT_EQ(shared::page_table_entries(1024, 64), table.entries());
+  EXPECT_EQ(shared::page_table_entries(1024, 64, 0), table.entries());
   for (uint32_t e = 0; e < table.entries(); ++e) EXPECT_EQ(table.entry(table.key(e)), e);
   EXPECT_EQ(table.key(table.entries() - 1), (PageKey{4, {0, 0}}));
   EXPECT_EQ(table.entry({1, {3, 2}}), 256u + 2 * 8 + 3);
   EXPECT_THROW(table.entry({0, {16, 0}}), std::out_of_range);
   EXPECT_THROW(PageTable(1000, 64, 8), std::invalid_argument);
   EXPECT_THROW(PageTable(1024, 64, 0), std::invalid_argument);
+}
+
+// A clipmap (a directional light's map): 4096 texels in pages of 64 (a grid of 64) with
+// windows of 16 pages, so levels 0 and 1 keep 16x16 pages around the camera and levels
+// 2 (16x16 pages) to 6 are whole.
+TEST(PageTableTest, ClipmapLevelsKeepAWindowAroundTheCamera) {
+  PageTable table(4096, 64, 64, ~0u, 1, 16);
+  EXPECT_EQ(table.levels(), 7u);
+  EXPECT_EQ(table.entries(), 2u * 16 * 16 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1);
+  EXPECT_EQ(shared::page_table_entries(4096, 64, 16), table.entries());
+  EXPECT_TRUE(table.has_entry({0, {15, 15}}));
+  EXPECT_FALSE(table.has_entry({0, {16, 0}}));  // the window starts at the map's corner
+  EXPECT_THROW(table.entry({0, {16, 0}}), std::out_of_range);
+  EXPECT_TRUE(table.has_entry({2, {15, 15}}));  // a whole level
+  table.move_window({2048, 2048});              // level 0: page 32, a window from 24; level 1: page 16, from 8
+  EXPECT_TRUE(table.has_entry({0, {24, 39}}));
+  EXPECT_FALSE(table.has_entry({0, {23, 30}}));
+  EXPECT_FALSE(table.has_entry({0, {30, 40}}));
+  EXPECT_TRUE(table.has_entry({1, {8, 23}}));
+  EXPECT_FALSE(table.has_entry({1, {24, 8}}));
+  for (uint32_t e = 0; e < table.entries(); ++e) EXPECT_EQ(table.entry(table.key(e)), e);
+  table.move_window({4095, 0});  // kept inside the level: the last 16 pages
+  EXPECT_TRUE(table.has_entry({0, {63, 0}}));
+  EXPECT_TRUE(table.has_entry({0, {48, 15}}));
+  EXPECT_FALSE(table.has_entry({0, {47, 0}}));
+  EXPECT_THROW(PageTable(4096, 64, 8, ~0u, 1, 12), std::invalid_argument);
+}
+
+// Pages that stay in the window keep their slot and entry as the camera moves; a page
+// that leaves gives both up; requests marked before the move land on today's entries.
+TEST(PageTableTest, AMovingWindowKeepsThePagesThatStayInIt) {
+  PageTable table(4096, 64, 64, ~0u, 1, 16);
+  table.move_window({2048, 2048});  // level 0: pages 24..39
+  const PageKey left{0, {25, 25}}, stays{0, {38, 38}};
+  const uint32_t stays_entry = table.entry(stays), left_entry = table.entry(left);
+  table.add_requests(requests(table, {table.entry(left), stays_entry}));
+  table.plan_builds(0);
+  ASSERT_TRUE(table.resident(table.entry(left)));
+  ASSERT_TRUE(table.resident(stays_entry));
+  const glm::uvec2 marked_at = table.window_centre();
+  const std::vector<uint32_t> marked = requests(table, {table.entry(left), stays_entry});
+
+  EXPECT_EQ(table.move_window({2048 + 3 * 64, 2048}), 1u);  // pages 27..42: (25, 25) leaves
+  EXPECT_FALSE(table.has_entry(left));
+  EXPECT_EQ(table.entry(stays), stays_entry);  // toroidal: the same entry
+  EXPECT_TRUE(table.resident(stays_entry));
+  // The last frame's requests, marked under the old window: (25, 25) is outside now.
+  table.add_requests(std::vector<std::span<const uint32_t>>{marked}, marked_at);
+  EXPECT_EQ(table.stats().requested, 1u);
+  const std::vector<PageBuild> builds = table.plan_builds(0);
+  EXPECT_TRUE(builds.empty()) << "the page that stayed is current";
+  EXPECT_EQ(table.stats().evicted, 1u);  // the page that left the window
+  EXPECT_EQ(table.stats().resident, 2u);  // (38, 38) and the root
+  // The entry (25, 25) held now stands for a page that came in: absent until asked for.
+  EXPECT_EQ(table.entry({0, {41, 25}}), left_entry);
+  EXPECT_FALSE(table.resident(left_entry));
 }
 
 TEST(PageTableTest, TheCoarsestPageIsBuiltFirstAndRequestedPagesCoarsestFirst) {

@@ -72,7 +72,7 @@ struct PagedMapContents {
 PagedMapContents read_pages(gpu::Context& ctx, const gpu::Buffer& map, uint32_t virtual_resolution, uint32_t page_size,
                             uint32_t vec4s) {
   const std::vector<uint32_t> words = read_words(ctx, map);
-  const uint32_t entries = shared::page_table_entries(virtual_resolution, page_size);
+  const uint32_t entries = shared::page_table_entries(virtual_resolution, page_size, 0);
   const size_t table_words = (size_t(entries) * 4 + 255) / 256 * 256 / 4;  // the table's bytes, as the atlas aligns them
   const size_t page_words = size_t(page_size) * page_size * vec4s * 4;
   PagedMapContents contents;
@@ -129,8 +129,8 @@ TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit)
       const std::vector<uint32_t> paged_map = read_words(ctx(), paged.shadows().avsm_map(light));
       ASSERT_EQ(dense_map.size(), size_t(kDense) * kDense * kVec4s * 4) << name;
       const uint32_t grid = kDense / kPage;
-      const uint32_t first = shared::page_table_level_first(kVirtual, kPage, kLevel);
-      const uint32_t table_words = uint32_t((shared::page_table_entries(kVirtual, kPage) * 4 + 255) / 256 * 256 / 4);
+      const uint32_t first = shared::page_table_level_first(kVirtual, kPage, 0, kLevel);
+      const uint32_t table_words = uint32_t((shared::page_table_entries(kVirtual, kPage, 0) * 4 + 255) / 256 * 256 / 4);
       size_t differing = 0, shadowed = 0;
       for (uint32_t py = 0; py < grid; ++py)
         for (uint32_t px = 0; px < grid; ++px) {
@@ -160,6 +160,70 @@ TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit)
                 << "^2 map\n";
       EXPECT_GT(shadowed, 500u) << name << ": not vacuous";
     }
+  }
+}
+
+// The uncompressed reference paged: pages keep their capture lists in the light's pool
+// (the looked-up list buffers), and lookups walk them. With every receiver held at the
+// fallback level (a 512^2 virtual map in pages of 32; shadow.resolution 128 makes level 2
+// the fallback, and a page_lod_bias of 8 sends every receiver there), each reads the same
+// lists as the dense 128^2 reference does: the frames match but for the order in which
+// each texel's segments multiply (a page's capture appends them in another order). The
+// hair curtain needs more segments per texel than the default page_segments at this
+// level, so its pages first overflow their slots.
+TEST_F(PagedMapsTest, PagedListsGiveTheDenseReferenceFrameAtTheirLevel) {
+  constexpr uint32_t kVirtual = 512, kPage = 32, kDense = 128;
+  scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense));
+  scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense));
+  for (scene::Scene* scene : {&dense_scene, &paged_scene})
+    for (scene::Light& light : scene->lights) {
+      light.shadow.technique = "uncompressed";
+      light.shadow.virtual_resolution = int(kVirtual);
+      light.shadow.page_size = int(kPage);
+      light.shadow.page_lod_bias = 8.0f;
+      // Room for the hair curtain's segments at this level, in a pool that holds the level
+      // (a slot of 32x32 texels: 1.5 MiB; the fallback level and those above: 21 pages).
+      light.shadow.parameters["page_segments"] = 96;
+      light.shadow.page_pool_mib = 48.0;
+    }
+  const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight);
+  renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+  render_frames(ctx(), dense, view, 2);  // the second frame's capture has room for every segment
+  render_frames(ctx(), paged, view, 4);
+  for (uint32_t light = 0; light < 2; ++light) {
+    const std::string name = dense_scene.lights[light].name;
+    ASSERT_FALSE(dense.shadows().frame_stats()[light].overflowed) << name;
+    const passes::LightShadowStats& stats = paged.shadows().frame_stats()[light];
+    ASSERT_TRUE(stats.pages) << name;
+    EXPECT_FALSE(stats.overflowed) << name << ": a page's capture outgrew its slot";
+    EXPECT_EQ(stats.pages->pending, 0u) << name;
+    EXPECT_GT(stats.pages->requested, 4u) << name;
+  }
+  const gpu::ImageRGBA32F a = gpu::read_image(ctx(), dense.hdr(), renderer::SceneRenderer::kOutputLayout);
+  const gpu::ImageRGBA32F b = gpu::read_image(ctx(), paged.hdr(), renderer::SceneRenderer::kOutputLayout);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  double most = 0.0, sum = 0.0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const double d = std::abs(double(a.pixels[i]) - double(b.pixels[i]));
+    most = std::max(most, d / std::max(1.0, double(std::abs(a.pixels[i]))));
+    sum += d;
+  }
+  std::cout << "[ paged lists ] frame against the dense 128^2 reference: largest relative |d| " << most << ", mean |d| "
+            << sum / double(a.pixels.size()) << "\n";
+  // Two steps of the half floats the HDR image holds (the products' last bits differ).
+  EXPECT_LT(most, 2.5e-3);
+  EXPECT_LT(sum / double(a.pixels.size()), 1e-5);
+
+  // Slots of 2 segments per texel: the pages that do not fit say so, frame after frame.
+  for (scene::Light& light : paged_scene.lights) light.shadow.parameters["page_segments"] = 2;
+  renderer::SceneRenderer cramped(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
+  render_frames(ctx(), cramped, view, 3);
+  for (uint32_t light = 0; light < 2; ++light) {
+    const passes::LightShadowStats& stats = cramped.shadows().frame_stats()[light];
+    EXPECT_TRUE(stats.page_slot_full) << dense_scene.lights[light].name;
+    EXPECT_TRUE(stats.lost_shadowing()) << dense_scene.lights[light].name;
+    EXPECT_GT(stats.capture_requested, stats.capture_capacity) << dense_scene.lights[light].name;
   }
 }
 
@@ -244,6 +308,93 @@ TEST_F(PagedMapsTest, TheResolutionFigureFollowsTheLevelsTheSurfacesRead) {
   EXPECT_GT(level_steps[n / 20], 0.9f);  // the surface point's offset moves with the level
   EXPECT_LT(level_steps[n - 1 - n / 20], 1.1f);
   EXPECT_GE(matched, receivers / 2);
+}
+
+// A directional light's map over a large scene (content/examples/cascades.scene.json, a
+// 150 m avenue), seen through a long lens (3°: pixels of about 0.6 mm on the fence's
+// shadow 5 m away). At 16384 texels its finest level is about a centimetre. At 262144
+// the finest levels are clipmap windows around the camera (shared/pages.h), wider than
+// the device's viewports, so their pages are captured with cropped projections
+// (page_view()). The levels the receivers ask for lie outside their windows (which span
+// about 1.6x a camera's distance at a usual field of view, but not at this one), so they
+// read the finest level whose window holds them, never the coarsest: texels several
+// times finer on screen, and the same frame away from the shadows' edges, without the
+// self-shadowing that 16-bit node depths would give texels this fine
+// (shadow_surface_point()).
+TEST_F(PagedMapsTest, ADirectionalClipmapBeyondTheViewportsServesFinerTexelsNearTheCamera) {
+  constexpr uint32_t kWidth = 480, kHeight = 270;
+  struct Result {
+    std::vector<passes::PixelShadowResolution> pixels;
+    gpu::ImageRGBA32F hdr;
+  };
+  auto render = [&](int virtual_resolution) {
+    scene::Scene scene = scene::load_scene(AVSM_EXAMPLES_DIR "/cascades.scene.json");
+    scene::ShadowSettings& s = scene.lights.at(0).shadow;
+    s.layout = scene::ShadowLayout::paged;
+    s.fit = scene::ShadowFit::scene;
+    s.cascades = 1;
+    s.virtual_resolution = virtual_resolution;
+    s.page_pool_mib = 48.0;
+    scene::Camera& camera = scene.cameras.front();
+    camera.target = {-1.0f, 0.0f, 0.5f};
+    camera.vertical_fov = glm::radians(3.0f);
+    renderer::SceneRenderer paged(ctx(), shaders(), scene, kWidth, kHeight, {.unlimited_page_builds = true});
+    paged.enable_resolution_figures();
+    render_frames(ctx(), paged, passes::make_view(camera, kWidth, kHeight), 5);
+    const passes::PageStats& pages = *paged.shadows().frame_stats()[0].pages;
+    EXPECT_EQ(pages.pending, 0u) << virtual_resolution;
+    EXPECT_EQ(pages.lod_bias, 0.0f) << virtual_resolution << ": the pool holds the requests";
+    return Result{paged.resolution_results(),
+                  gpu::read_image(ctx(), paged.hdr(), renderer::SceneRenderer::kOutputLayout)};
+  };
+  const Result coarse = render(16384), fine = render(262144);
+  // Levels of the 262144 map wider than the device's viewports: cropped page projections.
+  uint32_t cropped_levels = 0;
+  while ((262144u >> cropped_levels) > ctx().info().max_viewport_dimension) ++cropped_levels;
+  ASSERT_GT(cropped_levels, 0u);
+  std::vector<float> coarse_widths, fine_widths;
+  uint32_t cropped = 0;
+  float coarsest_read = 0.0f;
+  for (size_t i = 0; i < fine.pixels.size(); ++i) {
+    if (coarse.pixels[i].level < 0.0f || fine.pixels[i].level < 0.0f) continue;
+    coarse_widths.push_back(coarse.pixels[i].texel_pixels);
+    fine_widths.push_back(fine.pixels[i].texel_pixels);
+    cropped += fine.pixels[i].level < float(cropped_levels);
+    coarsest_read = std::max(coarsest_read, fine.pixels[i].level);
+  }
+  ASSERT_GT(fine_widths.size(), size_t(kWidth) * kHeight / 2);
+  std::sort(coarse_widths.begin(), coarse_widths.end());
+  std::sort(fine_widths.begin(), fine_widths.end());
+  const float coarse_median = coarse_widths[coarse_widths.size() / 2], fine_median = fine_widths[fine_widths.size() / 2];
+  // Away from edges (a 5x5 neighbourhood of one shade in the fine frame) the frames agree.
+  auto shade = [](const gpu::ImageRGBA32F& image, uint32_t x, uint32_t y) {
+    const float* p = image.at(x, y);
+    return p[0] + p[1] + p[2];
+  };
+  uint32_t flat = 0, differing = 0;
+  for (uint32_t y = 2; y + 2 < kHeight; ++y)
+    for (uint32_t x = 2; x + 2 < kWidth; ++x) {
+      float lo = 1e30f, hi = 0.0f;
+      for (uint32_t v = y - 2; v <= y + 2; ++v)
+        for (uint32_t u = x - 2; u <= x + 2; ++u) {
+          lo = std::min(lo, shade(fine.hdr, u, v));
+          hi = std::max(hi, shade(fine.hdr, u, v));
+        }
+      if (hi - lo > 0.02f * hi) continue;
+      ++flat;
+      differing += std::abs(shade(fine.hdr, x, y) - shade(coarse.hdr, x, y)) > 0.02f * hi;
+    }
+  std::cout << "[ clipmap     ] " << fine_widths.size() << " lit receivers, " << cropped << " reading levels 0.."
+            << cropped_levels - 1 << " (cropped), none coarser than level " << coarsest_read << "; median texel "
+            << coarse_median << " px at 16384, " << fine_median << " px at 262144; " << differing << " of " << flat
+            << " pixels away from edges differ by over 2%\n";
+  EXPECT_GT(cropped, fine_widths.size() / 2);
+  EXPECT_LT(coarsest_read, 4.0f) << "the 16384 map's finest texels are level 4's";
+  EXPECT_LT(fine_median, 0.5f * coarse_median);
+  // Most of the frame is flat: streaks of self-shadowing on the lit ground would not be.
+  EXPECT_GT(flat, fine_widths.size() * 7 / 10);
+  // (What differs lies where the 16384 map's texels, 20 pixels wide, blur the edges.)
+  EXPECT_LT(differing, flat / 50);
 }
 
 // Smoke and hair are receivers too: without the scene's meshes, the lighting cache's

@@ -53,7 +53,7 @@ TEST(TechniqueRegistry, UnknownTechniquesAndParametersAreClearErrors) {
               HasSubstr("light 0 'sun': technique 'vsm' is not one of " + passes::shadow_technique_names()));
   EXPECT_THAT(passes::shadow_technique_names(), HasSubstr("avsm, uncompressed, osm, fom, dsm"));
   EXPECT_THAT(check_error(settings_of("osm", {{"slics", 32}})),
-              HasSubstr("'slics' is not a parameter of any technique (slices, depth_bias, terms, error, transmittance"));
+              HasSubstr("'slics' is not a parameter of any technique (page_segments, slices, depth_bias, terms, error, transmittance"));
   // Another technique's parameter is kept, so a light can switch techniques.
   EXPECT_EQ(check_error(settings_of("avsm", {{"slices", 32}})), "");
 }

@@ -27,17 +27,19 @@ bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
 }  // namespace
 
 PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level,
-                     uint32_t faces)
-    : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots), faces_(faces) {
+                     uint32_t faces, uint32_t window)
+    : virtual_resolution_(virtual_resolution), page_size_(page_size), slots_(slots), faces_(faces), window_(window) {
   if (!is_power_of_two(virtual_resolution) || !is_power_of_two(page_size) || page_size > virtual_resolution)
     throw std::invalid_argument("page table: a virtual resolution of " + std::to_string(virtual_resolution) +
                                 " texels does not split into pages of " + std::to_string(page_size));
   if (slots == 0) throw std::invalid_argument("page table: a pool of no pages");
   if (faces == 0) throw std::invalid_argument("page table: no faces");
+  if (window != 0 && !is_power_of_two(window))
+    throw std::invalid_argument("page table: a window of " + std::to_string(window) + " pages is not a power of two");
   levels_ = shared::page_level_count(virtual_resolution, page_size);
   fallback_level_ = std::min(fallback_level, levels_ - 1);
   for (uint32_t level = 0; level <= levels_; ++level)
-    level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, level));
+    level_first_.push_back(shared::page_table_level_first(virtual_resolution, page_size, window, level));
   face_entries_ = level_first_.back();
   pages_.resize(size_t(face_entries_) * faces);
   table_.assign(pages_.size(), shared::kPageAbsent);
@@ -46,21 +48,72 @@ PageTable::PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t s
   stats_.slots = slots;
 }
 
-uint32_t PageTable::entry(const PageKey& key) const {
+uint32_t PageTable::entry_at(const PageKey& key, glm::uvec2 centre) const {
   const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, key.level);
-  if (key.level >= levels_ || key.page.x >= grid || key.page.y >= grid || key.face >= faces_)
-    throw std::out_of_range("page table: no page (" + std::to_string(key.page.x) + ", " + std::to_string(key.page.y) +
-                            ") at level " + std::to_string(key.level) + " of face " + std::to_string(key.face));
-  return key.face * face_entries_ + level_first_[key.level] + key.page.y * grid + key.page.x;
+  if (key.level >= levels_ || key.page.x >= grid || key.page.y >= grid || key.face >= faces_) return kNoEntry;
+  const uint32_t local = shared::page_table_entry(virtual_resolution_, page_size_, window_, key.level, key.page, centre);
+  return local == shared::kNoPageEntry ? kNoEntry : key.face * face_entries_ + local;
 }
 
-PageKey PageTable::key(uint32_t entry) const {
+uint32_t PageTable::entry(const PageKey& key) const {
+  const uint32_t e = entry_at(key, window_centre_);
+  if (e == kNoEntry)
+    throw std::out_of_range("page table: no page (" + std::to_string(key.page.x) + ", " + std::to_string(key.page.y) +
+                            ") at level " + std::to_string(key.level) + " of face " + std::to_string(key.face) +
+                            (key.level < levels_ && window_ != 0 ? " in its window" : ""));
+  return e;
+}
+
+bool PageTable::has_entry(const PageKey& key) const { return entry_at(key, window_centre_) != kNoEntry; }
+
+// The page of the window (centred on `centre`) whose place modulo the window's size is
+// the entry's.
+PageKey PageTable::key_at(uint32_t entry, glm::uvec2 centre) const {
   if (entry >= entries()) throw std::out_of_range("page table: no entry " + std::to_string(entry));
   const uint32_t face = entry / face_entries_, local = entry % face_entries_;
   const uint32_t level = uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), local) - level_first_.begin()) - 1;
-  const uint32_t grid = shared::page_grid(virtual_resolution_, page_size_, level);
+  const uint32_t grid = shared::page_table_grid(virtual_resolution_, page_size_, window_, level);
   const uint32_t index = local - level_first_[level];
-  return {level, {index % grid, index / grid}, face};
+  const glm::uvec2 place(index % grid, index / grid);
+  const glm::uvec2 origin = shared::page_window_origin(virtual_resolution_, page_size_, window_, level, centre);
+  return {level, origin + (place + grid - origin % grid) % grid, face};
+}
+
+PageKey PageTable::key(uint32_t entry) const { return key_at(entry, window_centre_); }
+
+uint32_t PageTable::move_window(glm::uvec2 centre) {
+  if (centre == window_centre_) return 0;
+  const glm::uvec2 before = window_centre_;
+  uint32_t left = 0;
+  for (uint32_t e = 0; e < entries(); ++e) {
+    const uint32_t level = key_at(e, before).level;
+    if (shared::page_table_grid(virtual_resolution_, page_size_, window_, level) ==
+        shared::page_grid(virtual_resolution_, page_size_, level))
+      continue;  // a whole level
+    if (entry_at(key_at(e, before), centre) == e) continue;  // stays in the window
+    if (pages_[e].slot != kNoSlot) {
+      free_slots_.push_back(pages_[e].slot);
+      release(e);
+      ++left;
+      ++left_window_since_plan_;
+    }
+    pages_[e] = Page{};
+  }
+  window_centre_ = centre;
+  ++revision_;
+  return left;
+}
+
+std::vector<std::vector<uint32_t>> PageTable::requests_in_window(std::span<const std::span<const uint32_t>> faces,
+                                                                 glm::uvec2 centre) const {
+  std::vector<std::vector<uint32_t>> moved(faces.size(), std::vector<uint32_t>((face_entries_ + 31) / 32, 0u));
+  for (uint32_t f = 0; f < faces.size() && f < faces_; ++f)
+    for (uint32_t local = 0; local < face_entries_ && local / 32 < faces[f].size(); ++local) {
+      if ((faces[f][local / 32] >> (local % 32) & 1u) == 0) continue;
+      const uint32_t now = entry_at(key_at(f * face_entries_ + local, centre), window_centre_);
+      if (now != kNoEntry) moved[f][(now % face_entries_) / 32] |= 1u << (now % face_entries_ % 32);
+    }
+  return moved;
 }
 
 std::vector<uint32_t> PageTable::face_table_words(uint32_t face) const {
@@ -68,7 +121,13 @@ std::vector<uint32_t> PageTable::face_table_words(uint32_t face) const {
   return {first, first + face_entries_};
 }
 
-void PageTable::add_requests(std::span<const std::span<const uint32_t>> faces) {
+void PageTable::add_requests(std::span<const std::span<const uint32_t>> faces, glm::uvec2 centre) {
+  if (centre != window_centre_) {  // marked before the windows moved: as entries of today's
+    const std::vector<std::vector<uint32_t>> moved = requests_in_window(faces, centre);
+    const std::vector<std::span<const uint32_t>> spans(moved.begin(), moved.end());
+    add_requests(spans, window_centre_);
+    return;
+  }
   ++request_clock_;
   uint32_t requested = 0;
   for (uint32_t e = 0; e < entries(); ++e) {
@@ -158,6 +217,8 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   stats.settling = stats_.settling;
   stats.invalidated = invalidated_since_plan_;
   invalidated_since_plan_ = 0;
+  stats.evicted = left_window_since_plan_;
+  left_window_since_plan_ = 0;
   // Wanted: coarsest level first, every face's (within a face its entries come last), so
   // the stand-ins for missing fine pages improve first.
   std::vector<uint32_t> wanted;

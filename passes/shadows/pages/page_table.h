@@ -13,6 +13,10 @@
 // requested now: then the page least recently requested gives it up. The coarsest
 // level is one page, always resident, so every lookup finds some level.
 //
+// A directional light's table keeps clipmap windows (shared/pages.h): its finest levels
+// hold only the pages around the camera (move_window()), so that its map may cover a
+// large scene at a fine virtual resolution with a small table.
+//
 // When requests outgrow the pool, the pages that do not fit are counted (unserved)
 // and served by coarser levels, and a level-of-detail bias grows until the requests
 // fit in about 85% of the pool; it shrinks back when they would fit again. Either move
@@ -51,7 +55,7 @@ struct PageStats {
   uint32_t resident = 0;     // pages holding a slot after this frame's builds
   uint32_t built = 0;        // pages this frame built
   uint32_t invalidated = 0;  // pages whose contents went stale since the last frame
-  uint32_t evicted = 0;      // pages that gave their slot to another this frame
+  uint32_t evicted = 0;      // pages that gave their slot to another this frame, or left a clipmap window
   uint32_t pending = 0;      // pages the frame's receivers asked for that it did not hold (coarser ones stood in)
   uint32_t unserved = 0;     // requested pages the pool could not hold (overflow)
   float lod_bias = 0.0f;     // the bias that keeps requests within the pool (levels)
@@ -62,12 +66,13 @@ struct PageStats {
 class PageTable {
  public:
   // Throws std::invalid_argument unless page_size divides virtual_resolution (both
-  // powers of two), slots >= 1 and faces >= 1. `fallback_level`: the coarsest level
-  // receivers ask for (passes/shadows/shadow_settings.h), so the bias never grows past it
-  // (further would not shrink the requests); the last level when not given. `faces`
-  // virtual maps of that size share the pool (their entries one face after another).
+  // powers of two), slots >= 1, faces >= 1 and window is 0 or a power of two. `fallback_level`:
+  // the coarsest level receivers ask for (passes/shadows/shadow_settings.h), so the bias
+  // never grows past it (further would not shrink the requests); the last level when not
+  // given. `faces` virtual maps of that size share the pool (their entries one face after
+  // another). `window`: pages per side of a clipmap level's window (0: whole levels).
   PageTable(uint32_t virtual_resolution, uint32_t page_size, uint32_t slots, uint32_t fallback_level = ~0u,
-            uint32_t faces = 1);
+            uint32_t faces = 1, uint32_t window = 0);
 
   uint32_t virtual_resolution() const { return virtual_resolution_; }
   uint32_t fallback_level() const { return fallback_level_; }
@@ -76,12 +81,23 @@ class PageTable {
   uint32_t entries() const { return uint32_t(pages_.size()); }  // every face's
   uint32_t face_entries() const { return face_entries_; }
   uint32_t slots() const { return slots_; }
+  uint32_t window_pages() const { return window_; }
+  // Throws std::out_of_range for a page outside the map, or outside its level's window.
   uint32_t entry(const PageKey& key) const;
+  bool has_entry(const PageKey& key) const;
   PageKey key(uint32_t entry) const;
 
+  // The level-0 texel the clipmap windows are centred on (the camera's).
+  glm::uvec2 window_centre() const { return window_centre_; }
+  // Moves the windows to `centre`: the pages that leave a window give up their slot and
+  // their entry to the pages that come in; returns how many resident pages left.
+  uint32_t move_window(glm::uvec2 centre);
+
   // The request bits of a completed frame, per face: bit i of word i / 32 of a face's
-  // span asks for that face's entry i. A table of one face may take its span alone.
-  void add_requests(std::span<const std::span<const uint32_t>> faces);
+  // span asks for that face's entry i, under the windows centred on `centre` (where
+  // they were when the frame marked them). A table of one face may take its span alone.
+  void add_requests(std::span<const std::span<const uint32_t>> faces, glm::uvec2 centre);
+  void add_requests(std::span<const std::span<const uint32_t>> faces) { add_requests(faces, window_centre_); }
   void add_requests(std::span<const uint32_t> bits) { add_requests(std::span(&bits, 1)); }
   // Every page of `level` counts as asked for from now on (whatever the requests say).
   void require_level(uint32_t level);
@@ -127,12 +143,20 @@ class PageTable {
   // A face's coarsest page: always resident.
   bool is_root(uint32_t entry) const { return entry % face_entries_ == face_entries_ - 1; }
   bool needs_build(uint32_t entry) const;
+  // entry() and key() with the windows centred on `centre`; kNoEntry outside them.
+  static constexpr uint32_t kNoEntry = ~0u;
+  uint32_t entry_at(const PageKey& key, glm::uvec2 centre) const;
+  PageKey key_at(uint32_t entry, glm::uvec2 centre) const;
+  // `faces`' request bits marked under windows centred on `centre`, as entries of today's.
+  std::vector<std::vector<uint32_t>> requests_in_window(std::span<const std::span<const uint32_t>> faces,
+                                                        glm::uvec2 centre) const;
   void assign(uint32_t entry, uint32_t slot);
   void release(uint32_t entry);
   void adapt_lod_bias();
   bool overflowed_lately(float bias) const;
 
-  uint32_t virtual_resolution_, page_size_, levels_, slots_, faces_;
+  uint32_t virtual_resolution_, page_size_, levels_, slots_, faces_, window_;
+  glm::uvec2 window_centre_{0u};
   uint32_t face_entries_ = 0;
   uint32_t fallback_level_ = 0;  // also the most the bias grows to, in levels
   std::vector<uint32_t> level_first_;  // entry of each level's first page
@@ -142,6 +166,7 @@ class PageTable {
   std::vector<uint32_t> slot_owner_;  // entry per slot, or kNoSlot
   uint64_t request_clock_ = 0;
   uint32_t invalidated_since_plan_ = 0;
+  uint32_t left_window_since_plan_ = 0;
   uint64_t revision_ = 0;
   float lod_bias_ = 0.0f;
   // Per bias (in quarter levels) the requests last seen at it, and when (request_clock_):

@@ -137,13 +137,14 @@ struct Light {
   // volumes need their density atlas): see docs/shadows.md, "The fixed-memory build".
   bool fixed_memory_build = false;
   // Paged (docs/shadows.md, "Paged maps"): instead of one map of `resolution`, a virtual
-  // map of virtual_resolution^2 texels (a power of two, 256 to 16384) in pages of
+  // map of virtual_resolution^2 texels (a power of two, 256 to 16384; to 262144 for a
+  // directional light, whose finest levels keep only the pages around the camera) in pages of
   // page_size^2 (32, 64 or 128) held in a pool of page_pool_mib, of which only the pages
   // the lookups ask for are built, and kept from frame to frame. The shading pass must
   // ask (AVSM_SHADOW_PAGE_REQUESTS_BINDING, ShadowLookupBuffers::page_requests); pages
   // arrive a frame after they are asked for, at most page_builds_per_frame of them per
   // frame (0: no limit; the default keeps a frame whose light moved within 1.5x a dense
-  // frame's cost in the engine's default scene: docs/shadows.md). AVSM from capture lists only, no cascades or clusters, and
+  // frame's cost in the engine's default scene: docs/shadows.md). AVSM (or the uncompressed reference) from capture lists only, no cascades or clusters, and
   // directional lights fitted around the casters (not fit_to_view).
   bool paged = false;
   uint32_t virtual_resolution = 16384;
