@@ -8,6 +8,7 @@
 
 #include "capture/frame_outputs.h"
 #include "capture/frame_report.h"
+#include "passes/shadows/shadow_settings.h"
 #include "passes/shadows/techniques/techniques.h"
 
 namespace avsm::viewer {
@@ -112,7 +113,8 @@ void draw_light_switches(const scene::Light& light, LightOverride& o, PanelReque
   bool sort = shadow.sort;
   if (ImGui::Checkbox("sort", &sort)) o.sort = sort, requests.scene_edited = true;
   ImGui::SameLine();
-  // Paged maps build AVSM from capture lists: untick "paged maps" to change these.
+  // Paged maps build AVSM (or the uncompressed reference) from capture lists: untick
+  // "paged maps" to change these.
   ImGui::BeginDisabled(shadow.layout == scene::ShadowLayout::paged);
   bool fixed = shadow.build == scene::ShadowBuild::fixed;
   if (ImGui::Checkbox("fixed-memory build", &fixed))
@@ -146,12 +148,14 @@ void draw_light_placement(const scene::Light& light, LightOverride& o, PanelRequ
 }
 
 // Dense or paged maps (docs/shadows.md, "Paged maps"), and a dense map's soft-shadow
-// kernel. Paged maps build AVSM from capture lists only; ticking them also sets what they
+// kernel. Paged maps build AVSM (or keep the uncompressed reference's lists) from capture
+// lists only; ticking them also sets what they
 // need (no kernel, no cascades or clusters, fitted to the scene), so the edit does not fail.
 void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
   const scene::ShadowSettings& shadow = light.shadow;
   bool paged = shadow.layout == scene::ShadowLayout::paged;
-  const bool can_page = shadow.technique == "avsm" && shadow.build == scene::ShadowBuild::lists;
+  const bool can_page = (shadow.technique == "avsm" || passes::paged_keeps_lists(shadow)) &&
+                        shadow.build == scene::ShadowBuild::lists;
   ImGui::BeginDisabled(!paged && !can_page);
   if (ImGui::Checkbox("paged maps", &paged)) {
     o.layout = paged ? scene::ShadowLayout::paged : scene::ShadowLayout::dense;
@@ -165,7 +169,8 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
   }
   ImGui::EndDisabled();
   if (!paged && !can_page && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("paged maps build AVSM from capture lists: set the technique to avsm and untick the fixed-memory build");
+    ImGui::SetTooltip("paged maps build AVSM (or keep the uncompressed reference's lists) from capture lists: set the "
+                      "technique to avsm or uncompressed and untick the fixed-memory build");
   if (paged) return;  // pages match texels to pixels: no kernel
   if (auto k = choose("kernel", shadow.kernel, kKernels, kernel_name)) o.kernel = *k, requests.scene_edited = true;
 }
