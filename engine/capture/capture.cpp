@@ -126,17 +126,17 @@ void place_lights_turned(renderer::SceneRenderer& frame, const scene::Scene& sce
   }
 }
 
-// The exact reference is a dense map's capture lists: a paged light's pages keep none
-// (the viewer's inspector shows a paged light's curve without one).
+// A texel plot reads a dense map's capture lists back at one texel; a paged light's
+// reference lists are per page (--compare-to measures them on the GPU), so plots refuse
+// paged lights (the viewer's inspector shows a paged light's curve without one).
 void refuse_paged_references(const CaptureOptions& options, const scene::Scene& scene, const std::vector<TexelPlot>& plots) {
   const auto refuse = [&](size_t light, const std::string& flag) {
     throw std::runtime_error(options.scene.string() + ": " + passes::light_display_name(scene.lights[light], light) +
-                             ": " + flag + " measures against the exact reference, which paged maps do not keep; set "
-                             "shadow.layout to \"dense\" (--shadow-layout dense) for it");
+                             ": " + flag + " reads the exact curve of a dense map's texel, which paged maps do not "
+                             "keep; set shadow.layout to \"dense\" (--shadow-layout dense) for it");
   };
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     if (scene.lights[i].shadow.layout != scene::ShadowLayout::paged) continue;
-    if (options.compare_to_uncompressed) refuse(i, "--compare-to uncompressed");
     for (const TexelPlot& plot : plots)
       if (plot.light_index == i) refuse(i, "--plot-texel " + plot.spec);
   }
@@ -369,6 +369,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   shadow_options.exponential_interpolation = options.exponential_interpolation;
   // The quality figures and texel curves compare against each light's exact lists.
   shadow_options.keep_reference = options.compare_to_uncompressed || !plots.empty();
+  shadow_options.keep_paged_reference = options.compare_to_uncompressed;  // pages of lists, measured on the GPU
   // A capture writes converged paged maps only: it builds every page asked for at once,
   // or with --page-builds at most that many a frame, rendering again until none is pending.
   const bool page_budget = options.shadow.page_builds_per_frame.value_or(0) > 0;

@@ -263,8 +263,9 @@ void SceneRenderer::enable_quality() {
   for (uint32_t light = 0; light < light_count_; ++light)
     if (!shadows_.has_reference(light))
       throw std::invalid_argument(passes::light_display_name(lights_.at(light), light) +
-                                  ": its maps are paged, which keep no exact reference to measure against; set "
-                                  "shadow.layout to \"dense\" for the quality figures");
+                                  ": its maps are paged, whose pages keep their exact reference only with "
+                                  "ShadowOptions::keep_paged_reference; set it, or shadow.layout to \"dense\", for "
+                                  "the quality figures");
   if (!quality_) quality_ = std::make_unique<passes::ShadowQualityPass>(ctx_, shaders_);
   quality_->set_frames_in_flight(frames_in_flight());
   quality_->set_size(width_, height_, light_count_);

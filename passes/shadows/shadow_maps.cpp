@@ -160,8 +160,8 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
     map.map_state = initial_map_state(light);
     if (pages) create_page_state(map, pages);
     create_frame_buffers(map);
-    // Paged maps keep no lists: their pages' are gone once resolved (no exact reference).
-    map.lookups_read_lists = light.technique->reads_capture_lists() || (options_.keep_reference && !pages);
+    // A paged map's lists are its pages' (a pool of them), kept for the reference only on request.
+    map.lookups_read_lists = light.technique->reads_capture_lists() || has_reference(index);
     maps_.push_back(std::move(map));
     maps_.back().view = initial_view(maps_.back());
   }

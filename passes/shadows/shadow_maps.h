@@ -154,7 +154,9 @@ class ShadowMaps {
   bool has_reference() const { return options_.keep_reference; }
   // Light `light`'s lookups have an exact reference: the frame keeps references and its
   // maps are dense (a paged map's pages keep no capture lists).
-  bool has_reference(uint32_t light) const { return options_.keep_reference && !is_paged(lights_.at(light)); }
+  bool has_reference(uint32_t light) const {
+    return options_.keep_reference && (options_.keep_paged_reference || !is_paged(lights_.at(light)));
+  }
   // Where paged light `light`'s level-0 texel (x, y) of its first map is held, as the
   // CPU's table says (the frames declared since it may have moved pages): the finest
   // level with a resident page over it, and that level's texel's first vec4 in

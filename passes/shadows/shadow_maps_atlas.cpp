@@ -155,9 +155,11 @@ std::string ShadowMaps::list_readers() const {
     if (!first.lookups_read_lists) continue;
     if (first.pages) {  // a pool of pages of lists
       const scene::ShadowSettings& s = lights_[i].light.shadow;
-      named.emplace_back(uint64_t(first.pages->slots()) * paged_slot_bytes(s) / 4,
-                         light_display_name(lights_[i].light, i) + " page pool of " +
-                             std::to_string(int(s.page_pool_mib)) + " MiB (shadow.page_pool_mib)");
+      const uint64_t per_texel = paged_list_slot_segments(s) / (uint64_t(s.page_size) * uint64_t(s.page_size));
+      named.emplace_back(uint64_t(first.pages->slots()) * s.page_size * s.page_size,
+                         light_display_name(lights_[i].light, i) + " paged: " + std::to_string(first.pages->slots()) +
+                             " slots of " + std::to_string(s.page_size) + "x" + std::to_string(s.page_size) + " texels, " +
+                             std::to_string(per_texel) + " segments a texel");
       continue;
     }
     const uint64_t side = first.map_state.layout.resolution;
@@ -166,7 +168,8 @@ std::string ShadowMaps::list_readers() const {
                            (lights_[i].map_count > 1 ? " x" + std::to_string(lights_[i].map_count) + " maps" : ""));
   }
   return "the shadow.resolution (--shadow-res) of the lights whose lookups read the exact lists (technique "
-         "uncompressed, --compare-to): " + largest_lights(std::move(named));
+         "uncompressed, --compare-to), or for paged lights their page pool (--page-pool-mib) or page_segments "
+         "(--shadow-param page_segments=N): " + largest_lights(std::move(named));
 }
 
 // The lists that lookups read (the exact reference), copied each frame into two buffers

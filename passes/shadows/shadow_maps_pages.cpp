@@ -125,10 +125,8 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
                                                   rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
     CaptureLists page_lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter,
                                                 page_casters(map, casters, footprints, page.key));
-    if (lists) {
-      add_page_list_copy(graph, declared, map, page, prefix, page_lists, inputs);
-      continue;
-    }
+    if (lists) add_page_list_copy(graph, declared, map, page, prefix, page_lists, inputs);
+    if (!light.technique->has_map()) continue;  // the uncompressed reference: its lists are its pages
     const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
         atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
     rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
@@ -144,9 +142,10 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
     const std::string name = "light " + std::to_string(map.light) + " page pool";
     if (lists) {
       const rg::ImportState read = rg::ImportState::of(rg::Usage::StorageRead);
-      inputs.lists.push_back(rg::vulkan::import(graph, name + " heads", map.list_heads, read, read));
-      inputs.lists.push_back(rg::vulkan::import(graph, name + " nodes", map.list_nodes, read, read));
-    } else {
+      inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' heads", map.list_heads, read, read));
+      inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' nodes", map.list_nodes, read, read));
+    }
+    if (light.technique->has_map()) {
       const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
           gpu::Buffer::region(atlas_, map.page_pool_offset, map.pages->slots() * bytes_per_slot, name)));
       inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));

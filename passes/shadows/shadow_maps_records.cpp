@@ -98,7 +98,9 @@ std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
       GpuShadow& reference = records[record_count_ + r];
       reference = records[r];
       reference.technique = shadow_technique_code("uncompressed");
-      reference.mip_count = 1;  // the lists have no mips: the exact curve at every level of detail
+      // A dense map's lists have no mips: the exact curve at every level of detail. A paged
+      // map's pages of lists are its levels (the reference of the page a lookup reads).
+      if (reference.page_size == shared::kDenseLayout) reference.mip_count = 1;
       reference.reference = kNoReference;
       if (reference.views != shared::kViewsSingle) reference.first_view += record_count_;
     }

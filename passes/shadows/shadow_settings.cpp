@@ -77,7 +77,7 @@ bool paged_keeps_lists(const scene::ShadowSettings& s) {
 }
 
 uint64_t paged_list_slot_segments(const scene::ShadowSettings& s) {
-  const uint64_t per_texel = uint64_t(shadow_technique(s.technique).parameter(s, kPageSegmentsParameter));
+  const uint64_t per_texel = uint64_t(shadow_technique("uncompressed").parameter(s, kPageSegmentsParameter));
   return uint64_t(s.page_size) * uint64_t(s.page_size) * per_texel;
 }
 

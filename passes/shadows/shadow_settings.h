@@ -20,6 +20,12 @@ struct ShadowOptions {
   // exact-reference record (GpuShadow::reference; reference_light_transmittance() in
   // shaders/common/shadow_lookup.glsl). Costs a copy of the lists for the whole frame.
   bool keep_reference = false;
+  // With keep_reference, paged lights keep a reference too: each page's capture lists in
+  // a slot of a pool of lists as many slots as the light's page pool (page_segments per
+  // texel, the uncompressed technique's parameter). Far larger than the pages themselves,
+  // so only captures that measure quality ask for it; without it paged lights have no
+  // reference (has_reference(light)).
+  bool keep_paged_reference = false;
   // Bytes all maps together may take (they share one atlas buffer); 0: the device's
   // storage buffer range, the most one binding can see. Checked before allocating.
   uint64_t map_budget_bytes = 0;
@@ -45,8 +51,9 @@ void check_paged_settings(const scene::Light& light, const std::string& who);
 // Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose
 // lookups walk them) rather than AVSM curves.
 bool paged_keeps_lists(const scene::ShadowSettings& s);
-// Capture segments one page of lists holds: the technique's parameter "page_segments"
-// per texel (passes/shadows/techniques/uncompressed/uncompressed.cpp). Fixed with the pool,
+// Capture segments one page of lists holds: the uncompressed technique's parameter
+// "page_segments" per texel (passes/shadows/techniques/uncompressed/uncompressed.cpp),
+// for its own paged maps and for a paged light's exact reference. Fixed with the pool,
 // so a page whose capture asks for more is reported as overflowed, and built again when
 // next asked for.
 inline constexpr const char* kPageSegmentsParameter = "page_segments";
