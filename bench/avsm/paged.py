@@ -136,6 +136,20 @@ def resolution_figures(tool, scene, out, width, height, flags):
     return resolution, pages
 
 
+MATCH_HEADER = f"   {'configuration':<24}{'matched':>9}{'median':>8}{'p95':>7}"
+
+
+def match_cells(name, fraction, median, p95):
+    return f"   {name:<24}{100 * fraction:>8.1f}%{median:>8.2f}{p95:>7.2f}"
+
+
+def measured_rows(tool, scene, work, args, rows, tag):
+    """Per row: its name, resolution.json and page figures at --match-width x --match-height."""
+    for i, (name, flags) in enumerate(rows):
+        yield (name,) + resolution_figures(tool, scene, os.path.join(work, f"{tag}_{i}"), args.match_width,
+                                           args.match_height, flags)
+
+
 def print_resolution(tool, scene, work, args):
     paged = configs(args)[3][1]
     rows = [("dense 256 gaussian r2", []), ("paged, 32 MiB pools", paged),
@@ -143,11 +157,9 @@ def print_resolution(tool, scene, work, args):
     print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
           f"= the widest a texel of the level read is on screen (pixels); resident texels over lit receiver pixels "
           f"summed over the lights")
-    print(f"   {'configuration':<24}{'matched':>9}{'median':>8}{'p95':>7}{'resident/lit':>14}   per light: "
-          f"matched, median px, LOD bias, pages asked / resident of slots")
-    for i, (name, flags) in enumerate(rows):
-        resolution, pages = resolution_figures(tool, scene, os.path.join(work, f"resolution_{i}"), args.match_width,
-                                               args.match_height, flags)
+    print(f"{MATCH_HEADER}{'resident/lit':>14}   per light: matched, median px, LOD bias, pages asked / resident "
+          f"of slots")
+    for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
         lights = resolution["lights"]
         receivers = resolution["receivers"]
         page_texels = args.page_size * args.page_size
@@ -157,9 +169,9 @@ def print_resolution(tool, scene, work, args):
             f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
             + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
             for l, p in zip(lights, pages or [None] * len(lights)))
-        print(f"   {name:<24}{100 * resolution['matched_fraction']:>8.1f}%"
-              f"{statistics.median(l['median_texel_pixels'] for l in lights):>8.2f}"
-              f"{max(l['p95_texel_pixels'] for l in lights):>7.2f}{ratio}   {per_light}")
+        median = statistics.median(l['median_texel_pixels'] for l in lights)
+        p95 = max(l['p95_texel_pixels'] for l in lights)
+        print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{ratio}   {per_light}")
     print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels")
 
 
@@ -174,16 +186,13 @@ def print_clipmap(tool, work, args):
     print(f"\na large scene: content/examples/cascades.scene.json (150 m), {args.match_width}x{args.match_height}, "
           f"the sun paged over the scene with a {args.clipmap_pool} MiB pool; beyond 4096 texels a level keeps a "
           f"window around the camera (clipmap), beyond the device's viewports its pages are cropped projections")
-    print(f"   {'configuration':<24}{'matched':>9}{'median':>8}{'p95':>7}{'finest level read':>19}"
-          f"{'pages asked/resident':>22}")
-    for i, (name, flags) in enumerate(rows):
-        resolution, pages = resolution_figures(tool, scene, os.path.join(work, f"clipmap_{i}"), args.match_width,
-                                               args.match_height, flags)
+    print(f"{MATCH_HEADER}{'finest level read':>19}{'pages asked/resident':>22}")
+    for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "clipmap"):
         light = resolution["lights"][0]
         finest = next((level for level, n in enumerate(light["receivers_per_level"]) if n), "-")
         asked = f"{pages[0]['requested']}/{pages[0]['resident']}" if pages else "-"
-        print(f"   {name:<24}{100 * light['matched_fraction']:>8.1f}%{light['median_texel_pixels']:>8.2f}"
-              f"{light['p95_texel_pixels']:>7.2f}{finest:>19}{asked:>22}")
+        print(f"{match_cells(name, light['matched_fraction'], light['median_texel_pixels'], light['p95_texel_pixels'])}"
+              f"{finest:>19}{asked:>22}")
 
 
 def main():
