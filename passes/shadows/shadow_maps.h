@@ -283,6 +283,11 @@ class ShadowMaps {
   rg::BufferHandle add_page_requests_clear(rg::Graph& graph, uint32_t slot) const;
   void add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
                        ShadowInputs& inputs);
+  void add_page_build(rg::Graph& graph, MapState& map, DeclaredMap& declared, uint32_t index,
+                      const ShadowCasters& casters, uint32_t slot, ShadowInputs& inputs);
+  void add_page_pool_imports(rg::Graph& graph, const MapState& map, DeclaredMap& declared, ShadowInputs& inputs) const;
+  void add_page_table_upload(rg::Graph& graph, const MapState& map, const DeclaredMap& declared,
+                             ShadowInputs& inputs) const;
   // The caster objects a page build takes (the map's, overlapping the page), given each
   // object's footprint on the map; all of the map's casters when there are no objects.
   ShadowCasters page_casters(const MapState& map, const ShadowCasters& all, const std::vector<UvRect>& footprints,

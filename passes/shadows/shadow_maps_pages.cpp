@@ -94,12 +94,11 @@ rg::BufferHandle ShadowMaps::add_page_requests_clear(rg::Graph& graph, uint32_t 
 void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCasters& casters, uint32_t slot,
                                  ShadowInputs& inputs) {
   LightState& light = lights_[map.light];
-  const scene::ShadowSettings& settings = light.light.shadow;
   // The light's first map plans every face's builds at once: a page of one face may take
   // the slot of another's, whose table must not be declared before that.
   if (map.page_face == 0)
     light.planned_page_builds =
-        map.pages->plan_builds(options_.unlimited_page_builds ? 0u : uint32_t(settings.page_builds_per_frame));
+        map.pages->plan_builds(options_.unlimited_page_builds ? 0u : uint32_t(light.light.shadow.page_builds_per_frame));
   DeclaredMap& declared = map.declared[slot];
   declared = {map.capacity, map.map_state, true, casters.strands.segment_count};
   for (const PageBuild& build : light.planned_page_builds)
@@ -107,51 +106,69 @@ void ShadowMaps::add_page_builds(rg::Graph& graph, MapState& map, const ShadowCa
   declared.pages = map.pages->stats();
   declared.page_table = map.pages->face_table_words(map.page_face);
   declared.page_window_centre = map.pages->window_centre();
-  const bool lists = map.lookups_read_lists;  // pages of capture lists (the uncompressed reference)
-  const uint64_t bytes_per_slot = paged_slot_bytes(settings);
   std::vector<UvRect> footprints(objects_.size());  // of the map's objects (culled per page)
   if (!declared.page_builds.empty())
     for (uint32_t o = 0; o < objects_.size(); ++o) footprints[o] = light_footprint(map.view, objects_[o].bounds);
+  for (uint32_t i = 0; i < declared.page_builds.size(); ++i)
+    add_page_build(graph, map, declared, i, page_casters(map, casters, footprints, declared.page_builds[i].key), slot,
+                   inputs);
+  if (map.page_face == 0) add_page_pool_imports(graph, map, declared, inputs);
+  add_page_table_upload(graph, map, declared, inputs);
+}
+
+// Build `index` of the frame: the page's capture over its window; its lists copied into
+// its slot of the pool of lists (the uncompressed technique, or the exact reference);
+// the technique's map resolved into its slot of the pool.
+void ShadowMaps::add_page_build(rg::Graph& graph, MapState& map, DeclaredMap& declared, uint32_t index,
+                                const ShadowCasters& casters, uint32_t slot, ShadowInputs& inputs) {
+  const LightState& light = lights_[map.light];
+  const scene::ShadowSettings& settings = light.light.shadow;
+  const PageBuild& page = declared.page_builds[index];
+  const std::string prefix = map.prefix + " page " + std::to_string(page.key.level) + "/" +
+                             std::to_string(page.key.page.x) + "," + std::to_string(page.key.page.y);
+  const LightView view = page_view(map.view, page.key.level, page.key.page, uint32_t(settings.page_size),
+                                   ctx_.info().max_viewport_dimension);
+  const gpu::Buffer& counter_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
+      gpu::Buffer::region(map.page_counters[slot], index * page_counter_stride(), 16, prefix + " capture counter")));
+  rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
+                                                rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
+  CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter, casters);
+  if (map.lookups_read_lists) add_page_list_copy(graph, declared, map, page, prefix, lists, inputs);
+  if (!light.technique->has_map()) return;  // the uncompressed technique: its lists are its pages
+  const uint64_t bytes_per_slot = paged_slot_bytes(settings);
   const rg::ImportState after = map_state_after_frame();
-  for (size_t i = 0; i < declared.page_builds.size(); ++i) {
-    const PageBuild& page = declared.page_builds[i];
-    const std::string prefix = map.prefix + " page " + std::to_string(page.key.level) + "/" +
-                               std::to_string(page.key.page.x) + "," + std::to_string(page.key.page.y);
-    const LightView view = page_view(map.view, page.key.level, page.key.page, uint32_t(settings.page_size),
-                                     ctx_.info().max_viewport_dimension);
-    const gpu::Buffer& counter_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
-        gpu::Buffer::region(map.page_counters[slot], i * page_counter_stride(), 16, prefix + " capture counter")));
-    rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
-                                                  rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-    CaptureLists page_lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter,
-                                                page_casters(map, casters, footprints, page.key));
-    if (lists) add_page_list_copy(graph, declared, map, page, prefix, page_lists, inputs);
-    if (!light.technique->has_map()) continue;  // the uncompressed reference: its lists are its pages
-    const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
-        atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
-    rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
-    const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
-    inputs.maps.push_back(
-        builder.add_to_graph({graph, prefix, page_lists, handle, view, settings, map.map_state}, page_lists));
+  const gpu::Buffer& slot_region = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(gpu::Buffer::region(
+      atlas_, map.page_pool_offset + page.slot * bytes_per_slot, bytes_per_slot, prefix + " avsm")));
+  rg::BufferHandle handle = rg::vulkan::import(graph, prefix + " avsm", slot_region, rewritten_after(after), after);
+  const TechniqueBuilder& builder = *builders_[light.technique->code() - 1];
+  inputs.maps.push_back(builder.add_to_graph({graph, prefix, lists, handle, view, settings, map.map_state}, lists));
+}
+
+// The light's whole pools (imported once, with its first map), as the lookups read them:
+// kept pages too, built in earlier frames. The pages built this frame are regions of
+// them, which the graph orders before the lookups by their own handles; these imports
+// carry the rest from frame to frame.
+void ShadowMaps::add_page_pool_imports(rg::Graph& graph, const MapState& map, DeclaredMap& declared,
+                                       ShadowInputs& inputs) const {
+  const LightState& light = lights_[map.light];
+  const std::string name = "light " + std::to_string(map.light) + " page pool";
+  if (map.lookups_read_lists) {
+    const rg::ImportState read = rg::ImportState::of(rg::Usage::StorageRead);
+    inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' heads", map.list_heads, read, read));
+    inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' nodes", map.list_nodes, read, read));
   }
-  // The light's whole pool (imported once, with its first map), as the lookups read it:
-  // kept pages too, built in earlier frames. The pages built above are regions of it,
-  // which the graph orders before the lookups by their own handles; this import carries
-  // the rest from frame to frame.
-  if (map.page_face == 0) {
-    const std::string name = "light " + std::to_string(map.light) + " page pool";
-    if (lists) {
-      const rg::ImportState read = rg::ImportState::of(rg::Usage::StorageRead);
-      inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' heads", map.list_heads, read, read));
-      inputs.lists.push_back(rg::vulkan::import(graph, name + " lists' nodes", map.list_nodes, read, read));
-    }
-    if (light.technique->has_map()) {
-      const gpu::Buffer& pool = *declared.page_buffers.emplace_back(std::make_unique<gpu::Buffer>(
-          gpu::Buffer::region(atlas_, map.page_pool_offset, map.pages->slots() * bytes_per_slot, name)));
-      inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));
-    }
-  }
-  // The page table, as plan_builds() left it: pages built above are already in it.
+  if (!light.technique->has_map()) return;
+  const rg::ImportState after = map_state_after_frame();
+  const uint64_t bytes = map.pages->slots() * paged_slot_bytes(light.light.shadow);
+  const gpu::Buffer& pool = *declared.page_buffers.emplace_back(
+      std::make_unique<gpu::Buffer>(gpu::Buffer::region(atlas_, map.page_pool_offset, bytes, name)));
+  inputs.maps.push_back(rg::vulkan::import(graph, name, pool, after, after));
+}
+
+// The page table, as plan_builds() left it: pages built this frame are already in it.
+void ShadowMaps::add_page_table_upload(rg::Graph& graph, const MapState& map, const DeclaredMap& declared,
+                                       ShadowInputs& inputs) const {
+  const rg::ImportState after = map_state_after_frame();
   rg::BufferHandle table = rg::vulkan::import(graph, map.prefix + " page table", map.page_table, rewritten_after(after), after);
   struct Data {
     rg::BufferHandle table;
