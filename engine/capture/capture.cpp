@@ -126,22 +126,6 @@ void place_lights_turned(renderer::SceneRenderer& frame, const scene::Scene& sce
   }
 }
 
-// A texel plot reads a dense map's capture lists back at one texel; a paged light's
-// reference lists are per page (--compare-to measures them on the GPU), so plots refuse
-// paged lights (the viewer's inspector shows a paged light's curve without one).
-void refuse_paged_references(const CaptureOptions& options, const scene::Scene& scene, const std::vector<TexelPlot>& plots) {
-  const auto refuse = [&](size_t light, const std::string& flag) {
-    throw std::runtime_error(options.scene.string() + ": " + passes::light_display_name(scene.lights[light], light) +
-                             ": " + flag + " reads the exact curve of a dense map's texel, which paged maps do not "
-                             "keep; set shadow.layout to \"dense\" (--shadow-layout dense) for it");
-  };
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    if (scene.lights[i].shadow.layout != scene::ShadowLayout::paged) continue;
-    for (const TexelPlot& plot : plots)
-      if (plot.light_index == i) refuse(i, "--plot-texel " + plot.spec);
-  }
-}
-
 // Warns about every light whose frame lost shadowing.
 ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
   ShadowLoss loss;
@@ -347,7 +331,6 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   std::vector<TexelPlot> plots = options.plot_texels;
   resolve_texel_plots(plots, scene);
-  refuse_paged_references(options, scene, plots);
   if (options.progress)
     std::fprintf(stderr, "scene %s: %zu meshes, %zu hair grooms, %zu volumes, %zu lights\n", options.scene.c_str(),
                  scene.meshes.size(), scene.hair.size(), scene.volumes.size(), scene.lights.size());
@@ -369,7 +352,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   shadow_options.exponential_interpolation = options.exponential_interpolation;
   // The quality figures and texel curves compare against each light's exact lists.
   shadow_options.keep_reference = options.compare_to_uncompressed || !plots.empty();
-  shadow_options.keep_paged_reference = options.compare_to_uncompressed;  // pages of lists, measured on the GPU
+  shadow_options.keep_paged_reference = shadow_options.keep_reference;  // pages of lists, read on the GPU
   // A capture writes converged paged maps only: it builds every page asked for at once,
   // or with --page-builds at most that many a frame, rendering again until none is pending.
   const bool page_budget = options.shadow.page_builds_per_frame.value_or(0) > 0;

@@ -382,12 +382,15 @@ void resolve_texel_plots(std::vector<TexelPlot>& plots, const scene::Scene& scen
       throw std::runtime_error(flag + "the scene has no light '" + plot.light + "'; lights: " +
                                (names.empty() ? "none" : names));
     }
-    const int resolution = std::max(scene.lights[*found].shadow.resolution, 1);
+    // A paged light's texels are those of its virtual map's finest level.
+    const scene::ShadowSettings& shadow = scene.lights[*found].shadow;
+    const bool paged = shadow.layout == scene::ShadowLayout::paged;
+    const int resolution = std::max(paged ? shadow.virtual_resolution : shadow.resolution, 1);
     if (plot.x >= uint32_t(resolution) || plot.y >= uint32_t(resolution))
       throw std::runtime_error(flag + "texel (" + std::to_string(plot.x) + ", " + std::to_string(plot.y) +
                                ") is outside light " + std::to_string(*found) + " '" + scene.lights[*found].name +
-                               "': its map has " + std::to_string(resolution) + "x" + std::to_string(resolution) +
-                               " texels (0.." + std::to_string(resolution - 1) + ")");
+                               "': its " + (paged ? "virtual " : "") + "map has " + std::to_string(resolution) + "x" +
+                               std::to_string(resolution) + " texels (0.." + std::to_string(resolution - 1) + ")");
     plot.light_index = uint32_t(*found);
   }
 }
