@@ -154,8 +154,7 @@ void draw_light_placement(const scene::Light& light, LightOverride& o, PanelRequ
 void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
   const scene::ShadowSettings& shadow = light.shadow;
   bool paged = shadow.layout == scene::ShadowLayout::paged;
-  const bool can_page = (shadow.technique == "avsm" || passes::paged_keeps_lists(shadow)) &&
-                        shadow.build == scene::ShadowBuild::lists;
+  const bool can_page = passes::pages_technique(shadow) && shadow.build == scene::ShadowBuild::lists;
   ImGui::BeginDisabled(!paged && !can_page);
   if (ImGui::Checkbox("paged maps", &paged)) {
     o.layout = paged ? scene::ShadowLayout::paged : scene::ShadowLayout::dense;

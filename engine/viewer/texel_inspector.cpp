@@ -46,11 +46,9 @@ float TexelCurve::max_difference() const {
 }
 
 std::optional<glm::uvec2> light_texel(const passes::LightView& view, const glm::vec3& world) {
-  const glm::vec4 clip = view.light_from_world * glm::vec4(world, 1.0f);
-  if (clip.w <= 0.0f) return std::nullopt;  // behind a spot light
-  const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
-  if (uv.x < 0.0f || uv.y < 0.0f || uv.x >= 1.0f || uv.y >= 1.0f) return std::nullopt;
-  return glm::uvec2(uv * float(view.resolution));
+  const std::optional<glm::vec2> uv = view.uv(world);  // nullopt behind a spot light
+  if (!uv || uv->x < 0.0f || uv->y < 0.0f || uv->x >= 1.0f || uv->y >= 1.0f) return std::nullopt;
+  return glm::uvec2(*uv * float(view.resolution));
 }
 
 bool TexelInspector::inspect_pixel(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel) {

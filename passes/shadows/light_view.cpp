@@ -179,10 +179,9 @@ UvRect light_footprint(const LightView& view, const scene::Bounds& box) {
   if (box.empty()) return {};
   UvRect rect;
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec4 clip = view.light_from_world * glm::vec4(box.corner(corner), 1.0f);
-    if (clip.w <= 1e-6f) return UvRect::whole();  // behind the eye: its projection is unbounded
-    const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
-    rect.extend({uv, uv});
+    const std::optional<glm::vec2> uv = view.uv(box.corner(corner));
+    if (!uv) return UvRect::whole();  // behind the eye: its projection is unbounded
+    rect.extend({*uv, *uv});
   }
   if (!rect.overlaps(UvRect::whole())) return {};
   return {glm::max(rect.min, glm::vec2(0.0f)), glm::min(rect.max, glm::vec2(1.0f))};

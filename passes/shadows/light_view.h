@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "scene/bounds.h"
@@ -41,6 +42,13 @@ struct LightView {
   uint32_t raster() const { return raster_resolution != 0 ? raster_resolution : resolution; }
   float depth(const glm::vec3& p) const { return glm::dot(glm::vec3(depth_plane), p) + depth_plane.w; }
   float texel_size(float d) const { return texel_size_base + texel_size_per_depth * d; }
+  // Where `world` lands on the map's uv square (unbounded: outside it beyond 0..1); nullopt
+  // behind a spot light's eye, where the projection is unbounded.
+  std::optional<glm::vec2> uv(const glm::vec3& world) const {
+    const glm::vec4 clip = light_from_world * glm::vec4(world, 1.0f);
+    if (clip.w <= 1e-6f) return std::nullopt;
+    return glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+  }
 };
 
 // Page `page` (in pages) of level `level` of a paged map whose level 0 is

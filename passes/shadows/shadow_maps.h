@@ -152,8 +152,8 @@ class ShadowMaps {
   // paged ones. What reads a map may skip a frame whose revision it has already read.
   uint64_t map_revision(uint32_t light) const;
   bool has_reference() const { return options_.keep_reference; }
-  // Light `light`'s lookups have an exact reference: the frame keeps references and its
-  // maps are dense (a paged map's pages keep no capture lists).
+  // Light `light`'s lookups have an exact reference: the frame keeps references, and its
+  // maps are dense or the frame keeps paged references too (keep_paged_reference).
   bool has_reference(uint32_t light) const {
     return options_.keep_reference && (options_.keep_paged_reference || !is_paged(lights_.at(light)));
   }

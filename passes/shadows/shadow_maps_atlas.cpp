@@ -155,11 +155,10 @@ std::string ShadowMaps::list_readers() const {
     if (!first.lookups_read_lists) continue;
     if (first.pages) {  // a pool of pages of lists
       const scene::ShadowSettings& s = lights_[i].light.shadow;
-      const uint64_t per_texel = paged_list_slot_segments(s) / (uint64_t(s.page_size) * uint64_t(s.page_size));
       named.emplace_back(uint64_t(first.pages->slots()) * s.page_size * s.page_size,
                          light_display_name(lights_[i].light, i) + " paged: " + std::to_string(first.pages->slots()) +
                              " slots of " + std::to_string(s.page_size) + "x" + std::to_string(s.page_size) + " texels, " +
-                             std::to_string(per_texel) + " segments a texel");
+                             std::to_string(paged_list_segments_per_texel(s)) + " segments a texel");
       continue;
     }
     const uint64_t side = first.map_state.layout.resolution;
@@ -224,9 +223,10 @@ void ShadowMaps::create_list_buffers() {
   }
 }
 
-// A paged light's pool of lists (shadow.technique "uncompressed"): per slot, a page's
-// heads and paged_list_slot_segments() segments, placed with the light's first map and
-// shared by its faces. Its page captures hold no more than a slot.
+// A paged light's pool of lists (shadow.technique "uncompressed", or a paged light's exact
+// reference): per slot, a page's heads and paged_list_slot_segments() segments, placed
+// with the light's first map and shared by its faces. Its page captures hold no more
+// than a slot.
 void ShadowMaps::place_list_pool(MapState& map, uint64_t& heads, uint64_t& nodes) {
   const scene::ShadowSettings& s = lights_[map.light].light.shadow;
   map.capacity = paged_list_slot_segments(s);

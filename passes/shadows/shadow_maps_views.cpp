@@ -60,8 +60,8 @@ void ShadowMaps::move_page_windows(const View& camera) {
   for (const LightState& light : lights_) {
     MapState& map = maps_[light.first_map];
     if (!map.pages || map.pages->window_pages() == 0) continue;
-    const glm::vec4 clip = map.view.light_from_world * glm::vec4(camera.camera_position, 1.0f);
-    const glm::vec2 uv = glm::clamp(glm::vec2(clip) / clip.w * 0.5f + 0.5f, 0.0f, 1.0f);
+    // A directional light's projection is orthographic: every point has a uv.
+    const glm::vec2 uv = glm::clamp(map.view.uv(camera.camera_position).value_or(glm::vec2(0.5f)), 0.0f, 1.0f);
     const uint32_t last = map.pages->virtual_resolution() - 1;
     map.pages->move_window(glm::min(glm::uvec2(uv * float(map.pages->virtual_resolution())), glm::uvec2(last)));
   }

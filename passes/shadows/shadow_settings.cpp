@@ -48,7 +48,7 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
   auto refuse = [&](const std::string& why) {
     throw std::invalid_argument(who + ": shadow.layout \"paged\" " + why);
   };
-  if (s.technique != "avsm" && !paged_keeps_lists(s))
+  if (!pages_technique(s))
     refuse("builds AVSM maps, or keeps the uncompressed reference's lists; set shadow.technique to \"avsm\" or "
            "\"uncompressed\", or shadow.layout to \"dense\"");
   if (s.build != scene::ShadowBuild::lists)
@@ -76,9 +76,14 @@ bool paged_keeps_lists(const scene::ShadowSettings& s) {
   return technique != nullptr && technique->reads_capture_lists();
 }
 
+bool pages_technique(const scene::ShadowSettings& s) { return s.technique == "avsm" || paged_keeps_lists(s); }
+
+uint64_t paged_list_segments_per_texel(const scene::ShadowSettings& s) {
+  return uint64_t(shadow_technique("uncompressed").parameter(s, kPageSegmentsParameter));
+}
+
 uint64_t paged_list_slot_segments(const scene::ShadowSettings& s) {
-  const uint64_t per_texel = uint64_t(shadow_technique("uncompressed").parameter(s, kPageSegmentsParameter));
-  return uint64_t(s.page_size) * uint64_t(s.page_size) * per_texel;
+  return uint64_t(s.page_size) * uint64_t(s.page_size) * paged_list_segments_per_texel(s);
 }
 
 uint64_t paged_slot_bytes(const scene::ShadowSettings& s) {

@@ -51,12 +51,15 @@ void check_paged_settings(const scene::Light& light, const std::string& who);
 // Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose
 // lookups walk them) rather than AVSM curves.
 bool paged_keeps_lists(const scene::ShadowSettings& s);
+// Whether paged maps build the light's technique: AVSM, or the uncompressed reference's lists.
+bool pages_technique(const scene::ShadowSettings& s);
 // Capture segments one page of lists holds: the uncompressed technique's parameter
 // "page_segments" per texel (passes/shadows/techniques/uncompressed/uncompressed.cpp),
 // for its own paged maps and for a paged light's exact reference. Fixed with the pool,
 // so a page whose capture asks for more is reported as overflowed, and built again when
 // next asked for.
 inline constexpr const char* kPageSegmentsParameter = "page_segments";
+uint64_t paged_list_segments_per_texel(const scene::ShadowSettings& s);
 uint64_t paged_list_slot_segments(const scene::ShadowSettings& s);
 // The bytes of one page of a paged map: page_size^2 AVSM texels of shadow.nodes, or a
 // page of capture lists (a head per texel and paged_list_slot_segments() segments).

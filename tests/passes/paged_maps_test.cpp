@@ -163,29 +163,35 @@ TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit)
   }
 }
 
+// The default scene's lights paged so that every receiver reads the level of a dense
+// kHeldLevel^2 map: a 512^2 virtual map in pages of 32, whose shadow.resolution of 128
+// makes level 2 the fallback, and a page_lod_bias of 8 that sends every receiver there
+// (the fallback level and those above: 21 pages). Slots of lists (the uncompressed
+// technique, or the exact reference) hold 96 segments a texel, room for the hair
+// curtain's at that level (the default 32 is not), in a pool of `pool_mib`.
+constexpr uint32_t kHeldLevel = 128;
+scene::Scene held_at_fallback_level(double pool_mib, const std::string& technique = "avsm") {
+  scene::Scene scene = default_scene(scene::ShadowLayout::paged, int(kHeldLevel));
+  for (scene::Light& light : scene.lights) {
+    light.shadow.technique = technique;
+    light.shadow.virtual_resolution = 512;
+    light.shadow.page_size = 32;
+    light.shadow.page_lod_bias = 8.0f;
+    light.shadow.parameters["page_segments"] = 96;
+    light.shadow.page_pool_mib = pool_mib;
+  }
+  return scene;
+}
+
 // The uncompressed reference paged: pages keep their capture lists in the light's pool
 // (the looked-up list buffers), and lookups walk them. With every receiver held at the
-// fallback level (a 512^2 virtual map in pages of 32; shadow.resolution 128 makes level 2
-// the fallback, and a page_lod_bias of 8 sends every receiver there), each reads the same
-// lists as the dense 128^2 reference does: the frames match but for the order in which
-// each texel's segments multiply (a page's capture appends them in another order). The
-// hair curtain needs more segments per texel than the default page_segments at this
-// level, so its pages first overflow their slots.
+// fallback level, each reads the same lists as the dense 128^2 reference does: the frames
+// match but for the order in which each texel's segments multiply (a page's capture
+// appends them in another order).
 TEST_F(PagedMapsTest, PagedListsGiveTheDenseReferenceFrameAtTheirLevel) {
-  constexpr uint32_t kVirtual = 512, kPage = 32, kDense = 128;
-  scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense));
-  scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense));
-  for (scene::Scene* scene : {&dense_scene, &paged_scene})
-    for (scene::Light& light : scene->lights) {
-      light.shadow.technique = "uncompressed";
-      light.shadow.virtual_resolution = int(kVirtual);
-      light.shadow.page_size = int(kPage);
-      light.shadow.page_lod_bias = 8.0f;
-      // Room for the hair curtain's segments at this level, in a pool that holds the level
-      // (a slot of 32x32 texels: 1.5 MiB; the fallback level and those above: 21 pages).
-      light.shadow.parameters["page_segments"] = 96;
-      light.shadow.page_pool_mib = 48.0;
-    }
+  scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kHeldLevel));
+  for (scene::Light& light : dense_scene.lights) light.shadow.technique = "uncompressed";
+  scene::Scene paged_scene = held_at_fallback_level(48.0, "uncompressed");  // 1.5 MiB slots: 32 of them
   const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
   renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight);
   renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight, {.unlimited_page_builds = true});
@@ -233,16 +239,8 @@ TEST_F(PagedMapsTest, PagedListsGiveTheDenseReferenceFrameAtTheirLevel) {
 // (as above), a paged AVSM light's quality figures (|T - T_exact| at each surface) are the
 // dense AVSM 128^2 map's against its own reference.
 TEST_F(PagedMapsTest, PagedLightsKeepAnExactReferenceForTheQualityFigures) {
-  constexpr uint32_t kVirtual = 512, kPage = 32, kDense = 128;
-  scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense));
-  scene::Scene paged_scene = default_scene(scene::ShadowLayout::paged, int(kDense));
-  for (scene::Light& light : paged_scene.lights) {
-    light.shadow.virtual_resolution = int(kVirtual);
-    light.shadow.page_size = int(kPage);
-    light.shadow.page_lod_bias = 8.0f;
-    light.shadow.parameters["page_segments"] = 96;  // the hair curtain's segments at this level
-    light.shadow.page_pool_mib = 1.0;  // 32 pages of AVSM-8 (the fallback level and above: 21), 48 MiB of lists
-  }
+  const scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kHeldLevel));
+  const scene::Scene paged_scene = held_at_fallback_level(1.0);  // 32 pages of AVSM-8, 48 MiB of lists
   const passes::View view = passes::make_view(dense_scene.cameras.front(), kFrameWidth, kFrameHeight);
   renderer::SceneRenderer dense(ctx(), shaders(), dense_scene, kFrameWidth, kFrameHeight, {.keep_reference = true});
   renderer::SceneRenderer paged(ctx(), shaders(), paged_scene, kFrameWidth, kFrameHeight,

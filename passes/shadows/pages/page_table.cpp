@@ -84,21 +84,20 @@ PageKey PageTable::key(uint32_t entry) const { return key_at(entry, window_centr
 uint32_t PageTable::move_window(glm::uvec2 centre) {
   if (centre == window_centre_) return 0;
   const glm::uvec2 before = window_centre_;
+  // The windowed levels come first in each face's entries; the whole ones never move.
+  const uint32_t windowed = level_first_[shared::page_window_levels(virtual_resolution_, page_size_, window_)];
   uint32_t left = 0;
-  for (uint32_t e = 0; e < entries(); ++e) {
-    const uint32_t level = key_at(e, before).level;
-    if (shared::page_table_grid(virtual_resolution_, page_size_, window_, level) ==
-        shared::page_grid(virtual_resolution_, page_size_, level))
-      continue;  // a whole level
-    if (entry_at(key_at(e, before), centre) == e) continue;  // stays in the window
-    if (pages_[e].slot != kNoSlot) {
-      free_slots_.push_back(pages_[e].slot);
-      release(e);
-      ++left;
-      ++left_window_since_plan_;
+  for (uint32_t face = 0; face < faces_; ++face)
+    for (uint32_t e = face * face_entries_; e < face * face_entries_ + windowed; ++e) {
+      if (entry_at(key_at(e, before), centre) == e) continue;  // stays in the window
+      if (pages_[e].slot != kNoSlot) {
+        free_slots_.push_back(pages_[e].slot);
+        release(e);
+        ++left;
+      }
+      pages_[e] = Page{};
     }
-    pages_[e] = Page{};
-  }
+  left_window_since_plan_ += left;
   window_centre_ = centre;
   ++revision_;
   return left;

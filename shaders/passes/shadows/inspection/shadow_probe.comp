@@ -32,8 +32,8 @@ void main() {
     uint reference = shadows[light].reference;
     uint entries[2] = uint[2](light, reference == kNoReference ? light : reference);
     for (int i = 0; i < 2; ++i) {  // one call site: the texel lookup is compiled once
-      // A paged map's curve is its finest resident level's over the texel (no reference:
-      // kNoReference, so the technique twice).
+      // A paged map's curve is its finest resident level's over the texel (its reference
+      // reads that page's lists; without one, kNoReference: the technique twice).
       GpuShadow s = shadows[entries[i]];
       ivec2 at = texel;
       bool held = !shadow_is_paged(s) || shadow_paged_finest_texel(shadows[entries[i]], texel, s, at);
