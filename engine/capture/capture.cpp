@@ -256,12 +256,26 @@ std::string describe(const scene::VolumeShading& shading) {
          std::to_string(shading.resolution_divisor) + ", step " + std::to_string(shading.step_voxels) + " voxels";
 }
 
+// Images of one size next to each other, left to right.
+gpu::ImageRGBA32F side_by_side(std::initializer_list<const gpu::ImageRGBA32F*> images) {
+  const gpu::ImageRGBA32F& first = **images.begin();
+  gpu::ImageRGBA32F out{first.width * uint32_t(images.size()), first.height, {}};
+  out.pixels.reserve(size_t(out.width) * out.height * 4);
+  for (uint32_t y = 0; y < first.height; ++y)
+    for (const gpu::ImageRGBA32F* image : images)
+      out.pixels.insert(out.pixels.end(), image->pixels.begin() + ptrdiff_t(y) * image->width * 4,
+                        image->pixels.begin() + ptrdiff_t(y + 1) * image->width * 4);
+  return out;
+}
+
 // The reference and hidden-volume frames of --compare-volume-shading, each timed on
 // its own executor (their graphs differ from the main frame's).
 class VolumeShadingRun {
  public:
-  VolumeShadingRun(gpu::Context& ctx, gpu::TimestampMode mode, renderer::SceneRenderer& frame)
-      : ctx_(ctx), frame_(frame), main_(frame.volume_shading()), executor_(ctx, mode) {}
+  VolumeShadingRun(gpu::Context& ctx, gpu::TimestampMode mode, renderer::SceneRenderer& frame,
+                   const scene::Scene& scene, int path_traced_paths)
+      : ctx_(ctx), frame_(frame), scene_(scene), paths_(path_traced_paths), main_(frame.volume_shading()),
+        executor_(ctx, mode) {}
 
   // One reference frame; `keep` reads its HDR image back.
   void render_reference(VkCommandBuffer cmd, const passes::View& view, bool measured, bool keep) {
@@ -277,8 +291,16 @@ class VolumeShadingRun {
     const VolumeShadingComparison comparison = compare_volume_shading(fast, reference_, hidden, &error);
     io::write_png_raw(out_dir / "volume_error.png", error);
     io::write_exr(out_dir / "frame_reference.exr", reference_);
+    std::optional<PathTracedComparison> traced;
+    if (paths_ > 0) {
+      const gpu::ImageRGBA32F path_traced = path_trace_volumes(scene_, view, hidden, paths_);
+      io::write_exr(out_dir / "frame_path_traced.exr", path_traced);
+      io::write_png_srgb(out_dir / "volume_path_traced.png", side_by_side({&fast, &reference_, &path_traced}));
+      traced = compare_with_path_traced(fast, reference_, hidden, path_traced, paths_);
+    }
     const fs::path file = out_dir / "volume_quality.json";
-    write_volume_comparison(file, comparison, describe(main_), main_log.median_gpu_ms(), log_.median_gpu_ms());
+    write_volume_comparison(file, comparison, describe(main_), main_log.median_gpu_ms(), log_.median_gpu_ms(),
+                            traced ? &*traced : nullptr);
     return file;
   }
 
@@ -300,6 +322,8 @@ class VolumeShadingRun {
 
   gpu::Context& ctx_;
   renderer::SceneRenderer& frame_;
+  const scene::Scene& scene_;
+  int paths_ = 0;
   scene::VolumeShading main_;
   rg::vulkan::Executor executor_;
   FrameTimingLog log_;
@@ -327,6 +351,10 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   scene::Scene scene = scene::load_scene(options.scene);
   for (scene::Light& light : scene.lights) options.shadow.apply(light);
   options.volume_shading.apply(scene.volume_shading);
+  for (scene::Volume& volume : scene.volumes) {
+    if (options.volume_octaves) volume.multiple_scattering.octaves = *options.volume_octaves;
+    if (options.volume_sky_light) volume.sky_light = *options.volume_sky_light;
+  }
   const std::vector<glm::vec3> probe_points =
       options.probe_file.empty() ? std::vector<glm::vec3>{} : read_probe_points(options.probe_file);
   std::vector<TexelPlot> plots = options.plot_texels;
@@ -428,7 +456,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     slots.submit(slot);
   };
   std::optional<VolumeShadingRun> volume_run;
-  if (options.compare_volume_shading) volume_run.emplace(ctx, calibration.mode, frame);
+  if (options.compare_volume_shading) volume_run.emplace(ctx, calibration.mode, frame, scene, options.path_trace_volumes);
   VkCommandBuffer comparison_cmd = volume_run ? ctx.allocate_command_buffer("volume comparison frame") : VK_NULL_HANDLE;
 
   const auto loop_start = std::chrono::steady_clock::now();

@@ -51,6 +51,13 @@ struct CaptureOptions {
   // smoke pixels: writes volume_quality.json, volume_error.png and frame_reference.exr
   // (capture/volume_comparison.h).
   bool compare_volume_shading = false;
+  // With compare_volume_shading: the volumes also path traced on the CPU with this many
+  // paths per pixel (0: not), frame_path_traced.exr and volume_quality.json's "path_traced".
+  int path_trace_volumes = 0;
+  // Every volume's scattering octaves (1: single scattering) and sky light share, over
+  // the scene file's (unset: its own).
+  std::optional<int> volume_octaves;
+  std::optional<float> volume_sky_light;
   bool exponential_interpolation = false;
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).

@@ -38,6 +38,14 @@ const char* kUsage =
     "                   and once with the volumes hidden: volume_quality.json (smoke-pixel\n"
     "                   error of this shading against the reference, both paths' pass ms),\n"
     "                   volume_error.png (error x10), frame_reference.exr\n"
+    "  --path-trace-volumes PATHS   with --compare-volume-shading: also path trace the\n"
+    "                   volumes on the CPU (every order of scattering) with PATHS paths a\n"
+    "                   pixel, 1 to 4096: frame_path_traced.exr, and the smoke's mean\n"
+    "                   luminance in each frame in volume_quality.json's \"path_traced\"\n"
+    "  --volume-octaves N   every volume's multiple-scattering octaves, 1 (single\n"
+    "                   scattering) to 8 (default: the scene file's, 4)\n"
+    "  --sky-light S    every volume's share of the sky's light, 0 (none) to 4 (default:\n"
+    "                   the scene file's, 1)\n"
     "shadow overrides, for every light (default: the scene file's settings):\n"
     "  --technique T    one of the shadow techniques listed at the end (default avsm)\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
@@ -199,6 +207,19 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.volume_shading.step_voxels = *voxels;
   } else if (arg == "--compare-volume-shading") {
     options.compare_volume_shading = true;
+  } else if (arg == "--path-trace-volumes") {
+    const uint32_t n = parse_count(arg, value());
+    if (n < 1 || n > 4096) usage_error("--path-trace-volumes expects 1 to 4096 paths per pixel");
+    options.path_trace_volumes = int(n);
+  } else if (arg == "--volume-octaves") {
+    const uint32_t n = parse_count(arg, value());
+    if (n < 1 || n > 8) usage_error("--volume-octaves expects 1 (single scattering) to 8");
+    options.volume_octaves = int(n);
+  } else if (arg == "--sky-light") {
+    const std::string text = value();
+    const std::optional<float> share = parse_number<float>(text);
+    if (!share || !(*share >= 0.0f && *share <= 4.0f)) usage_error("--sky-light expects 0 to 4, got '" + text + "'");
+    options.volume_sky_light = *share;
   } else if (arg == "--technique") {
     const std::string name = value();
     if (!passes::find_shadow_technique(name))
@@ -291,6 +312,8 @@ CaptureCommand parse_capture_arguments(const std::vector<std::string>& args) {
   const scene::ShadowOverrides& shadow = command.options.shadow;
   if (shadow.cascades.value_or(1) > 1 && shadow.clusters.value_or(0) > 1)
     usage_error("--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
+  if (command.options.path_trace_volumes > 0 && !command.options.compare_volume_shading)
+    usage_error("--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   return command;
 }
 
@@ -322,6 +345,10 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   if (volume.resolution_divisor) with_value(true, "--volume-resolution-divisor", std::to_string(*volume.resolution_divisor));
   if (volume.step_voxels) with_value(true, "--volume-step", exact_text(*volume.step_voxels));
   flag(o.compare_volume_shading, "--compare-volume-shading");
+  with_value(o.path_trace_volumes != defaults.path_trace_volumes, "--path-trace-volumes",
+             std::to_string(o.path_trace_volumes));
+  if (o.volume_octaves) with_value(true, "--volume-octaves", std::to_string(*o.volume_octaves));
+  if (o.volume_sky_light) with_value(true, "--sky-light", exact_text(*o.volume_sky_light));
 
   const scene::ShadowOverrides& shadow = o.shadow;
   if (shadow.technique) with_value(true, "--technique", *shadow.technique);

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "capture/files.h"
+#include "scene/volume_scattering.h"
+#include "shared/lights.h"
 
 namespace avsm::capture {
 namespace {
@@ -72,9 +75,87 @@ VolumeShadingComparison compare_volume_shading(const gpu::ImageRGBA32F& fast, co
   return result;
 }
 
+gpu::ImageRGBA32F path_trace_volumes(const scene::Scene& scene, const passes::View& view,
+                                     const gpu::ImageRGBA32F& hidden, int paths) {
+  if (hidden.width != view.width || hidden.height != view.height)
+    throw std::invalid_argument("path_trace_volumes: the hidden frame is not the view's size");
+  const glm::vec3 sky = shared::kSkyAmbient;
+  gpu::ImageRGBA32F image = hidden;
+  auto trace_rows = [&](uint32_t first, uint32_t stride) {
+    for (uint32_t y = first; y < view.height; y += stride)
+      for (uint32_t x = 0; x < view.width; ++x) {
+        const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(view.width) - 1.0f,
+                            1.0f - 2.0f * (float(y) + 0.5f) / float(view.height));
+        const glm::vec4 far = view.inverse_view_projection * glm::vec4(ndc, 1.0f, 1.0f);
+        const glm::vec3 direction = glm::normalize(glm::vec3(far) / far.w - view.camera_position);
+        // Volumes front to back by where the ray enters their bounds (they rarely overlap).
+        std::vector<std::pair<float, const scene::Volume*>> hit;
+        for (const scene::Volume& volume : scene.volumes) {
+          const glm::vec3 inverse = 1.0f / direction;
+          const glm::vec3 a = (volume.world_bounds.min - view.camera_position) * inverse;
+          const glm::vec3 b = (volume.world_bounds.max - view.camera_position) * inverse;
+          const glm::vec3 near = glm::min(a, b), far_t = glm::max(a, b);
+          const float enter = std::max({near.x, near.y, near.z, 0.0f});
+          if (enter < std::min({far_t.x, far_t.y, far_t.z})) hit.emplace_back(enter, &volume);
+        }
+        std::sort(hit.begin(), hit.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+        glm::vec3 in_scattered(0.0f);
+        float transmittance = 1.0f;
+        for (const auto& [enter, volume] : hit) {
+          const scene::PathTracedRay ray = scene::path_trace(
+              *volume, scene.lights, sky * volume->sky_light, view.camera_position, direction,
+              {paths, 256, 1u + y * view.width + x});
+          in_scattered += transmittance * ray.in_scattered;
+          transmittance *= ray.transmittance;
+        }
+        float* pixel = image.pixels.data() + (size_t(y) * view.width + x) * 4;
+        for (int c = 0; c < 3; ++c) pixel[c] = pixel[c] * transmittance + in_scattered[c];
+      }
+  };
+  const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, 16u);
+  std::vector<std::thread> workers;
+  for (uint32_t i = 1; i < threads; ++i) workers.emplace_back(trace_rows, i, threads);
+  trace_rows(0, threads);
+  for (std::thread& worker : workers) worker.join();
+  return image;
+}
+
+PathTracedComparison compare_with_path_traced(const gpu::ImageRGBA32F& fast, const gpu::ImageRGBA32F& reference,
+                                              const gpu::ImageRGBA32F& hidden, const gpu::ImageRGBA32F& path_traced,
+                                              int paths) {
+  PathTracedComparison result;
+  result.paths = paths;
+  for (uint32_t y = 0; y < hidden.height; ++y)
+    for (uint32_t x = 0; x < hidden.width; ++x) {
+      const double traced = luminance(path_traced.at(x, y)), without = luminance(hidden.at(x, y));
+      if (!(std::abs(traced - without) > kSmokeChange * std::max(traced, without))) continue;
+      ++result.smoke_pixels;
+      result.path_traced_luminance += traced;
+      result.fast_luminance += luminance(fast.at(x, y));
+      result.reference_luminance += luminance(reference.at(x, y));
+    }
+  if (result.smoke_pixels > 0) {
+    result.path_traced_luminance /= double(result.smoke_pixels);
+    result.fast_luminance /= double(result.smoke_pixels);
+    result.reference_luminance /= double(result.smoke_pixels);
+  }
+  return result;
+}
+
 void write_volume_comparison(const std::filesystem::path& file, const VolumeShadingComparison& c,
-                             const std::string& fast_settings, const PassMedians& fast, const PassMedians& reference) {
+                             const std::string& fast_settings, const PassMedians& fast, const PassMedians& reference,
+                             const PathTracedComparison* path_traced) {
+  nlohmann::json traced = nullptr;
+  if (path_traced)
+    traced = {{"paths_per_pixel", path_traced->paths},
+              {"smoke_pixels", path_traced->smoke_pixels},
+              {"smoke_pixel_rule", "the path-traced smoke changes the luminance by more than 1%"},
+              {"fast_mean_luminance", path_traced->fast_luminance},
+              {"reference_mean_luminance", path_traced->reference_luminance},
+              {"path_traced_mean_luminance", path_traced->path_traced_luminance},
+              {"fast_relative", path_traced->fast_relative()}};
   write_json(file, {{"fast_settings", fast_settings},
+                    {"path_traced", traced},
                     {"smoke_pixels", c.smoke_pixels},
                     {"smoke_pixel_rule", "the smoke changes the reference's luminance by more than 1%"},
                     {"mean_luminance", c.mean_luminance},

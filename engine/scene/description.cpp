@@ -93,6 +93,29 @@ ModelEntry read_model(ObjectReader& object, const std::filesystem::path& scene_d
   return entry;
 }
 
+// "multiple_scattering": "off" (single scattering) or {"octaves", "attenuation", "contribution"}.
+MultipleScattering read_multiple_scattering(ObjectReader& object) {
+  MultipleScattering scattering;
+  const json* block = object.optional("multiple_scattering");
+  if (!block) return scattering;
+  if (block->is_string()) {
+    object.check(*block == "off", "multiple_scattering",
+                 "must be \"off\" or an object with \"octaves\", \"attenuation\" and \"contribution\"");
+    scattering.octaves = 1;
+    return scattering;
+  }
+  ObjectReader reader(object.reader(), *block, object.path_of("multiple_scattering"));
+  scattering.octaves = reader.integer_or("octaves", scattering.octaves);
+  reader.check(scattering.octaves >= 1 && scattering.octaves <= 8, "octaves", "must be 1 (single scattering) to 8");
+  scattering.attenuation = reader.number_or("attenuation", scattering.attenuation);
+  reader.check(scattering.attenuation > 0.0f && scattering.attenuation <= 1.0f, "attenuation", "must be in (0, 1]");
+  scattering.contribution = reader.number_or("contribution", scattering.contribution);
+  reader.check(scattering.contribution >= 0.0f && scattering.contribution <= 1.0f, "contribution",
+               "must be in [0, 1]");
+  reader.finish();
+  return scattering;
+}
+
 VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene_dir) {
   VolumeEntry entry;
   entry.file = asset_path(object, scene_dir);
@@ -120,6 +143,10 @@ VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene
                        "must be 1 to 8 voxels per cache cell");
     cache_object.finish();
   }
+  entry.multiple_scattering = read_multiple_scattering(object);
+  entry.sky_light = object.number_or("sky_light", entry.sky_light);
+  object.check(entry.sky_light >= 0.0f && entry.sky_light <= 4.0f, "sky_light",
+               "must be 0 (no sky light) to 4 (the sky's share of the volume's light)");
   return entry;
 }
 

@@ -38,6 +38,8 @@ struct VolumeEntry {  // "volumes": OpenVDB fog volumes
   int majorant_brick_size = 8;
   float lighting_cache_downsample = 2.0f;  // "lighting_cache": {"downsample": N}
   bool lighting_cache = true;              // "lighting_cache": "off" clears it
+  MultipleScattering multiple_scattering;  // "multiple_scattering": "off" or {"octaves", "attenuation", "contribution"}
+  float sky_light = 1.0f;                  // "sky_light": the sky's share, 0 to 4
 };
 
 struct HairEntry {  // "hair": .tfx, .hair, or the line primitives of a .gltf/.glb

@@ -106,6 +106,8 @@ Scene load_scene(const SceneDescription& description) {
     volume.name = entry.name;
     volume.lighting_cache_downsample = entry.lighting_cache_downsample;
     volume.lighting_cache = entry.lighting_cache;
+    volume.multiple_scattering = entry.multiple_scattering;
+    volume.sky_light = entry.sky_light;
     scene.volumes.push_back(std::move(volume));
   }
   for (std::size_t i = 0; i < description.hair.size(); ++i) {

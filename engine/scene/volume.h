@@ -88,6 +88,23 @@ struct VolumeShadingOverrides {
   }
 };
 
+// Light scattered more than once inside a volume, approximated by octaves of single
+// scattering (Wrenninge, Zafar, Clifford et al., "Oz: The Great and Volumetric", 2013):
+// octave k sees the optical depth towards each light (and the sky) scaled by
+// attenuation^k and carries (contribution * albedo * (1 - escape))^k of its light, so
+// light reaches deeper into the medium and a dense, bright one turns white where lit.
+// escape is the chance that light scattered at the point leaves the volume before it
+// scatters again (the mean transmittance over the sphere: scene::sky_visibility), so
+// thin smoke gains little, and the albedo keeps dark smoke dark.
+// The phase function is isotropic (shaders/common/volume.glsl), so the method's
+// eccentricity term has nothing to act on. octaves 1: single scattering only.
+struct MultipleScattering {
+  int octaves = 4;             // 1 to 8 (scene file "multiple_scattering": {"octaves": N})
+  float attenuation = 0.5f;    // (0, 1]: the optical depth octave k sees, per octave
+  float contribution = 0.9f;   // [0, 1]: the light octave k carries, per octave, before albedo and escape
+  bool operator==(const MultipleScattering&) const = default;
+};
+
 struct Volume {
   std::string name;
   std::string grid_name;
@@ -112,6 +129,10 @@ struct Volume {
   // "lighting_cache": "off": the fast march looks every light's map up along the ray
   // inside this volume instead (exact lighting, the reference's cost).
   bool lighting_cache = true;
+  MultipleScattering multiple_scattering;  // scene file "multiple_scattering" ("off": octaves 1)
+  // The sky's light (kSkyAmbient, as surfaces and hair get it) scattered in the volume,
+  // shadowed by the volume itself, times this (scene file "sky_light"; 0: none).
+  float sky_light = 1.0f;
 
   float max_extinction() const { return extinction_scale * stats.max; }
 };

@@ -82,7 +82,9 @@ struct StrandCasters {
 // GpuVolume parameter block per volume).
 struct VolumeCasters {
   VkBuffer grids = VK_NULL_HANDLE;       // usage STORAGE_BUFFER
-  VkBuffer majorants = VK_NULL_HANDLE;   // usage STORAGE_BUFFER
+  // The majorant bricks (usage STORAGE_BUFFER); the renderer's own also hold each
+  // volume's sky visibility (GpuVolume::sky_offset), which only its camera passes read.
+  VkBuffer majorants = VK_NULL_HANDLE;
   VkBuffer parameters = VK_NULL_HANDLE;  // GpuVolume[]; usage STORAGE_BUFFER
   VkDeviceSize parameters_size = 0;      // bytes: sizeof(GpuVolume) x volumes
   uint32_t volume_count = 0;

@@ -5,9 +5,6 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/lights.h"
 
-// Light from the sky, the same on every surface and fibre.
-const vec3 kSkyAmbient = vec3(0.08, 0.1, 0.14);
-
 // Spot and point lights: inverse-square falloff, windowed to reach 0 at the range
 // (the window of Karis, "Real Shading in Unreal Engine 4", 2013), 1 with no range.
 float light_distance_window(float distance2, float range) {

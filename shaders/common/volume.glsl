@@ -4,7 +4,7 @@
 //
 // Before including, define the bindings of the three storage buffers:
 //   AVSM_VOLUME_BINDING_NANOVDB    every volume's NanoVDB grid, one after another
-//   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid, one after another
+//   AVSM_VOLUME_BINDING_MAJORANTS  every volume's majorant grid and sky visibility, one after another
 //   AVSM_VOLUME_BINDING_PARAMETERS one GpuVolume per volume
 // optionally, for the density brick atlas (passes/frame/volume_density_atlas.h):
 //   AVSM_VOLUME_BINDING_ATLAS      the atlas (sampler3D) at this binding, every
@@ -22,7 +22,7 @@ layout(std430, binding = AVSM_VOLUME_BINDING_NANOVDB) readonly buffer VolumeNano
 #define PNANOVDB_GLSL
 #include "nanovdb/PNanoVDB.h"
 
-layout(std430, binding = AVSM_VOLUME_BINDING_MAJORANTS) readonly buffer VolumeMajorants { float volume_majorants[]; };
+layout(std430, binding = AVSM_VOLUME_BINDING_MAJORANTS) readonly buffer VolumeBrickGrids { float volume_brick_grids[]; };
 
 #include "shared/volume.h"
 
@@ -76,7 +76,30 @@ float sample_density(inout DensityReader reader, vec3 index_position) {
 // Upper bound of the density in a brick; 0 means the whole brick is empty.
 float brick_majorant(GpuVolume volume, ivec3 brick) {
   ivec3 d = volume.majorant_dims;
-  return volume_majorants[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
+  return volume_brick_grids[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
+}
+
+// ---- Sky visibility ----
+
+// The fraction of a uniform sky that reaches an index-space position through the volume
+// itself, for scattering octave `octave` (scene::sky_visibility: per brick corner,
+// trilinear between them). 1 (nothing in the way) for a volume without the grid.
+float sky_visibility(GpuVolume volume, vec3 index_position, uint octave) {
+  if (volume.sky_offset == kNoSkyVisibility) return 1.0;
+  ivec3 corners = volume.majorant_dims + 1;
+  vec3 c = clamp((index_position - vec3(volume.majorant_origin)) / float(volume.brick_size), vec3(0.0),
+                 vec3(volume.majorant_dims));
+  ivec3 base = min(ivec3(floor(c)), volume.majorant_dims - 1);
+  vec3 w = c - vec3(base);
+  uint first = volume.sky_offset + octave * uint(corners.x * corners.y * corners.z);
+  float sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    ivec3 offset = ivec3(corner >> 2, (corner >> 1) & 1, corner & 1);
+    ivec3 at = base + offset;
+    vec3 weights = mix(1.0 - w, w, vec3(offset));
+    sum += weights.x * weights.y * weights.z * volume_brick_grids[first + uint(at.x + corners.x * (at.y + corners.y * at.z))];
+  }
+  return sum;
 }
 
 // The brick of the majorant grid that holds an index-space position.

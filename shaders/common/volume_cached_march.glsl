@@ -34,9 +34,9 @@ float march_step_voxels = 2.0;
 
 // In a volume without lighting cache: every light's map looked up (only compiled in
 // with AVSM_MARCH_MAP_LOOKUPS; the renderer never runs such a volume without it).
-vec3 looked_up_in_scattering(vec3 p, vec3 to_camera) {
+vec3 looked_up_in_scattering(vec3 index_position, vec3 p, vec3 to_camera) {
 #ifdef AVSM_MARCH_MAP_LOOKUPS
-  return scattered_light(p, to_camera, march_light_count);
+  return scattered_light(march_volume, index_position, p, to_camera, march_light_count);
 #else
   return vec3(0.0);
 #endif
@@ -61,7 +61,7 @@ bool visit_volume_interval(GpuVolume volume, inout DensityReader reader, vec3 wo
     if (sigma_t <= 0.0) continue;
     float step_transmittance = exp(-sigma_t * dt);
     vec3 in_scattering = cached ? cached_in_scattering(cache, p)
-                                : looked_up_in_scattering(world_origin + t * world_direction, -world_direction);
+                                : looked_up_in_scattering(p, world_origin + t * world_direction, -world_direction);
     state.in_scattered += state.transmittance * volume.albedo * (1.0 - step_transmittance) * in_scattering;
     state.transmittance *= step_transmittance;
     if (state.transmittance < kMinTransmittance) return false;

@@ -43,7 +43,7 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
                    inout MarchState state) {
   int steps = max(1, int(ceil((t_end - t_start) / volume.step_length)));
   float dt = (t_end - t_start) / float(steps);
-  bool scatters = march_light_count > 0u && any(greaterThan(volume.albedo, vec3(0.0)));
+  bool scatters = (march_light_count > 0u || volume.sky_light > 0.0) && any(greaterThan(volume.albedo, vec3(0.0)));
   int stride = scatters ? lighting_stride(world_origin + t_start * world_direction, dt) : steps;
   // Blocks of `stride` steps share one in-scattering evaluation at their middle. The
   // inner loop only gathers the block's weight (sum of T * albedo * (1 - exp(-sigma dt)));
@@ -63,8 +63,9 @@ void march_segment(GpuVolume volume, inout DensityReader reader, vec3 world_orig
     }
     if (scatters && any(greaterThan(weight, vec3(0.0)))) {
       float t_light = t_start + 0.5 * float(block_start + block_end) * dt;
-      state.in_scattered +=
-          weight * scattered_light(world_origin + t_light * world_direction, -world_direction, march_light_count);
+      state.in_scattered += weight * scattered_light(march_volume, index_origin + t_light * index_direction,
+                                                     world_origin + t_light * world_direction, -world_direction,
+                                                     march_light_count);
     }
     if (state.transmittance < kMinTransmittance) return;
   }

@@ -10,6 +10,11 @@ GPU_CONST(uint, kLightDirectional, 0u)
 GPU_CONST(uint, kLightSpot, 1u)
 GPU_CONST(uint, kLightPoint, 2u)
 
+// Light from the sky, the same on every surface, fibre and volume (the radiance a white
+// Lambertian surface reflects under it: shaders/common/pbr_brdf.glsl); the CPU's
+// volume reference (scene/volume_scattering.h) lights with it too.
+GPU_CONST(vec3, kSkyAmbient, vec3(0.08, 0.1, 0.14))
+
 #define GPU_LIGHT(F, A)                                                                        \
   F(vec4, position_type)       /* xyz: position (spot, point); w: kLight* */                  \
   F(vec4, direction_cos_outer) /* xyz: direction the light travels; w: cos(outer cone) */     \

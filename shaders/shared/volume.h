@@ -8,6 +8,8 @@ GPU_NAMESPACE_BEGIN
 
 // A debug flag of the camera marches: march empty bricks too (results must not change).
 GPU_CONST(uint, kMarchNoMajorantSkipping, 1u)
+// GpuVolume::sky_offset of a volume without sky visibility (no sky light, one octave).
+GPU_CONST(uint, kNoSkyVisibility, 0xffffffffu)
 
 #define GPU_VOLUME(F, A)                                                                                   \
   F(mat4, index_from_world)                                                                                \
@@ -19,13 +21,18 @@ GPU_CONST(uint, kMarchNoMajorantSkipping, 1u)
   F(uint, grid_byte_offset)     /* where this volume's NanoVDB grid starts in pnanovdb_buf_data */        \
   F(ivec3, majorant_origin)     /* index coordinate of the corner of brick (0, 0, 0) */                   \
   F(int, brick_size)            /* voxels per brick edge */                                               \
-  F(ivec3, majorant_dims)       /* bricks along x, y, z (x fastest in volume_majorants) */                \
-  F(uint, majorant_offset)      /* where this volume's bricks start in volume_majorants (and slots) */    \
+  F(ivec3, majorant_dims)       /* bricks along x, y, z (x fastest in volume_brick_grids) */              \
+  F(uint, majorant_offset)      /* where this volume's majorants start in volume_brick_grids (and slots) */ \
   F(ivec3, atlas_slots)         /* this volume's region of the density atlas, slots per axis */           \
   F(int, atlas_first_slice)     /* atlas z of the region's first voxel slice */                           \
   F(float, atlas_density_scale) /* density = atlas value * this */                                        \
   F(float, voxel_size)          /* smallest voxel edge, world units */                                    \
-  A(float, pad, 2)
+  F(uint, octaves)              /* scattering octaves (scene::MultipleScattering; 1: single) */          \
+  F(float, octave_attenuation)  /* optical depth octave k sees: attenuation^k of it */                   \
+  F(float, octave_contribution) /* light octave k carries: (contribution * albedo * (1 - escape))^k */   \
+  F(float, sky_light)           /* the sky's share (0: none) */                                           \
+  F(uint, sky_offset)           /* its sky visibility in volume_brick_grids (brick corners, per octave), or kNoSkyVisibility */ \
+  A(float, pad, 1)
 GPU_STRUCT(GpuVolume, GPU_VOLUME)
 
 #define GPU_CACHE_LAYOUT(F, A)                                                                  \

@@ -220,6 +220,39 @@ TEST(SceneDescriptionErrors, VolumeShadingAndLightingCacheOutOfRange) {
               HasSubstr("volume_shading.step_voxels: must be 0.125 to 4 voxels"));
 }
 
+TEST(SceneDescription, VolumeMultipleScatteringAndSkyLight) {
+  const SceneDescription defaults = parse(full_scene());
+  EXPECT_EQ(defaults.volumes[0].multiple_scattering, MultipleScattering{});
+  EXPECT_GT(defaults.volumes[0].multiple_scattering.octaves, 1) << "on by default";
+  EXPECT_FLOAT_EQ(defaults.volumes[0].sky_light, 1.0f);
+  auto with = [](const std::string& keys) {
+    return full_scene(R"("majorant_brick_size": 16 })", R"("majorant_brick_size": 16, )" + keys + " }");
+  };
+  const SceneDescription scene =
+      parse(with(R"("multiple_scattering": { "octaves": 6, "attenuation": 0.25, "contribution": 0.5 }, "sky_light": 2)"));
+  EXPECT_EQ(scene.volumes[0].multiple_scattering, (MultipleScattering{6, 0.25f, 0.5f}));
+  EXPECT_FLOAT_EQ(scene.volumes[0].sky_light, 2.0f);
+  EXPECT_EQ(parse(with(R"("multiple_scattering": "off")")).volumes[0].multiple_scattering.octaves, 1);
+  EXPECT_FLOAT_EQ(parse(with(R"("sky_light": 0)")).volumes[0].sky_light, 0.0f);
+}
+
+TEST(SceneDescriptionErrors, VolumeMultipleScatteringAndSkyLightOutOfRange) {
+  auto with = [](const std::string& keys) {
+    return full_scene(R"("majorant_brick_size": 16 })", R"("majorant_brick_size": 16, )" + keys + " }");
+  };
+  EXPECT_THAT(error_of(with(R"("multiple_scattering": { "octaves": 9 })")),
+              HasSubstr("volumes[0].multiple_scattering.octaves: must be 1 (single scattering) to 8"));
+  EXPECT_THAT(error_of(with(R"("multiple_scattering": { "attenuation": 0 })")),
+              HasSubstr("volumes[0].multiple_scattering.attenuation: must be in (0, 1]"));
+  EXPECT_THAT(error_of(with(R"("multiple_scattering": { "contribution": 1.5 })")),
+              HasSubstr("volumes[0].multiple_scattering.contribution: must be in [0, 1]"));
+  EXPECT_THAT(error_of(with(R"("multiple_scattering": "on")")),
+              HasSubstr("volumes[0].multiple_scattering: must be \"off\" or an object with \"octaves\""));
+  EXPECT_THAT(error_of(with(R"("multiple_scattering": { "octave": 2 })")),
+              HasSubstr("volumes[0].multiple_scattering.octave: unknown key (did you mean 'octaves'?)"));
+  EXPECT_THAT(error_of(with(R"("sky_light": -1)")), HasSubstr("volumes[0].sky_light: must be 0 (no sky light) to 4"));
+}
+
 TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", "")), HasSubstr("scene.json: version: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 2,)")), HasSubstr("version: unsupported version 2"));

@@ -17,6 +17,7 @@
 #include "gpu/transfer.h"
 #include "passes/frame/lights.h"
 #include "passes/shadows/shadow_maps.h"
+#include "scene/volume_scattering.h"
 #include "shared/passes/camera/volumes/volume_march.h"
 
 namespace avsm::passes {
@@ -89,6 +90,11 @@ GpuVolume to_gpu(const scene::Volume& volume, uint64_t grid_byte_offset, uint64_
   gpu.majorant_dims = volume.majorant.dims;
   gpu.majorant_offset = uint32_t(majorant_offset);
   gpu.voxel_size = smallest_voxel_edge(volume);
+  gpu.octaves = uint32_t(std::clamp(volume.multiple_scattering.octaves, 1, 8));
+  gpu.octave_attenuation = volume.multiple_scattering.attenuation;
+  gpu.octave_contribution = volume.multiple_scattering.contribution;
+  gpu.sky_light = volume.sky_light;
+  gpu.sky_offset = shared::kNoSkyVisibility;  // set with the grids
   return gpu;  // the atlas fields are set by VolumeDensityAtlas::build
 }
 
@@ -115,7 +121,10 @@ VolumePass::VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
 
 void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   std::vector<std::byte> grids;
-  std::vector<float> majorants;
+  // Every volume's majorants one after another (the atlas's brick slots are indexed as
+  // they are), then every volume's sky visibility (scene/volume_scattering.h).
+  std::vector<float> brick_grids;
+  std::vector<std::vector<float>> sky_grids;
   std::vector<GpuVolume> parameters;
   for (size_t i = 0; i < volumes.size(); ++i) {
     const scene::Volume& volume = volumes[i];
@@ -128,8 +137,16 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
                                   " does not fit: all NanoVDB grids together must stay under 4 GiB");
     grids.resize(grid_offset + volume.nanovdb.size());
     std::memcpy(grids.data() + grid_offset, volume.nanovdb.data(), volume.nanovdb.size());
-    parameters.push_back(to_gpu(volume, grid_offset, majorants.size()));
-    majorants.insert(majorants.end(), volume.majorant.max_density.begin(), volume.majorant.max_density.end());
+    parameters.push_back(to_gpu(volume, grid_offset, brick_grids.size()));
+    brick_grids.insert(brick_grids.end(), volume.majorant.max_density.begin(), volume.majorant.max_density.end());
+    // The sky's light and the octaves' escape chance read it.
+    const bool needs_sky = volume.sky_light > 0.0f || volume.multiple_scattering.octaves > 1;
+    sky_grids.push_back(needs_sky ? scene::sky_visibility(volume) : std::vector<float>{});
+  }
+  for (size_t i = 0; i < volumes.size(); ++i) {
+    if (sky_grids[i].empty()) continue;
+    parameters[i].sky_offset = uint32_t(brick_grids.size());
+    brick_grids.insert(brick_grids.end(), sky_grids[i].begin(), sky_grids[i].end());
   }
   // First, so that grids the device cannot hold (its storage buffer range: the march binds
   // them whole) are refused before the atlas is built and while the last volumes stay.
@@ -139,7 +156,7 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
 
   volume_count_ = 0;
   grids_ = gpu::Buffer();
-  majorants_ = gpu::Buffer();
+  brick_grids_ = gpu::Buffer();
   parameters_ = gpu::Buffer();
   boxes_.clear();
   atlas_.clear();
@@ -151,14 +168,14 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
                       smallest_voxel_edge(volume), volume.majorant.brick_size, volume.world_bounds,
                       volume.lighting_cache_downsample, volume.lighting_cache});
   grids_ = std::move(grid_buffer);
-  majorants_ = storage_buffer(ctx_, majorants.data(), majorants.size() * sizeof(float), "volume majorants");
+  brick_grids_ = storage_buffer(ctx_, brick_grids.data(), brick_grids.size() * sizeof(float), "volume brick grids");
   parameters_ = storage_buffer(ctx_, parameters.data(), parameters.size() * sizeof(GpuVolume), "volume parameters");
   volume_count_ = uint32_t(volumes.size());
 }
 
 void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool with_atlas) {
   bindings.buffer("VolumeNanoVdb", volumes.grids)
-      .buffer("VolumeMajorants", volumes.majorants)
+      .buffer("VolumeBrickGrids", volumes.majorants)
       .buffer("VolumeParameters", volumes.parameters);
   if (with_atlas)
     bindings.image("density_atlas", volumes.atlas, VolumeDensityAtlas::kLayout, volumes.atlas_sampler)
@@ -168,7 +185,7 @@ void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool wi
 VolumeCasters VolumePass::casters() const {
   const VkBuffer none = placeholder_.handle();
   if (volume_count_ == 0) return {none, none, none, 0, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
-  return {grids_.handle(), majorants_.handle(), parameters_.handle(), parameters_.size(), volume_count_,
+  return {grids_.handle(), brick_grids_.handle(), parameters_.handle(), parameters_.size(), volume_count_,
           atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
 }
 
@@ -229,7 +246,7 @@ void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::Texture
   bindings.image("color_image", c.view(color), c.layout(color))
       .image("depth_texture", c.view(depth), c.layout(depth), depth_sampler_.handle())
       .buffer("VolumeNanoVdb", grids_)
-      .buffer("VolumeMajorants", majorants_)
+      .buffer("VolumeBrickGrids", brick_grids_)
       .buffer("VolumeParameters", parameters_)
       .buffer("Lights", lights);
   shadows.bind(bindings, c);

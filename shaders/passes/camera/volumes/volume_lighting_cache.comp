@@ -2,7 +2,8 @@
 // The volume lighting cache (passes/camera/volumes/volume_lighting_cache_pass.h): one thread per
 // cell of every volume's box. A cell stores the radiance scattered towards the camera
 // per unit sigma_s at its centre: the sum over lights of light_radiance() * phase *
-// light_transmittance(), the one shadow lookup every technique answers, so smoke
+// light_transmittance() (the one shadow lookup every technique answers) in octaves of
+// multiple scattering, plus the sky (common/scattered_light.glsl), so smoke
 // shadows itself and is shadowed by hair and meshes exactly as in the reference.
 // The phase function is evaluated with the direction from the cell to the camera,
 // which is the direction of every camera ray through the cell centre; so an
@@ -56,7 +57,7 @@ void main() {
     vec3 radiance_sum = vec3(0.0);
     if (near_density(volumes[v], index_position, 1.0 / cache.cells_per_voxel)) {
       vec3 p = (cache.world_from_cell * vec4(centre, 1.0)).xyz;
-      radiance_sum = scattered_light(p, normalize(pc.camera_position - p), pc.light_count);
+      radiance_sum = scattered_light(v, index_position, p, normalize(pc.camera_position - p), pc.light_count);
     }
     imageStore(cache_image, cell, vec4(radiance_sum, 1.0));
     return;
