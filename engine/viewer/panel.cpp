@@ -336,6 +336,19 @@ void Panel::draw_lights(const PanelView& view, ViewerSettings& settings, PanelRe
   }
 }
 
+// Multiple scattering's octaves (1: single scattering) and the sky's share of the smoke's light.
+void Panel::draw_volume_scattering(const scene::Volume& volume, VolumeOverride& o, PanelRequests& requests) {
+  scene::MultipleScattering m = volume.multiple_scattering;
+  bool changed = ImGui::SliderInt("scattering octaves", &m.octaves, 1, 8);
+  if (m.octaves > 1) {
+    changed |= ImGui::SliderFloat("octave attenuation", &m.attenuation, 0.05f, 1.0f, "%.2f");
+    changed |= ImGui::SliderFloat("octave contribution", &m.contribution, 0.0f, 1.0f, "%.2f");
+  }
+  if (changed) o.multiple_scattering = m, requests.scene_edited = true;
+  float sky = volume.sky_light;
+  if (ImGui::SliderFloat("sky light", &sky, 0.0f, 4.0f, "%.2f")) o.sky_light = sky, requests.scene_edited = true;
+}
+
 void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests) {
   const scene::Scene& scene = view.live.scene();
   if (!scene.volumes.empty()) draw_volume_shading(scene.volume_shading, settings, requests);
@@ -349,6 +362,7 @@ void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelReq
       o.extinction_scale = extinction, requests.scene_edited = true;
     glm::vec3 albedo = volume.albedo;
     if (ImGui::ColorEdit3("albedo", &albedo.x)) o.albedo = albedo, requests.scene_edited = true;
+    draw_volume_scattering(volume, o, requests);
     ImGui::PopID();
   }
   if (!scene.hair.empty()) {

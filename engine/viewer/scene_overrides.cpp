@@ -16,6 +16,13 @@ void apply_light(const LightOverride& o, scene::Light& light) {
 void apply_volume(const VolumeOverride& o, scene::Volume& volume) {
   if (o.extinction_scale) volume.extinction_scale = std::max(*o.extinction_scale, 0.0f);
   if (o.albedo) volume.albedo = glm::clamp(*o.albedo, 0.0f, 1.0f);
+  if (o.multiple_scattering) {
+    scene::MultipleScattering& m = volume.multiple_scattering;
+    m.octaves = std::clamp(o.multiple_scattering->octaves, 1, 8);
+    m.attenuation = std::clamp(o.multiple_scattering->attenuation, 0.01f, 1.0f);
+    m.contribution = std::clamp(o.multiple_scattering->contribution, 0.0f, 1.0f);
+  }
+  if (o.sky_light) volume.sky_light = std::clamp(*o.sky_light, 0.0f, 4.0f);
 }
 
 void scale_hair(scene::HairGroom& groom, float opacity_scale, float width_scale) {

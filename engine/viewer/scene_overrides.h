@@ -24,6 +24,8 @@ struct LightOverride : scene::ShadowOverrides {
 struct VolumeOverride {
   std::optional<float> extinction_scale;
   std::optional<glm::vec3> albedo;
+  std::optional<scene::MultipleScattering> multiple_scattering;  // clamped to the scene file's ranges
+  std::optional<float> sky_light;
 };
 
 struct SceneOverrides {

@@ -3,6 +3,7 @@
 #include "support.h"
 
 #include "scene/volume.h"
+#include "scene/volume_scattering.h"
 
 #include <nanovdb/NanoVDB.h>
 #include <openvdb/io/File.h>
@@ -149,6 +150,43 @@ TEST(Volume, TransmittanceThroughAConstantCubeIsAnalytic) {
   EXPECT_FLOAT_EQ(transmittance(volume, glm::vec3(-1, 5, 5), glm::vec3(3, 5, 5)), 1.0f);  // misses
   // Half the way in: flat part from index 0 to 5 plus the entry ramp.
   EXPECT_NEAR(optical_depth(volume, a, glm::vec3(0.5f, y, z)), scale * density * 5.5f * voxel, 1e-3f);
+}
+
+// The sky visibility at the brick corner nearest a constant cube's centre lies between the
+// transmittances along the shortest and the longest way out; each octave, seeing a
+// fraction of the optical depth, sees more sky; a corner outside sees some, never all.
+TEST(Volume, SkyVisibilityOfAConstantCubeLiesBetweenItsShortestAndLongestWayOut) {
+  TempDir dir;
+  constexpr int n = 24;
+  constexpr float voxel = 0.1f, sigma = 1.5f;  // per world unit
+  write_grid(dir / "cube.vdb", constant_cube(n, 1.0f, voxel));
+  VolumeOptions options;
+  options.extinction_scale = sigma;
+  Volume volume = load_vdb_volume(dir / "cube.vdb", options);
+  volume.multiple_scattering = {3, 0.5f, 1.0f};
+  const std::vector<float> sky = sky_visibility(volume);
+  const std::size_t corners = sky_visibility_corners(volume);
+  ASSERT_EQ(sky.size(), 3 * corners);
+  const MajorantGrid& m = volume.majorant;
+  const glm::ivec3 dims = m.dims + 1;
+  auto at = [&](glm::ivec3 c, int octave) {
+    return sky[std::size_t(octave) * corners + std::size_t(c.x + dims.x * (c.y + dims.y * c.z))];
+  };
+  // The corner nearest the centre (index 11.5): its way out through the flat density runs at
+  // least to the nearest face of [0, n - 1] and at most to the support's farthest corner.
+  const glm::ivec3 centre = glm::ivec3(glm::round((glm::vec3(11.5f) - glm::vec3(m.index_origin)) / float(m.brick_size)));
+  const glm::vec3 p = glm::vec3(m.index_origin + centre * m.brick_size);
+  const float nearest_face = std::min({p.x, p.y, p.z, n - 1 - p.x, n - 1 - p.y, n - 1 - p.z});
+  const float farthest = glm::length(glm::max(p + 1.0f, glm::vec3(n) - p));
+  EXPECT_LE(at(centre, 0), std::exp(-sigma * voxel * nearest_face));
+  EXPECT_GE(at(centre, 0), std::exp(-sigma * voxel * farthest));
+  EXPECT_GT(at(centre, 1), at(centre, 0));
+  EXPECT_GT(at(centre, 2), at(centre, 1));
+  // A corner of the grid: outside the cube, but the cube hides part of its sky.
+  const float outside = at(glm::ivec3(0), 0);
+  EXPECT_GT(outside, at(centre, 0));
+  EXPECT_LT(outside, 1.0f);
+  for (float v : sky) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << v;
 }
 
 TEST(Volume, PlacementScalesTheOpticalDepth) {

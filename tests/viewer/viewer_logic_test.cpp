@@ -164,6 +164,21 @@ TEST(SceneOverrides, OnlyTouchedFieldsChange) {
   EXPECT_FLOAT_EQ(scene.hair[0].strand_width[1], 0.01f);
 }
 
+TEST(SceneOverrides, VolumeScatteringEditsAreClampedToTheSceneFilesRanges) {
+  scene::Scene scene;
+  scene.volumes.resize(2);
+  SceneOverrides overrides;
+  overrides.volume(0).multiple_scattering = scene::MultipleScattering{12, 0.0f, 1.5f};
+  overrides.volume(0).sky_light = 9.0f;
+  overrides.apply(scene);
+  EXPECT_EQ(scene.volumes[0].multiple_scattering.octaves, 8);
+  EXPECT_GT(scene.volumes[0].multiple_scattering.attenuation, 0.0f);
+  EXPECT_FLOAT_EQ(scene.volumes[0].multiple_scattering.contribution, 1.0f);
+  EXPECT_FLOAT_EQ(scene.volumes[0].sky_light, 4.0f);
+  EXPECT_EQ(scene.volumes[1].multiple_scattering, scene::MultipleScattering{});  // untouched
+  EXPECT_FLOAT_EQ(scene.volumes[1].sky_light, 1.0f);
+}
+
 TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(parse_control_command("frame").kind, ControlCommand::Kind::frame);
   const ControlCommand inspect = parse_control_command("inspect 12,34");

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Light in media: the targets that are built so far. Smoke lit as a medium (multiple
+# scattering and sky light) against a CPU path tracer, on the real-asset scene (when
+# ../shared/content is there) and the default scene. Extra arguments go to smoke.py
+# (e.g. --width 640 --height 360 --paths 128).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+cmake --build build -j"$(nproc)" --target avsm-capture avsm_default_content > /dev/null
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+scenes=()
+if [ -f ../shared/content/smoke1/smoke.vdb ]; then scenes+=(content/real_assets.scene.json); else
+  echo "(real-asset scene skipped: ../shared/content is missing)"; fi
+scenes+=(build/content/default/scene.json)
+for scene in "${scenes[@]}"; do
+  python3 bench/media/smoke.py --scene "$scene" "$@"
+  echo
+done
