@@ -94,7 +94,7 @@ struct VolumeShadingOverrides {
 // attenuation^k and carries (contribution * albedo * (1 - escape))^k of its light, so
 // light reaches deeper into the medium and a dense, bright one turns white where lit.
 // escape is the chance that light scattered at the point leaves the volume before it
-// scatters again (the mean transmittance over the sphere: scene::sky_visibility), so
+// scatters again (the mean transmittance over the sphere: scene::sky_lighting), so
 // thin smoke gains little, and the albedo keeps dark smoke dark.
 // The phase function is isotropic (shaders/common/volume.glsl), so the method's
 // eccentricity term has nothing to act on. octaves 1: single scattering only.

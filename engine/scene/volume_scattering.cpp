@@ -170,18 +170,18 @@ glm::vec3 trace_path(const Volume& volume, Extinction& extinction, Random& rando
 
 }  // namespace
 
-std::size_t sky_visibility_corners(const Volume& volume) {
+std::size_t sky_lighting_corners(const Volume& volume) {
   const glm::ivec3 corners = volume.majorant.dims + 1;
   return std::size_t(corners.x) * std::size_t(corners.y) * std::size_t(corners.z);
 }
 
-std::vector<float> sky_visibility(const Volume& volume) {
+std::vector<float> sky_lighting(const Volume& volume) {
   const MajorantGrid& m = volume.majorant;
   const glm::ivec3 corners = m.dims + 1;
-  const std::size_t count = sky_visibility_corners(volume);
-  const int octaves = std::clamp(volume.multiple_scattering.octaves, 1, 8);
-  std::vector<float> visibility(count * std::size_t(octaves), 1.0f);
-  if (volume.nanovdb.empty() || count == 0) return visibility;
+  const MultipleScattering& scattering = volume.multiple_scattering;
+  const int octaves = std::clamp(scattering.octaves, 1, 8);
+  std::vector<float> grid(sky_lighting_corners(volume) * 4, 1.0f);
+  if (volume.nanovdb.empty()) return grid;
   // One slab of corners per thread: each corner is independent.
   auto fill_slabs = [&](int first, int stride) {
     Extinction extinction(volume);
@@ -189,15 +189,19 @@ std::vector<float> sky_visibility(const Volume& volume) {
       for (int y = 0; y < corners.y; ++y)
         for (int x = 0; x < corners.x; ++x) {
           const glm::vec3 p = glm::vec3(m.index_origin + glm::ivec3(x, y, z) * m.brick_size);
-          const std::size_t corner = std::size_t(x) + std::size_t(corners.x) * (std::size_t(y) + std::size_t(corners.y) * z);
-          std::vector<float> sum(std::size_t(octaves), 0.0f);
+          float visibility[8] = {};
           for (int d = 0; d < kSkyDirections; ++d) {
             const float depth = optical_depth_to_edge(volume, extinction, p, sphere_direction(d, kSkyDirections));
             float scale = 1.0f;
-            for (int k = 0; k < octaves; ++k, scale *= volume.multiple_scattering.attenuation)
-              sum[k] += std::exp(-scale * depth);
+            for (int k = 0; k < octaves; ++k, scale *= scattering.attenuation)
+              visibility[k] += std::exp(-scale * depth) / float(kSkyDirections);
           }
-          for (int k = 0; k < octaves; ++k) visibility[std::size_t(k) * count + corner] = sum[k] / float(kSkyDirections);
+          const float escape = visibility[0];
+          const glm::vec3 carried = scattering.contribution * volume.albedo * (1.0f - escape);
+          glm::vec3 sky(0.0f), weight(1.0f);
+          for (int k = 0; k < octaves; ++k, weight *= carried) sky += weight * visibility[k];
+          float* corner = grid.data() + 4 * (std::size_t(x) + std::size_t(corners.x) * (std::size_t(y) + std::size_t(corners.y) * z));
+          corner[0] = sky.r, corner[1] = sky.g, corner[2] = sky.b, corner[3] = escape;
         }
   };
   const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
@@ -205,7 +209,7 @@ std::vector<float> sky_visibility(const Volume& volume) {
   for (int i = 1; i < threads; ++i) workers.emplace_back(fill_slabs, i, threads);
   fill_slabs(0, threads);
   for (std::thread& worker : workers) worker.join();
-  return visibility;
+  return grid;
 }
 
 glm::vec3 light_radiance(const Light& light, const glm::vec3& p, glm::vec3& to_light) {

@@ -1,7 +1,8 @@
 #pragma once
 // Light in a fog volume beyond single scattering, on the CPU:
-// - the sky visibility grid the GPU's volume lighting reads (shaders/common/scattered_light.glsl):
-//   how much of a uniform sky reaches each majorant-brick corner through the volume itself;
+// - the sky lighting grid the GPU's volume lighting reads (shaders/common/scattered_light.glsl):
+//   how much of a uniform sky each majorant-brick corner scatters, through the volume itself,
+//   and how likely light scattered there is to leave the volume unscattered;
 // - a Monte Carlo path tracer of one volume (every order of scattering, isotropic phase,
 //   lights and sky by next-event estimation), the reference that the octave approximation
 //   (MultipleScattering) and the sky term are measured against (tests/passes, bench/media).
@@ -16,16 +17,19 @@
 
 namespace avsm::scene {
 
-// Directions the sky visibility averages over (spread evenly over the sphere).
+// Directions the sky lighting averages over (spread evenly over the sphere).
 inline constexpr int kSkyDirections = 16;
 
-// Per corner of the volume's majorant bricks ((dims + 1)^3 corners, x fastest), per octave
-// k of its MultipleScattering (octave after octave): the mean over the sphere of
-// exp(-attenuation^k * optical depth to the volume's edge). Octave 0 is the fraction of
-// a uniform sky that reaches the corner. Sky light is soft, so bricks are fine enough.
-std::vector<float> sky_visibility(const Volume& volume);
-// Corners per octave in sky_visibility().
-std::size_t sky_visibility_corners(const Volume& volume);
+// Per corner of the volume's majorant bricks ((dims + 1)^3 corners, x fastest), four floats:
+// - rgb: the radiance a uniform sky of radiance 1 scatters there per unit sigma_s, over
+//   the octaves of its MultipleScattering: the sum over k of weight_k times the mean over
+//   the sphere of exp(-attenuation^k * optical depth to the volume's edge), weight_k being
+//   (contribution * albedo * (1 - escape))^k;
+// - a: escape, the chance that light scattered there leaves the volume before it scatters
+//   again: the mean transmittance over the sphere (octave 0's visibility).
+// Sky light is soft, so bricks are fine enough. The GPU interpolates them trilinearly.
+std::vector<float> sky_lighting(const Volume& volume);
+std::size_t sky_lighting_corners(const Volume& volume);
 
 // Radiance arriving at `p` from `light` (unshadowed), and the unit vector towards it: the
 // renderer's light_radiance() (shaders/common/lights.glsl) on the CPU.

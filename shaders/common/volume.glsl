@@ -79,25 +79,28 @@ float brick_majorant(GpuVolume volume, ivec3 brick) {
   return volume_brick_grids[volume.majorant_offset + uint(brick.x + d.x * (brick.y + d.y * brick.z))];
 }
 
-// ---- Sky visibility ----
+// ---- Sky lighting ----
 
-// The fraction of a uniform sky that reaches an index-space position through the volume
-// itself, for scattering octave `octave` (scene::sky_visibility: per brick corner,
-// trilinear between them). 1 (nothing in the way) for a volume without the grid.
-float sky_visibility(GpuVolume volume, vec3 index_position, uint octave) {
-  if (volume.sky_offset == kNoSkyVisibility) return 1.0;
+// scene::sky_lighting at an index-space position, trilinear between the brick corners:
+// rgb, the light a uniform sky of radiance 1 scatters there per unit sigma_s over the
+// scattering octaves, through the volume itself; a, the chance that light scattered there
+// escapes unscattered. A volume without the grid: (0, 0, 0, 1).
+vec4 sky_lighting(GpuVolume volume, vec3 index_position) {
+  if (volume.sky_offset == kNoSkyVisibility) return vec4(0.0, 0.0, 0.0, 1.0);
   ivec3 corners = volume.majorant_dims + 1;
   vec3 c = clamp((index_position - vec3(volume.majorant_origin)) / float(volume.brick_size), vec3(0.0),
                  vec3(volume.majorant_dims));
   ivec3 base = min(ivec3(floor(c)), volume.majorant_dims - 1);
   vec3 w = c - vec3(base);
-  uint first = volume.sky_offset + octave * uint(corners.x * corners.y * corners.z);
-  float sum = 0.0;
+  vec4 sum = vec4(0.0);
   for (int corner = 0; corner < 8; ++corner) {
     ivec3 offset = ivec3(corner >> 2, (corner >> 1) & 1, corner & 1);
     ivec3 at = base + offset;
     vec3 weights = mix(1.0 - w, w, vec3(offset));
-    sum += weights.x * weights.y * weights.z * volume_brick_grids[first + uint(at.x + corners.x * (at.y + corners.y * at.z))];
+    uint first = volume.sky_offset + 4u * uint(at.x + corners.x * (at.y + corners.y * at.z));
+    sum += weights.x * weights.y * weights.z *
+           vec4(volume_brick_grids[first], volume_brick_grids[first + 1u], volume_brick_grids[first + 2u],
+                volume_brick_grids[first + 3u]);
   }
   return sum;
 }

@@ -8,7 +8,7 @@ GPU_NAMESPACE_BEGIN
 
 // A debug flag of the camera marches: march empty bricks too (results must not change).
 GPU_CONST(uint, kMarchNoMajorantSkipping, 1u)
-// GpuVolume::sky_offset of a volume without sky visibility (no sky light, one octave).
+// GpuVolume::sky_offset of a volume without sky lighting (no sky light, one octave).
 GPU_CONST(uint, kNoSkyVisibility, 0xffffffffu)
 
 #define GPU_VOLUME(F, A)                                                                                   \
@@ -31,7 +31,7 @@ GPU_CONST(uint, kNoSkyVisibility, 0xffffffffu)
   F(float, octave_attenuation)  /* optical depth octave k sees: attenuation^k of it */                   \
   F(float, octave_contribution) /* light octave k carries: (contribution * albedo * (1 - escape))^k */   \
   F(float, sky_light)           /* the sky's share (0: none) */                                           \
-  F(uint, sky_offset)           /* its sky visibility in volume_brick_grids (brick corners, per octave), or kNoSkyVisibility */ \
+  F(uint, sky_offset)           /* its sky lighting in volume_brick_grids (4 floats per brick corner), or kNoSkyVisibility */ \
   A(float, pad, 1)
 GPU_STRUCT(GpuVolume, GPU_VOLUME)
 

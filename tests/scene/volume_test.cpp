@@ -152,41 +152,50 @@ TEST(Volume, TransmittanceThroughAConstantCubeIsAnalytic) {
   EXPECT_NEAR(optical_depth(volume, a, glm::vec3(0.5f, y, z)), scale * density * 5.5f * voxel, 1e-3f);
 }
 
-// The sky visibility at the brick corner nearest a constant cube's centre lies between the
-// transmittances along the shortest and the longest way out; each octave, seeing a
-// fraction of the optical depth, sees more sky; a corner outside sees some, never all.
-TEST(Volume, SkyVisibilityOfAConstantCubeLiesBetweenItsShortestAndLongestWayOut) {
+// The escape chance at the brick corner nearest a constant cube's centre lies between the
+// transmittances along the shortest and the longest way out, and a corner outside escapes
+// more; the sky's light summed over octaves exceeds the first octave's (the escape chance)
+// by what the later octaves add, and more octaves add more.
+TEST(Volume, SkyLightingOfAConstantCubeLiesBetweenItsShortestAndLongestWayOut) {
   TempDir dir;
   constexpr int n = 24;
   constexpr float voxel = 0.1f, sigma = 1.5f;  // per world unit
   write_grid(dir / "cube.vdb", constant_cube(n, 1.0f, voxel));
   VolumeOptions options;
   options.extinction_scale = sigma;
+  options.albedo = glm::vec3(1.0f, 0.5f, 0.0f);
   Volume volume = load_vdb_volume(dir / "cube.vdb", options);
-  volume.multiple_scattering = {3, 0.5f, 1.0f};
-  const std::vector<float> sky = sky_visibility(volume);
-  const std::size_t corners = sky_visibility_corners(volume);
-  ASSERT_EQ(sky.size(), 3 * corners);
   const MajorantGrid& m = volume.majorant;
   const glm::ivec3 dims = m.dims + 1;
-  auto at = [&](glm::ivec3 c, int octave) {
-    return sky[std::size_t(octave) * corners + std::size_t(c.x + dims.x * (c.y + dims.y * c.z))];
-  };
-  // The corner nearest the centre (index 11.5): its way out through the flat density runs at
-  // least to the nearest face of [0, n - 1] and at most to the support's farthest corner.
   const glm::ivec3 centre = glm::ivec3(glm::round((glm::vec3(11.5f) - glm::vec3(m.index_origin)) / float(m.brick_size)));
+  auto corner = [&](const std::vector<float>& grid, glm::ivec3 c) {
+    const float* at = grid.data() + 4 * std::size_t(c.x + dims.x * (c.y + dims.y * c.z));
+    return glm::vec4(at[0], at[1], at[2], at[3]);
+  };
+  volume.multiple_scattering = {1, 0.5f, 1.0f};
+  const std::vector<float> single = sky_lighting(volume);
+  ASSERT_EQ(single.size(), 4 * sky_lighting_corners(volume));
+  volume.multiple_scattering = {4, 0.5f, 1.0f};
+  const std::vector<float> four = sky_lighting(volume);
+  const glm::vec4 inside = corner(four, centre);
+  // Its way out through the flat density runs at least to the nearest face of [0, n - 1] and
+  // at most to the support's farthest corner.
   const glm::vec3 p = glm::vec3(m.index_origin + centre * m.brick_size);
   const float nearest_face = std::min({p.x, p.y, p.z, n - 1 - p.x, n - 1 - p.y, n - 1 - p.z});
   const float farthest = glm::length(glm::max(p + 1.0f, glm::vec3(n) - p));
-  EXPECT_LE(at(centre, 0), std::exp(-sigma * voxel * nearest_face));
-  EXPECT_GE(at(centre, 0), std::exp(-sigma * voxel * farthest));
-  EXPECT_GT(at(centre, 1), at(centre, 0));
-  EXPECT_GT(at(centre, 2), at(centre, 1));
-  // A corner of the grid: outside the cube, but the cube hides part of its sky.
-  const float outside = at(glm::ivec3(0), 0);
-  EXPECT_GT(outside, at(centre, 0));
-  EXPECT_LT(outside, 1.0f);
-  for (float v : sky) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+  EXPECT_LE(inside.a, std::exp(-sigma * voxel * nearest_face));
+  EXPECT_GE(inside.a, std::exp(-sigma * voxel * farthest));
+  const glm::vec4 outside = corner(four, glm::ivec3(0));
+  EXPECT_GT(outside.a, inside.a);
+  EXPECT_LT(outside.a, 1.0f);
+  // One octave: the sky's light is the escape chance itself, whatever the albedo.
+  EXPECT_FLOAT_EQ(corner(single, centre).r, inside.a);
+  EXPECT_FLOAT_EQ(corner(single, centre).b, inside.a);
+  // Four: later octaves add light in proportion to the albedo (none in blue).
+  EXPECT_GT(inside.r, inside.g);
+  EXPECT_GT(inside.g, inside.a);
+  EXPECT_FLOAT_EQ(inside.b, inside.a);
+  for (float v : four) ASSERT_TRUE(v >= 0.0f && std::isfinite(v)) << v;
 }
 
 TEST(Volume, PlacementScalesTheOpticalDepth) {

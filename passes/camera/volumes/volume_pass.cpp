@@ -122,7 +122,7 @@ VolumePass::VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
 void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
   std::vector<std::byte> grids;
   // Every volume's majorants one after another (the atlas's brick slots are indexed as
-  // they are), then every volume's sky visibility (scene/volume_scattering.h).
+  // they are), then every volume's sky lighting (scene/volume_scattering.h).
   std::vector<float> brick_grids;
   std::vector<std::vector<float>> sky_grids;
   std::vector<GpuVolume> parameters;
@@ -141,7 +141,7 @@ void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
     brick_grids.insert(brick_grids.end(), volume.majorant.max_density.begin(), volume.majorant.max_density.end());
     // The sky's light and the octaves' escape chance read it.
     const bool needs_sky = volume.sky_light > 0.0f || volume.multiple_scattering.octaves > 1;
-    sky_grids.push_back(needs_sky ? scene::sky_visibility(volume) : std::vector<float>{});
+    sky_grids.push_back(needs_sky ? scene::sky_lighting(volume) : std::vector<float>{});
   }
   for (size_t i = 0; i < volumes.size(); ++i) {
     if (sky_grids[i].empty()) continue;

@@ -1,7 +1,7 @@
 #pragma once
 // Fog volumes on the GPU, and the reference camera march through them.
 //
-// VolumePass owns every volume's data (NanoVDB grids, majorants and sky visibility,
+// VolumePass owns every volume's data (NanoVDB grids, majorants and sky lighting,
 // parameter blocks, the density brick atlas) for all passes that read volumes. Its own pass is the reference
 // camera march (--volume-shading reference): it ray-marches every volume for every
 // pixel, up to the opaque depth, and composites onto the lit colour in place:
@@ -12,7 +12,7 @@
 // function; light_transmittance() (shaders/common/shadow_lookup.glsl) reads each
 // light's transmittance map, so smoke shadows itself and is shadowed by hair and meshes.
 // Multiple scattering adds octaves of that (scene::MultipleScattering), and the sky adds
-// its light through the volume's own sky visibility (scene/volume_scattering.h):
+// its light through the volume itself (scene::sky_lighting, scene/volume_scattering.h):
 // shaders/common/scattered_light.glsl.
 //
 // The volumes are read straight from their NanoVDB grids (PNanoVDB in GLSL, trilinear,
@@ -116,7 +116,7 @@ class VolumePass {
   gpu::Pipeline pipeline_;
   gpu::Sampler depth_sampler_;
   gpu::Buffer grids_;       // every NanoVDB grid, 32-byte aligned
-  gpu::Buffer brick_grids_;  // per volume its majorant grid, then its sky visibility (floats)
+  gpu::Buffer brick_grids_;  // every majorant grid, then every sky lighting grid (floats)
   gpu::Buffer parameters_;  // one GpuVolume per volume
   gpu::Buffer placeholder_;  // bound for the volume buffers when there are no volumes
   VolumeDensityAtlas atlas_;
