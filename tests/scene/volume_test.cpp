@@ -198,6 +198,33 @@ TEST(Volume, SkyLightingOfAConstantCubeLiesBetweenItsShortestAndLongestWayOut) {
   for (float v : four) ASSERT_TRUE(v >= 0.0f && std::isfinite(v)) << v;
 }
 
+// The path tracer against the one multiple-scattering answer known in closed form: a medium
+// that absorbs nothing, under a uniform sky from every direction, sends back exactly the
+// sky's radiance along every ray, whatever its density (what it scatters in makes up for
+// what it takes out). With albedo 0 it scatters nothing and only attenuates.
+TEST(Volume, PathTracedNonAbsorbingCubeUnderAUniformSkyReturnsTheSky) {
+  TempDir dir;
+  write_grid(dir / "cube.vdb", constant_cube(16, 1.0f, 0.1f));
+  VolumeOptions options;
+  options.extinction_scale = 4.0f;  // optical depth 6.4 across
+  options.albedo = glm::vec3(1.0f);
+  const Volume white = load_vdb_volume(dir / "cube.vdb", options);
+  const glm::vec3 sky(1.0f);
+  const PathTracing tracing{20000, 100000, 7};
+  for (const glm::vec3 origin : {glm::vec3(0.75f, 0.75f, 5.0f), glm::vec3(0.3f, 1.1f, 5.0f)}) {
+    const PathTracedRay ray = path_trace(white, {}, sky, origin, glm::vec3(0.0f, 0.0f, -1.0f), tracing);
+    EXPECT_LT(ray.transmittance, 0.01f);
+    EXPECT_NEAR(ray.in_scattered.g + ray.transmittance * sky.g, 1.0f, 0.03f) << origin.x << ", " << origin.y;
+  }
+  options.albedo = glm::vec3(0.0f);
+  const Volume black = load_vdb_volume(dir / "cube.vdb", options);
+  Light sun;
+  const PathTracedRay ray = path_trace(black, std::vector<Light>{sun}, sky, glm::vec3(0.75f, 0.75f, 5.0f),
+                                       glm::vec3(0.0f, 0.0f, -1.0f), {64, 256, 7});
+  EXPECT_EQ(ray.in_scattered, glm::vec3(0.0f));
+  EXPECT_NEAR(ray.transmittance, std::exp(-4.0f * 1.6f), 1e-3f);
+}
+
 TEST(Volume, PlacementScalesTheOpticalDepth) {
   TempDir dir;
   write_grid(dir / "cube.vdb", constant_cube(10, 1.0f, 0.1f));
