@@ -5,6 +5,7 @@ probes.json as the engine's FrameReport writes them, graph.json as the frame gra
 CompiledPlan::to_json writes it, and volume_quality.json (--compare-volume-shading).
 The scripts read fields, not string keys: a key the engine renames breaks here, once.
 """
+import argparse
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -166,6 +167,21 @@ class Plan:  # graph.json
 
 
 @dataclass
+class PathTracedSmoke:  # volume_quality.json "path_traced" (--path-trace-volumes)
+    paths_per_pixel: int
+    smoke_pixels: int
+    fast_mean_luminance: float
+    reference_mean_luminance: float
+    path_traced_mean_luminance: float
+    fast_relative: float  # fast / path traced - 1
+
+    @staticmethod
+    def from_json(j):
+        return PathTracedSmoke(j["paths_per_pixel"], j["smoke_pixels"], j["fast_mean_luminance"],
+                               j["reference_mean_luminance"], j["path_traced_mean_luminance"], j["fast_relative"])
+
+
+@dataclass
 class VolumeQuality:  # volume_quality.json
     fast_settings: str
     smoke_pixels: int
@@ -175,11 +191,23 @@ class VolumeQuality:  # volume_quality.json
     within_bound: bool
     fast_gpu_ms: Dict[str, float]
     reference_gpu_ms: Dict[str, float]
+    path_traced: Optional[PathTracedSmoke]
 
     @staticmethod
     def from_json(j):
+        traced = PathTracedSmoke.from_json(j["path_traced"]) if j.get("path_traced") else None
         return VolumeQuality(j["fast_settings"], j["smoke_pixels"], j["mean_luminance"], j["mean_relative"],
-                             j["p99_relative"], j["within_bound"], j["fast_gpu_ms"], j["reference_gpu_ms"])
+                             j["p99_relative"], j["within_bound"], j["fast_gpu_ms"], j["reference_gpu_ms"], traced)
+
+
+def scene_arguments(description, width, height):
+    """The arguments every one-scene bench script takes: the scene, the image size and avsm-capture."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scene", required=True)
+    parser.add_argument("--width", type=int, default=width)
+    parser.add_argument("--height", type=int, default=height)
+    parser.add_argument("--capture", default="build/tools/avsm-capture")
+    return parser
 
 
 def _read(folder, name, record):

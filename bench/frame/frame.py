@@ -7,7 +7,6 @@ targets of the real-time camera side, and the smoke-pixel error of the fast path
 against the reference (mean and 99th percentile of |dL| relative to the mean
 luminance, on linear HDR).
 """
-import argparse
 import os
 import subprocess
 import sys
@@ -38,12 +37,8 @@ def total(passes, names):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--scene", required=True)
-    parser.add_argument("--width", type=int, default=1280)
-    parser.add_argument("--height", type=int, default=720)
+    parser = capture_report.scene_arguments(__doc__, 1280, 720)
     parser.add_argument("--frames", type=int, default=3, help="frames per path; medians over all but the first")
-    parser.add_argument("--capture", default="build/tools/avsm-capture")
     parser.add_argument("--capture-arg", action="append", default=[],
                         help="extra avsm-capture argument, e.g. --capture-arg=--volume-step=2 (split at '=')")
     args = parser.parse_args()

@@ -9,12 +9,14 @@ path-traced frame (every order of scattering, the lights and the sky), and the f
 difference from the path-traced one. The target: with multiple scattering on, the lit
 real_assets plume within 25% of the path tracer's mean luminance.
 """
-import argparse
-import json
+import os
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/
+import capture_report  # noqa: E402
 
 SHADINGS = [  # (name, avsm-capture arguments)
     ("multiple scattering + sky (default)", []),
@@ -31,16 +33,12 @@ def measure(capture, scene, width, height, paths, extra):
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"smoke.py: {' '.join(command)} failed:\n{result.stderr}")
-    return json.loads((out / "volume_quality.json").read_text())["path_traced"], out
+    return capture_report.volume_quality(out).path_traced, out
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--scene", required=True)
-    parser.add_argument("--width", type=int, default=320)
-    parser.add_argument("--height", type=int, default=180)
+    parser = capture_report.scene_arguments(__doc__, 320, 180)
     parser.add_argument("--paths", type=int, default=64, help="path-traced paths per pixel")
-    parser.add_argument("--capture", default="build/tools/avsm-capture")
     args = parser.parse_args()
     print(f"{Path(args.scene).name} at {args.width}x{args.height}, {args.paths} paths a pixel")
     print("| shading | smoke pixels | fast | reference | path traced | fast vs path traced |")
@@ -49,12 +47,12 @@ def main():
     for name, extra in SHADINGS:
         figures, out = measure(args.capture, args.scene, args.width, args.height, args.paths, extra)
         default = default or figures
-        print(f"| {name} | {figures['smoke_pixels']} | {figures['fast_mean_luminance']:.4f} | "
-              f"{figures['reference_mean_luminance']:.4f} | {figures['path_traced_mean_luminance']:.4f} | "
-              f"{figures['fast_relative']:+.1%} |  ({out})")
-    met = abs(default["fast_relative"]) <= TARGET
+        print(f"| {name} | {figures.smoke_pixels} | {figures.fast_mean_luminance:.4f} | "
+              f"{figures.reference_mean_luminance:.4f} | {figures.path_traced_mean_luminance:.4f} | "
+              f"{figures.fast_relative:+.1%} |  ({out})")
+    met = abs(default.fast_relative) <= TARGET
     print(f"target: multiple scattering within {TARGET:.0%} of the path tracer: "
-          f"{default['fast_relative']:+.1%}, {'met' if met else 'MISSED'}")
+          f"{default.fast_relative:+.1%}, {'met' if met else 'MISSED'}")
 
 
 if __name__ == "__main__":
