@@ -39,6 +39,9 @@ CaptureOptions every_option_set() {
   o.volume_shading.resolution_divisor = 4;
   o.volume_shading.step_voxels = 0.3f;  // not exact in binary: written as the shortest text that reads back
   o.compare_volume_shading = true;
+  o.path_trace_volumes = 16;
+  o.volume_octaves = 2;
+  o.volume_sky_light = 0.3f;
   o.shadow.technique = "osm";
   o.shadow.nodes = 12;
   o.shadow.resolution = 64;
@@ -96,6 +99,10 @@ TEST(CaptureArgs, BadFlagsNameThemselves) {
   EXPECT_EQ(usage_error_of({"--volume-step", "1x"}), "--volume-step expects a number of voxels, got '1x'");
   EXPECT_EQ(usage_error_of({"--orbit", "120"}), "--orbit expects -90 to 90 degrees per frame, got '120'");
   EXPECT_EQ(usage_error_of({"--light-orbit", "x"}), "--light-orbit expects -90 to 90 degrees per frame, got 'x'");
+  EXPECT_EQ(usage_error_of({"--volume-octaves", "9"}), "--volume-octaves expects 1 (single scattering) to 8");
+  EXPECT_EQ(usage_error_of({"--sky-light", "-1"}), "--sky-light expects 0 to 4, got '-1'");
+  EXPECT_EQ(usage_error_of({"--path-trace-volumes", "8"}),
+            "--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   EXPECT_EQ(usage_error_of({"--cascades", "2", "--clusters", "3"}),
             "--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
   CaptureOptions options;
