@@ -84,26 +84,19 @@ gpu::ImageRGBA32F path_trace_volumes(const scene::Scene& scene, const passes::Vi
   auto trace_rows = [&](uint32_t first, uint32_t stride) {
     for (uint32_t y = first; y < view.height; y += stride)
       for (uint32_t x = 0; x < view.width; ++x) {
-        const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(view.width) - 1.0f,
-                            1.0f - 2.0f * (float(y) + 0.5f) / float(view.height));
-        const glm::vec4 far = view.inverse_view_projection * glm::vec4(ndc, 1.0f, 1.0f);
-        const glm::vec3 direction = glm::normalize(glm::vec3(far) / far.w - view.camera_position);
+        const passes::Ray camera_ray = passes::pixel_ray(view, glm::vec2(x, y));
         // Volumes front to back by where the ray enters their bounds (they rarely overlap).
         std::vector<std::pair<float, const scene::Volume*>> hit;
         for (const scene::Volume& volume : scene.volumes) {
-          const glm::vec3 inverse = 1.0f / direction;
-          const glm::vec3 a = (volume.world_bounds.min - view.camera_position) * inverse;
-          const glm::vec3 b = (volume.world_bounds.max - view.camera_position) * inverse;
-          const glm::vec3 near = glm::min(a, b), far_t = glm::max(a, b);
-          const float enter = std::max({near.x, near.y, near.z, 0.0f});
-          if (enter < std::min({far_t.x, far_t.y, far_t.z})) hit.emplace_back(enter, &volume);
+          const auto [enter, leave] = scene::ray_span(volume.world_bounds, camera_ray.origin, camera_ray.direction);
+          if (enter < leave) hit.emplace_back(enter, &volume);
         }
         std::sort(hit.begin(), hit.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
         glm::vec3 in_scattered(0.0f);
         float transmittance = 1.0f;
         for (const auto& [enter, volume] : hit) {
           const scene::PathTracedRay ray = scene::path_trace(
-              *volume, scene.lights, sky * volume->sky_light, view.camera_position, direction,
+              *volume, scene.lights, sky * volume->sky_light, camera_ray.origin, camera_ray.direction,
               {paths, 256, 1u + y * view.width + x});
           in_scattered += transmittance * ray.in_scattered;
           transmittance *= ray.transmittance;

@@ -2,7 +2,10 @@
 // Axis-aligned bounding box; starts empty (min > max) so extend() just works.
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 
 namespace avsm::scene {
 
@@ -32,6 +35,22 @@ struct Bounds {
     return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
   }
 };
+
+// Slab test: where the ray origin + t * direction, t >= 0, enters and leaves `box`
+// (enter > leave: it misses). Axis-parallel rays need no special case: 1 / 0 is +-inf,
+// and the NaN of a ray starting on a slab's plane is ignored.
+inline std::pair<float, float> ray_span(const Bounds& box, const glm::vec3& origin, const glm::vec3& direction) {
+  float enter = 0.0f, leave = std::numeric_limits<float>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const float inverse = 1.0f / direction[axis];
+    float t0 = (box.min[axis] - origin[axis]) * inverse;
+    float t1 = (box.max[axis] - origin[axis]) * inverse;
+    if (t0 > t1) std::swap(t0, t1);
+    if (!std::isnan(t0)) enter = std::max(enter, t0);
+    if (!std::isnan(t1)) leave = std::min(leave, t1);
+  }
+  return {enter, leave};
+}
 
 // The box around the eight transformed corners of `box`.
 inline Bounds transform_bounds(const Bounds& box, const glm::mat4& transform) {

@@ -38,25 +38,6 @@ class Extinction {
   decltype(nanovdb::createSampler<1>(std::declval<const Accessor&>())) sampler_;
 };
 
-// Where the ray origin + t * direction leaves the box [lo, hi] (origin inside or not);
-// false if it never meets it ahead. `enter` is clamped at 0.
-bool box_interval(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin, const glm::vec3& direction,
-                  float& enter, float& exit) {
-  enter = 0.0f;
-  exit = 3.4e38f;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (std::abs(direction[axis]) < 1e-12f) {
-      if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return false;
-      continue;
-    }
-    float a = (lo[axis] - origin[axis]) / direction[axis], b = (hi[axis] - origin[axis]) / direction[axis];
-    if (a > b) std::swap(a, b);
-    enter = std::max(enter, a);
-    exit = std::min(exit, b);
-  }
-  return enter < exit;
-}
-
 glm::vec3 sphere_direction(int i, int count) {  // a Fibonacci spiral: even, deterministic
   const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(count);
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
@@ -70,10 +51,9 @@ float optical_depth_to_edge(const Volume& volume, Extinction& extinction, const 
                             const glm::vec3& world_direction) {
   const glm::vec3 index_direction = glm::normalize(glm::mat3(volume.index_from_world) * world_direction);
   const float world_per_index = glm::length(glm::mat3(volume.world_from_index) * index_direction);
-  float enter, exit;
-  if (!box_interval(glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1), p,
-                    index_direction, enter, exit))
-    return 0.0f;
+  const Bounds support{glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1)};
+  const auto [enter, exit] = ray_span(support, p, index_direction);
+  if (!(enter < exit)) return 0.0f;
   const MajorantGrid& m = volume.majorant;
   const float step = std::max(1.0f, 0.5f * float(m.brick_size));
   const int steps = int(std::ceil((exit - enter) / step));
@@ -120,8 +100,8 @@ float ratio_tracked_transmittance(Extinction& extinction, Random& random, const 
 
 // How far the ray from `p` runs inside the volume's world bounds.
 float distance_to_edge(const Volume& volume, const glm::vec3& p, const glm::vec3& direction) {
-  float enter, exit;
-  return box_interval(volume.world_bounds.min, volume.world_bounds.max, p, direction, enter, exit) ? exit : 0.0f;
+  const auto [enter, exit] = ray_span(volume.world_bounds, p, direction);
+  return enter < exit ? exit : 0.0f;
 }
 
 // One path: the radiance it brings back along the ray (origin outside or inside the volume).
@@ -131,8 +111,8 @@ glm::vec3 trace_path(const Volume& volume, Extinction& extinction, Random& rando
   constexpr float kIsotropicPhase = 1.0f / (4.0f * kPi);
   glm::vec3 radiance(0.0f), throughput(1.0f);
   for (int bounce = 0; bounce < max_bounces; ++bounce) {
-    float t, exit;
-    if (!box_interval(volume.world_bounds.min, volume.world_bounds.max, x, direction, t, exit)) break;
+    auto [t, exit] = ray_span(volume.world_bounds, x, direction);
+    if (!(t < exit)) break;
     bool scattered = false;  // delta tracking to a real collision
     for (;;) {
       t -= std::log(1.0f - random.next()) / majorant;
@@ -239,8 +219,8 @@ PathTracedRay path_trace(const Volume& volume, std::span<const Light> lights, co
   PathTracedRay ray;
   if (volume.nanovdb.empty() || !(volume.max_extinction() > 0.0f)) return ray;
   const glm::vec3 d = glm::normalize(direction);
-  float enter, exit;
-  if (!box_interval(volume.world_bounds.min, volume.world_bounds.max, origin, d, enter, exit)) return ray;
+  const auto [enter, exit] = ray_span(volume.world_bounds, origin, d);
+  if (!(enter < exit)) return ray;
   ray.transmittance = transmittance(volume, origin + enter * d, origin + exit * d);
   Extinction extinction(volume);
   Random random(tracing.seed);

@@ -10,20 +10,6 @@ namespace {
 
 constexpr float kNoHit = std::numeric_limits<float>::infinity();
 
-// Slab test: the ray's entry and exit distances through a box (entry > exit: missed).
-std::pair<float, float> box_span(const Ray& ray, const scene::Bounds& box) {
-  float enter = 0.0f, leave = kNoHit;
-  for (int axis = 0; axis < 3; ++axis) {
-    const float inverse = 1.0f / ray.direction[axis];  // +-inf for axis-parallel rays: the slab test still works
-    float t0 = (box.min[axis] - ray.origin[axis]) * inverse;
-    float t1 = (box.max[axis] - ray.origin[axis]) * inverse;
-    if (t0 > t1) std::swap(t0, t1);
-    if (!std::isnan(t0)) enter = std::max(enter, t0);
-    if (!std::isnan(t1)) leave = std::min(leave, t1);
-  }
-  return {enter, leave};
-}
-
 // Moeller-Trumbore; both faces count (the frame draws double-sided materials too).
 float triangle_hit(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   const glm::vec3 ab = b - a, ac = c - a;
@@ -42,7 +28,7 @@ float triangle_hit(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const
 }
 
 float mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
-  const auto [enter, leave] = box_span(ray, mesh.bounds);
+  const auto [enter, leave] = scene::ray_span(mesh.bounds, ray.origin, ray.direction);
   if (enter > leave || enter >= nearest) return kNoHit;
   float best = kNoHit;
   for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
@@ -52,18 +38,6 @@ float mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
 }
 
 }  // namespace
-
-Ray pixel_ray(const passes::View& view, glm::vec2 pixel) {
-  // Clip y is +1 at the top row (the renderer flips the viewport).
-  const glm::vec2 ndc((pixel.x + 0.5f) / float(view.width) * 2.0f - 1.0f,
-                      1.0f - (pixel.y + 0.5f) / float(view.height) * 2.0f);
-  auto unproject = [&](float z) {
-    const glm::vec4 p = view.inverse_view_projection * glm::vec4(ndc, z, 1.0f);
-    return glm::vec3(p) / p.w;
-  };
-  const glm::vec3 near_point = unproject(0.0f), far_point = unproject(1.0f);
-  return {near_point, glm::normalize(far_point - near_point)};
-}
 
 std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel) {
   const Ray ray = pixel_ray(view, pixel);
@@ -76,7 +50,7 @@ std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::V
   if (hit_mesh) return PickedPoint{ray.origin + nearest * ray.direction, "mesh '" + hit_mesh->name + "'"};
 
   for (const scene::Volume& volume : scene.volumes) {
-    const auto [enter, leave] = box_span(ray, volume.world_bounds);
+    const auto [enter, leave] = scene::ray_span(volume.world_bounds, ray.origin, ray.direction);
     if (enter <= leave && leave < kNoHit)
       return PickedPoint{ray.origin + 0.5f * (enter + leave) * ray.direction, "volume '" + volume.name + "'"};
   }

@@ -22,11 +22,7 @@ struct PickedPoint {
 // `pixel`: x right, y down from the top-left corner of the view's image, in pixels.
 std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel);
 
-struct Ray {
-  glm::vec3 origin, direction;  // direction unit length
-};
-// The camera ray through a pixel's centre (the same convention as the renderer's:
-// row 0 at the top).
-Ray pixel_ray(const passes::View& view, glm::vec2 pixel);
+using passes::pixel_ray;  // passes/frame/view.h
+using passes::Ray;
 
 }  // namespace avsm::viewer

@@ -24,4 +24,11 @@ struct View {
 
 View make_view(const scene::Camera& camera, uint32_t width, uint32_t height);
 
+struct Ray {
+  glm::vec3 origin, direction;  // direction unit length
+};
+// The camera ray through a pixel's centre, from the near plane: `pixel` x right, y down
+// from the top-left corner, in pixels (row 0 at the top, as the renderer draws it).
+Ray pixel_ray(const View& view, glm::vec2 pixel);
+
 }  // namespace avsm::passes

@@ -46,9 +46,7 @@ vec3 scattering_octaves(GpuVolume volume, vec3 carried, float transmittance) {
 // At world point `p`, index position `index_position` of volume `v`.
 vec3 scattered_light(uint v, vec3 index_position, vec3 p, vec3 to_camera, uint light_count) {
   GpuVolume volume = volumes[v];
-  // Only a volume that has the grid reads it (a host's zeroed GpuVolume has neither).
-  bool has_sky_grid = volume.sky_light > 0.0 || scattering_octave_count(volume) > 1u;
-  vec4 sky = has_sky_grid ? sky_lighting(volume, index_position) : vec4(0.0, 0.0, 0.0, 1.0);
+  vec4 sky = sky_lighting(volume, index_position);
   vec3 carried = octave_weight(volume, sky.a);
   vec3 sum = kSkyAmbient * volume.sky_light * sky.rgb;
   for (uint i = 0u; i < light_count; ++i) {

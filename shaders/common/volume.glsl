@@ -86,7 +86,7 @@ float brick_majorant(GpuVolume volume, ivec3 brick) {
 // scattering octaves, through the volume itself; a, the chance that light scattered there
 // escapes unscattered. A volume without the grid: (0, 0, 0, 1).
 vec4 sky_lighting(GpuVolume volume, vec3 index_position) {
-  if (volume.sky_offset == kNoSkyVisibility) return vec4(0.0, 0.0, 0.0, 1.0);
+  if (volume.sky_offset == kNoSkyLighting) return vec4(0.0, 0.0, 0.0, 1.0);
   ivec3 corners = volume.majorant_dims + 1;
   vec3 c = clamp((index_position - vec3(volume.majorant_origin)) / float(volume.brick_size), vec3(0.0),
                  vec3(volume.majorant_dims));

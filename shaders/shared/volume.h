@@ -8,8 +8,10 @@ GPU_NAMESPACE_BEGIN
 
 // A debug flag of the camera marches: march empty bricks too (results must not change).
 GPU_CONST(uint, kMarchNoMajorantSkipping, 1u)
-// GpuVolume::sky_offset of a volume without sky lighting (no sky light, one octave).
-GPU_CONST(uint, kNoSkyVisibility, 0xffffffffu)
+// GpuVolume::sky_offset of a volume without sky lighting (no sky light, one octave). No
+// grid starts at 0: the grids follow every volume's majorants. So a host's zeroed
+// GpuVolume has none either.
+GPU_CONST(uint, kNoSkyLighting, 0u)
 
 #define GPU_VOLUME(F, A)                                                                                   \
   F(mat4, index_from_world)                                                                                \
@@ -31,7 +33,7 @@ GPU_CONST(uint, kNoSkyVisibility, 0xffffffffu)
   F(float, octave_attenuation)  /* optical depth octave k sees: attenuation^k of it */                   \
   F(float, octave_contribution) /* light octave k carries: (contribution * albedo * (1 - escape))^k */   \
   F(float, sky_light)           /* the sky's share (0: none) */                                           \
-  F(uint, sky_offset)           /* its sky lighting in volume_brick_grids (4 floats per brick corner), or kNoSkyVisibility */ \
+  F(uint, sky_offset)           /* its sky lighting in volume_brick_grids (4 floats per brick corner), or kNoSkyLighting */ \
   A(float, pad, 1)
 GPU_STRUCT(GpuVolume, GPU_VOLUME)
 

@@ -94,7 +94,7 @@ GpuVolume to_gpu(const scene::Volume& volume, uint64_t grid_byte_offset, uint64_
   gpu.octave_attenuation = volume.multiple_scattering.attenuation;
   gpu.octave_contribution = volume.multiple_scattering.contribution;
   gpu.sky_light = volume.sky_light;
-  gpu.sky_offset = shared::kNoSkyVisibility;  // set with the grids
+  gpu.sky_offset = shared::kNoSkyLighting;  // set with the grids
   return gpu;  // the atlas fields are set by VolumeDensityAtlas::build
 }
 
