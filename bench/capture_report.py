@@ -200,6 +200,17 @@ class VolumeQuality:  # volume_quality.json
                              j["p99_relative"], j["within_bound"], j["fast_gpu_ms"], j["reference_gpu_ms"], traced)
 
 
+@dataclass
+class FogQuality:  # fog_quality.json (--compare-fog)
+    fogged_pixels: int
+    relative_l1: float
+    within_bound: bool
+
+    @staticmethod
+    def from_json(j):
+        return FogQuality(j["fogged_pixels"], j["relative_l1"], j["within_bound"])
+
+
 def scene_arguments(description, width, height):
     """The arguments every one-scene bench script takes: the scene, the image size and avsm-capture."""
     parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -232,3 +243,7 @@ def plan(folder) -> Plan:
 
 def volume_quality(folder) -> VolumeQuality:
     return _read(folder, "volume_quality.json", VolumeQuality)
+
+
+def fog_quality(folder) -> FogQuality:
+    return _read(folder, "fog_quality.json", FogQuality)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Light in media: the targets that are built so far. Smoke lit as a medium (multiple
-# scattering and sky light) against a CPU path tracer, on the real-asset scene (when
-# ../shared/content is there) and the default scene. Extra arguments go to smoke.py
-# (e.g. --width 640 --height 360 --paths 128).
+# Light in media: the targets that are built so far.
+#  - Smoke lit as a medium (multiple scattering and sky light) against a CPU path tracer, on
+#    the real-asset scene (when ../shared/content is there) and the default scene (smoke.py).
+#  - Fog through the froxel grid against its per-pixel march, at 1280x720, on the default
+#    scene under a ground fog and on content/examples/fog.scene.json (fog.py).
+# Extra arguments go to smoke.py (e.g. --width 640 --height 360 --paths 128).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cmake --build build -j"$(nproc)" --target avsm-capture avsm_default_content > /dev/null
@@ -13,5 +15,11 @@ if [ -f ../shared/content/smoke1/smoke.vdb ]; then scenes+=(content/real_assets.
 scenes+=(build/content/default/scene.json)
 for scene in "${scenes[@]}"; do
   python3 bench/media/smoke.py --scene "$scene" "$@"
+  echo
+done
+fog_scenes=(build/content/default/scene.json)
+if [ -f ../shared/content/smoke1/smoke.vdb ]; then fog_scenes+=(content/examples/fog.scene.json); fi
+for scene in "${fog_scenes[@]}"; do
+  python3 bench/media/fog.py --scene "$scene"
   echo
 done

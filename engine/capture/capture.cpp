@@ -20,6 +20,7 @@
 #include "capture/quality.h"
 #include "capture/resolution.h"
 #include "capture/report.h"
+#include "capture/fog_comparison.h"
 #include "capture/volume_comparison.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -268,6 +269,29 @@ gpu::ImageRGBA32F side_by_side(std::initializer_list<const gpu::ImageRGBA32F*> i
   return out;
 }
 
+// --compare-fog, after the main frames: the last view again with the fog marched per pixel
+// and without fog, measured against the last main frame (capture/fog_comparison.h).
+fs::path compare_fog_frames(gpu::Context& ctx, renderer::SceneRenderer& frame, gpu::TimestampMode mode,
+                            const passes::View& view, const fs::path& out_dir) {
+  const gpu::ImageRGBA32F fast = gpu::read_image(ctx, frame.hdr(), renderer::SceneRenderer::kOutputLayout);
+  rg::vulkan::Executor executor(ctx, mode);
+  VkCommandBuffer cmd = ctx.allocate_command_buffer("fog comparison frame");
+  auto render = [&] {
+    render_timed_frame(ctx, frame, executor, cmd, view);
+    return gpu::read_image(ctx, frame.hdr(), renderer::SceneRenderer::kOutputLayout);
+  };
+  frame.set_fog_marched_per_pixel(true);
+  const gpu::ImageRGBA32F reference = render();
+  frame.set_fog_marched_per_pixel(std::nullopt);
+  frame.set_fog_enabled(false);
+  const gpu::ImageRGBA32F without_fog = render();
+  frame.set_fog_enabled(true);
+  io::write_exr(out_dir / "frame_fog_reference.exr", reference);
+  const fs::path file = out_dir / "fog_quality.json";
+  write_fog_comparison(file, compare_fog(fast, reference, without_fog));
+  return file;
+}
+
 // The reference and hidden-volume frames of --compare-volume-shading, each timed on
 // its own executor (their graphs differ from the main frame's).
 class VolumeShadingRun {
@@ -396,6 +420,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   }
   renderer::SceneRenderer& frame = *renderer_storage;
   frame.set_frames_in_flight(options.frames_in_flight);
+  if (options.fog) frame.set_fog_enabled(*options.fog);
+  if (options.compare_fog && !frame.fog_enabled())
+    throw std::runtime_error(options.scene.string() + ": --compare-fog needs fog, and the scene has none (add a \"fog\" block)");
   report_lowered_resolutions(frame, scene);
   report_blend_casters_in_fixed_builds(scene);
   if (!probe_points.empty()) frame.set_probes(probe_points);
@@ -517,6 +544,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     out.resolution = options.out_dir / "resolution.json";
   }
   if (volume_run) out.volume_quality = volume_run->finish(options.out_dir, comparison_cmd, view_of(options.frames - 1), timing_log);
+  if (options.compare_fog) out.fog_quality = compare_fog_frames(ctx, frame, calibration.mode, view_of(options.frames - 1), options.out_dir);
   if (!plots.empty())
     out.curves = write_texel_curves(options.out_dir, plots, scene, frame.shadows(), ctx, frame.texel_results());
   report.settings = settings_report(options, scene, camera, report.memory.lights, probe_points.size());

@@ -58,6 +58,11 @@ struct CaptureOptions {
   // the scene file's (unset: its own).
   std::optional<int> volume_octaves;
   std::optional<float> volume_sky_light;
+  // --fog on|off: the scene's fog shown or not (unset: shown when the scene has one).
+  std::optional<bool> fog;
+  // --compare-fog: the last frame also rendered with the fog marched per pixel and
+  // without fog: writes fog_quality.json and frame_fog_reference.exr (capture/fog_comparison.h).
+  bool compare_fog = false;
   bool exponential_interpolation = false;
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).
@@ -89,6 +94,7 @@ struct CaptureOutputs {
   std::filesystem::path quality;               // empty without --compare-to
   std::filesystem::path resolution;            // empty without --measure-resolution
   std::filesystem::path volume_quality;        // empty without --compare-volume-shading
+  std::filesystem::path fog_quality;           // empty without --compare-fog
   std::vector<std::filesystem::path> curves;   // --plot-texel
   std::filesystem::path pass_list;             // --dump-passes (then nothing else is written)
 };

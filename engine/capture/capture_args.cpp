@@ -46,6 +46,10 @@ const char* kUsage =
     "                   scattering) to 8 (default: the scene file's, 4)\n"
     "  --sky-light S    every volume's share of the sky's light, 0 (none) to 4 (default:\n"
     "                   the scene file's, 1)\n"
+    "  --fog on|off     show the scene's fog or not (default: on when the scene has one)\n"
+    "  --compare-fog    also render the last frame with the fog marched per pixel (every\n"
+    "                   light's map looked up per step) and without fog: fog_quality.json\n"
+    "                   (relative L1 of the fog's effect, bound 5%), frame_fog_reference.exr\n"
     "shadow overrides, for every light (default: the scene file's settings):\n"
     "  --technique T    one of the shadow techniques listed at the end (default avsm)\n"
     "  --nodes N        AVSM nodes per texel: 4, 8, 12 or 16\n"
@@ -220,6 +224,12 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const std::optional<float> share = parse_number<float>(text);
     if (!share || !(*share >= 0.0f && *share <= 4.0f)) usage_error("--sky-light expects 0 to 4, got '" + text + "'");
     options.volume_sky_light = *share;
+  } else if (arg == "--fog") {
+    const std::string text = value();
+    if (text != "on" && text != "off") usage_error("--fog expects on or off, got '" + text + "'");
+    options.fog = text == "on";
+  } else if (arg == "--compare-fog") {
+    options.compare_fog = true;
   } else if (arg == "--technique") {
     const std::string name = value();
     if (!passes::find_shadow_technique(name))
@@ -312,6 +322,8 @@ CaptureCommand parse_capture_arguments(const std::vector<std::string>& args) {
   const scene::ShadowOverrides& shadow = command.options.shadow;
   if (shadow.cascades.value_or(1) > 1 && shadow.clusters.value_or(0) > 1)
     usage_error("--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
+  if (command.options.compare_fog && command.options.fog == false)
+    usage_error("--compare-fog needs the fog on (drop --fog off)");
   if (command.options.path_trace_volumes > 0 && !command.options.compare_volume_shading)
     usage_error("--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   return command;
@@ -349,6 +361,8 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
              std::to_string(o.path_trace_volumes));
   if (o.volume_octaves) with_value(true, "--volume-octaves", std::to_string(*o.volume_octaves));
   if (o.volume_sky_light) with_value(true, "--sky-light", exact_text(*o.volume_sky_light));
+  if (o.fog) with_value(true, "--fog", *o.fog ? "on" : "off");
+  flag(o.compare_fog, "--compare-fog");
 
   const scene::ShadowOverrides& shadow = o.shadow;
   if (shadow.technique) with_value(true, "--technique", *shadow.technique);

@@ -34,6 +34,10 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
       cached_march_(ctx, shaders),
       upsample_(ctx, shaders),
       hair_lighting_(ctx, shaders),
+      fog_media_(ctx),
+      fog_scattering_(ctx, shaders),
+      fog_integration_(ctx, shaders),
+      fog_apply_(ctx, shaders),
       shadows_(ctx, shaders),
       shaders_(shaders),
       tonemap_(ctx, shaders) {
@@ -58,6 +62,7 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
   set_volume_shading(scene.volume_shading);
+  fog_media_.set_fog(scene.fog, scene.bounds);
   shadows_.set_scene(scene, shadow_options);
 
   // Output passes enabled before follow the new lights.
@@ -108,6 +113,7 @@ void SceneRenderer::set_frames_in_flight(uint32_t count) {
   vkDeviceWaitIdle(ctx_.device());  // every per-slot buffer is made again, for another ring of slots
   shadows_.set_frames_in_flight(count);
   light_buffers_.set_frames(ctx_, count);
+  fog_media_.set_frames_in_flight(count);
   for (passes::ShadowProbePass* pass : {probes_.get(), texel_curves_.get()})
     if (pass) pass->set_frames_in_flight(count);
   if (quality_) quality_->set_frames_in_flight(count);
@@ -183,9 +189,11 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   frame.shadows = shadows_.add_to_graph(graph, view, shadow_casters(), slot);
   frame.light_views = &shadows_.light_views();
   const passes::ShadowInputs& shadows = frame.shadows;
+  frame.fog = fog_media_.write(slot, view);
 
   passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, frame);
-  rg::TextureHandle color = add_volumes(graph, opaque.color, opaque.depth, frame);
+  rg::TextureHandle color = add_fog(graph, opaque.color, opaque.depth, frame);
+  color = add_volumes(graph, color, opaque.depth, frame);
   // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
   // Per fragment is the reference's; hidden volumes keep the fast per-vertex lighting (per
   // fragment made the hair pass 18x slower), and the volume comparison asks for the
@@ -207,6 +215,17 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (texel_curves_) texel_curves_->add_to_graph(graph, frame.shadows);
   if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
   return graph;
+}
+
+rg::TextureHandle SceneRenderer::add_fog(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                                         passes::FrameInputs& frame) {
+  if (!fog_media_.enabled()) return color;
+  const rg::TextureHandle froxels = fog_scattering_.add_to_graph(graph, frame);
+  fog_integration_.add_to_graph(graph, froxels, frame);
+  // The fog first over the surfaces and the background; the smoke and the hair, nearer,
+  // go over it with the fog in front of them (common/fog.glsl).
+  const bool per_pixel = fog_per_pixel_.value_or(volume_shading_.mode == scene::VolumeShading::Mode::reference);
+  return fog_apply_.add_to_graph(graph, color, depth, frame, per_pixel);
 }
 
 rg::TextureHandle SceneRenderer::add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

@@ -19,6 +19,10 @@
 #include <string>
 
 #include "gpu/resources.h"
+#include "passes/camera/fog/fog_apply_pass.h"
+#include "passes/camera/fog/fog_integration_pass.h"
+#include "passes/camera/fog/fog_media.h"
+#include "passes/camera/fog/fog_scattering_pass.h"
 #include "passes/camera/hair/hair_lighting_pass.h"
 #include "passes/camera/hair/hair_pass.h"
 #include "passes/camera/surfaces/opaque_pass.h"
@@ -81,6 +85,16 @@ class SceneRenderer {
   // reference.
   void set_hair_lighting_per_fragment(std::optional<bool> per_fragment) { hair_per_fragment_ = per_fragment; }
   std::optional<bool> hair_lighting_per_fragment() const { return hair_per_fragment_; }
+  // The fog (scene/fog.h); set_scene() takes the scene's. Off: the frame declares no fog
+  // passes and composites none, the settings kept (a host's switch, the viewer's).
+  void set_fog(const scene::Fog& fog) { fog_media_.set_fog(fog, fitted_bounds_); }
+  const scene::Fog& fog() const { return fog_media_.fog(); }
+  void set_fog_enabled(bool enabled) { fog_media_.set_enabled(enabled); }
+  bool fog_enabled() const { return fog_media_.enabled(); }
+  // The fog over the surfaces marched per pixel (the reference's) or read from the froxel
+  // grid (the fast path's); unset: per pixel in the reference volume shading only. Lets
+  // the fog be measured against its reference alone.
+  void set_fog_marched_per_pixel(std::optional<bool> per_pixel) { fog_per_pixel_ = per_pixel; }
   uint64_t density_atlas_bytes() const { return volumes_.atlas().bytes(); }
   // Cells in the last frame's lighting cache (0 in the reference path).
   uint64_t lighting_cache_cells() const { return volume_shading_.mode == scene::VolumeShading::Mode::fast ? cache_.cell_count() : 0; }
@@ -155,6 +169,10 @@ class SceneRenderer {
   void create_outputs();
   // What casts: the scene's meshes, hair and volumes as the shadow passes take them.
   passes::ShadowCasters shadow_casters() const;
+  // When the frame has fog: its froxel passes (frame.fog gets the grid), then its
+  // composite onto `color` at the opaque `depth`; returns the new colour.
+  rg::TextureHandle add_fog(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
+                            passes::FrameInputs& frame);
   // Adds the volume passes of the fast or the reference path; returns the new colour.
   // The fast path's lighting cache lands in `inputs.cache`.
   rg::TextureHandle add_volumes(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,
@@ -185,8 +203,13 @@ class SceneRenderer {
   passes::VolumeCachedMarchPass cached_march_;
   passes::VolumeUpsamplePass upsample_;
   passes::HairLightingPass hair_lighting_;
+  passes::FogMedia fog_media_;
+  passes::FogScatteringPass fog_scattering_;
+  passes::FogIntegrationPass fog_integration_;
+  passes::FogApplyPass fog_apply_;
   scene::VolumeShading volume_shading_;
   std::optional<bool> hair_per_fragment_;
+  std::optional<bool> fog_per_pixel_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;

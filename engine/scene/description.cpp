@@ -221,6 +221,62 @@ VolumeShading read_volume_shading(const Reader& reader, const json& value) {
   return shading;
 }
 
+// The medium keys a fog and its boxes share, over the values `medium` starts with.
+FogMedium read_fog_medium(ObjectReader& object, FogMedium medium) {
+  medium.scattering = object.number_or("scattering", medium.scattering);
+  object.check(medium.scattering >= 0.0f && medium.scattering <= 100.0f, "scattering",
+               "must be 0 to 100 per metre (sigma_s)");
+  medium.absorption = object.number_or("absorption", medium.absorption);
+  object.check(medium.absorption >= 0.0f && medium.absorption <= 100.0f, "absorption",
+               "must be 0 to 100 per metre (sigma_a)");
+  medium.color = object.vec3_or("color", medium.color);
+  object.check(glm::all(glm::greaterThanEqual(medium.color, glm::vec3(0.0f))) &&
+                   glm::all(glm::lessThanEqual(medium.color, glm::vec3(1.0f))),
+               "color", "each component must be in [0, 1] (the scattered light's tint)");
+  medium.phase_g = object.number_or("phase_g", medium.phase_g);
+  object.check(medium.phase_g >= -0.95f && medium.phase_g <= 0.95f, "phase_g",
+               "must be -0.95 to 0.95 (Henyey-Greenstein: 0 isotropic, > 0 forward)");
+  return medium;
+}
+
+FogBox read_fog_box(ObjectReader& object) {
+  FogBox box;
+  box.bounds.min = object.vec3("min");
+  box.bounds.max = object.vec3("max");
+  object.check(glm::all(glm::lessThan(box.bounds.min, box.bounds.max)), "max",
+               "must be greater than min on every axis");
+  box.medium = read_fog_medium(object, FogMedium{});
+  object.finish();
+  return box;
+}
+
+// "fog": a global medium and its boxes, the sky's share and the froxel grid.
+Fog read_fog(const Reader& reader, const json& value) {
+  ObjectReader object(reader, value, "fog");
+  Fog fog;
+  fog.global = read_fog_medium(object, fog.global);
+  fog.sky_light = object.number_or("sky_light", fog.sky_light);
+  object.check(fog.sky_light >= 0.0f && fog.sky_light <= 4.0f, "sky_light",
+               "must be 0 (no sky light) to 4 (the sky's share of the fog's light)");
+  fog.grid.froxel_pixels = object.integer_or("froxel_pixels", fog.grid.froxel_pixels);
+  object.check(fog.grid.froxel_pixels >= 4 && fog.grid.froxel_pixels <= 64, "froxel_pixels",
+               "must be 4 to 64 pixels a side");
+  fog.grid.slices = object.integer_or("slices", fog.grid.slices);
+  object.check(fog.grid.slices >= 8 && fog.grid.slices <= 256, "slices", "must be 8 to 256 depth slices");
+  fog.grid.distance = object.number_or("distance", fog.grid.distance);
+  object.check(fog.grid.distance >= 0.0f, "distance", "must be >= 0 metres (0: to the scene's far side)");
+  if (const json* boxes = object.optional("boxes")) {
+    const std::string path = object.path_of("boxes");
+    reader.expect(boxes->is_array(), path, "expected an array of boxes, got " + describe_type(*boxes));
+    for (std::size_t i = 0; i < boxes->size(); ++i) {
+      ObjectReader box(reader, (*boxes)[i], index_path(path, i));
+      fog.boxes.push_back(read_fog_box(box));
+    }
+  }
+  object.finish();
+  return fog;
+}
+
 Light read_light(ObjectReader& object, std::size_t index) {
   Light light;
   light.name = name_or(object, "light" + std::to_string(index));
@@ -379,6 +435,7 @@ SceneDescription parse_scene_description(std::string_view json_text, const std::
   scene.cameras = read_list<Camera>(top, "cameras", read_camera);
   if (const json* shading = top.optional("volume_shading")) scene.volume_shading = read_volume_shading(reader, *shading);
   if (const json* shadows = top.optional("shadows")) scene.shadows = read_scene_shadows(reader, *shadows);
+  if (const json* fog = top.optional("fog")) scene.fog = read_fog(reader, *fog);
   reader.expect(top.has("cameras"), "cameras", "required key is missing (a scene needs at least one camera)");
   reader.expect(!scene.cameras.empty(), "cameras", "a scene needs at least one camera");
   top.finish();

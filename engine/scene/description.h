@@ -5,6 +5,7 @@
 // message names the file, the JSON path (e.g. "lights[1].shadow.nodes") and
 // the problem.
 #include "scene/camera.h"
+#include "scene/fog.h"
 #include "scene/light.h"
 #include "scene/mesh.h"
 #include "scene/volume.h"
@@ -61,6 +62,7 @@ struct SceneDescription {
   std::vector<Camera> cameras;  // at least one
   VolumeShading volume_shading;  // "volume_shading"
   SceneShadows shadows;          // "shadows"
+  Fog fog;                       // "fog" (scene/fog.h)
 };
 
 class ObjectReader;  // scene/json_reader.h

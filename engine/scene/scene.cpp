@@ -84,6 +84,7 @@ Scene load_scene(const SceneDescription& description) {
   scene.cameras = description.cameras;
   scene.volume_shading = description.volume_shading;
   scene.shadows = description.shadows;
+  scene.fog = description.fog;
 
   for (std::size_t i = 0; i < description.models.size(); ++i) {
     const ModelEntry& entry = description.models[i];

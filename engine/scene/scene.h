@@ -28,6 +28,7 @@ struct Scene {
   std::vector<Camera> cameras;      // at least one
   VolumeShading volume_shading;     // how the camera sees the volumes
   SceneShadows shadows;             // the budget and switches all maps share
+  Fog fog;                          // the medium outside the volumes (none unless the file has one)
   Bounds bounds;                    // meshes, hair and volume bounds together
   std::vector<std::string> warnings;  // things that loaded but deserve a log line
 };

@@ -374,6 +374,24 @@ void Panel::draw_media(const PanelView& view, ViewerSettings& settings, PanelReq
       requests.scene_edited = true;
   }
   if (scene.volumes.empty() && scene.hair.empty()) ImGui::TextDisabled("the scene has no smoke or hair");
+  draw_fog(scene.fog, settings.overrides.fog, requests);
+}
+
+// The fog's switch and its global medium (the boxes and the grid stay the file's).
+void Panel::draw_fog(const scene::Fog& fog, FogOverride& o, PanelRequests& requests) {
+  bool on = fog.enabled();
+  if (ImGui::Checkbox("fog", &on)) o.enabled = on, requests.scene_edited = true;
+  if (!on) return;
+  ImGui::SameLine();
+  ImGui::TextDisabled("%zu boxes", fog.boxes.size());
+  float scattering = fog.global.scattering, absorption = fog.global.absorption;
+  float g = fog.global.phase_g, sky = fog.sky_light;
+  if (ImGui::SliderFloat("fog scattering /m", &scattering, 0.0f, 2.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
+    o.scattering = scattering, requests.scene_edited = true;
+  if (ImGui::SliderFloat("fog absorption /m", &absorption, 0.0f, 2.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
+    o.absorption = absorption, requests.scene_edited = true;
+  if (ImGui::SliderFloat("fog phase g", &g, -0.95f, 0.95f, "%.2f")) o.phase_g = g, requests.scene_edited = true;
+  if (ImGui::SliderFloat("fog sky light", &sky, 0.0f, 4.0f, "%.2f")) o.sky_light = sky, requests.scene_edited = true;
 }
 
 // The scene's volume_shading (already overridden): how the camera sees the smoke.

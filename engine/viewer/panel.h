@@ -84,6 +84,7 @@ class Panel {
   void draw_scene_file(PanelRequests& requests);
   void draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
+  void draw_fog(const scene::Fog& fog, FogOverride& o, PanelRequests& requests);
   void draw_volume_scattering(const scene::Volume& volume, VolumeOverride& o, PanelRequests& requests);
   void draw_volume_shading(const scene::VolumeShading& shading, ViewerSettings& settings, PanelRequests& requests);
   void draw_display(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);

@@ -25,6 +25,22 @@ void apply_volume(const VolumeOverride& o, scene::Volume& volume) {
   if (o.sky_light) volume.sky_light = std::clamp(*o.sky_light, 0.0f, 4.0f);
 }
 
+// The fog a viewer switches on over a scene without one.
+constexpr float kSwitchedOnFogScattering = 0.05f;
+
+void apply_fog(const FogOverride& o, scene::Fog& fog) {
+  if (o.enabled && !*o.enabled) {
+    fog.global = {};
+    fog.boxes.clear();
+    return;
+  }
+  if (o.enabled && !fog.enabled()) fog.global.scattering = kSwitchedOnFogScattering;
+  if (o.scattering) fog.global.scattering = std::clamp(*o.scattering, 0.0f, 100.0f);
+  if (o.absorption) fog.global.absorption = std::clamp(*o.absorption, 0.0f, 100.0f);
+  if (o.phase_g) fog.global.phase_g = std::clamp(*o.phase_g, -0.95f, 0.95f);
+  if (o.sky_light) fog.sky_light = std::clamp(*o.sky_light, 0.0f, 4.0f);
+}
+
 void scale_hair(scene::HairGroom& groom, float opacity_scale, float width_scale) {
   for (float& opacity : groom.strand_opacity) opacity = std::clamp(opacity * opacity_scale, 0.0f, 1.0f);
   for (float& width : groom.strand_width) width *= width_scale;
@@ -48,6 +64,7 @@ void SceneOverrides::apply(scene::Scene& scene) const {
   if (hair_opacity_scale != 1.0f || hair_width_scale != 1.0f)
     for (scene::HairGroom& groom : scene.hair) scale_hair(groom, hair_opacity_scale, hair_width_scale);
   volume_shading.apply(scene.volume_shading);
+  apply_fog(fog, scene.fog);
 }
 
 }  // namespace avsm::viewer

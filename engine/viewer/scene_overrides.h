@@ -28,6 +28,14 @@ struct VolumeOverride {
   std::optional<float> sky_light;
 };
 
+// The fog's global medium and its switch (its boxes and grid stay the file's).
+struct FogOverride {
+  std::optional<bool> enabled;  // off: no fog; on over a scene without fog: a thin global one
+  std::optional<float> scattering, absorption;  // per metre, clamped to 0..100
+  std::optional<float> phase_g;                 // clamped to -0.95..0.95
+  std::optional<float> sky_light;               // clamped to 0..4
+};
+
 struct SceneOverrides {
   std::vector<LightOverride> lights;    // by light index; lights beyond the scene's are ignored
   std::vector<VolumeOverride> volumes;  // by volume index
@@ -35,6 +43,7 @@ struct SceneOverrides {
   float hair_opacity_scale = 1.0f;
   float hair_width_scale = 1.0f;
   scene::VolumeShadingOverrides volume_shading;  // the avsm-viewer flags, then the panel
+  FogOverride fog;
 
   LightOverride& light(size_t index);
   VolumeOverride& volume(size_t index);

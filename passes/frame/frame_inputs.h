@@ -15,6 +15,7 @@
 #include "passes/shadows/light_view.h"
 #include "passes/shadows/shadow_inputs.h"
 #include "passes/frame/view.h"
+#include "passes/camera/fog/fog_media.h"
 #include "passes/camera/volumes/volume_pass.h"
 
 namespace avsm::passes {
@@ -38,6 +39,7 @@ struct FrameInputs {
   ShadowInputs shadows;
   const std::vector<LightView>* light_views = nullptr;  // the shadowed lights' maps
   std::optional<VolumeLightingCache> cache;  // set by VolumeLightingCachePass in the fast path
+  FogInputs fog;  // the fog's buffer always; its integrated grid when the frame has fog
 
   // The camera sees the smoke (the hair sees it in front of itself).
   bool smoke_visible() const { return shading.mode != VolumeShading::Mode::hidden; }

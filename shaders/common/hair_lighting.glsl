@@ -7,7 +7,9 @@
 //
 // The includer has included a march (common/volume_cached_march.glsl or
 // common/volume_reference_march.glsl, which give march_ray, the shadow lookups and
-// `lights`), then includes this file.
+// `lights`) and common/fog.glsl with its integrated grid, then includes this file.
+// The fog medium goes in front of the smoke and the fibre together: the vertex's fog is
+// the medium's, towards the vertex, over the smoke's (the smoke taken at the vertex).
 #ifndef AVSM_HAIR_LIGHTING_GLSL
 #define AVSM_HAIR_LIGHTING_GLSL
 
@@ -41,7 +43,14 @@ void main() {
     bool touched;
     fog = march_ray(origin, (p - origin) / t_max, t_max, touched);
   }
-  vertex_lights[i] = HairVertexLight(vec4(lit, 1.0), vec4(fog.in_scattered, fog.transmittance));
+  vec4 smoke = vec4(fog.in_scattered, fog.transmittance);
+  if (fog_grid.enabled != 0u && t_max > 0.0) {
+    vec4 clip = pc.view_projection * vec4(p, 1.0);
+    vec2 ndc = clip.xy / clip.w;
+    vec2 pixel = vec2(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y) * vec2(pc.output_size);
+    smoke = fog_then(fog_towards(pixel, t_max), smoke);
+  }
+  vertex_lights[i] = HairVertexLight(vec4(lit, 1.0), smoke);
 }
 
 #endif

@@ -206,6 +206,15 @@ bool next_volume(uint volume_count, vec3 world_origin, vec3 world_direction, flo
   return found;
 }
 
+// Where the fog composite takes the smoke to be along the ray (common/fog.glsl's
+// smoke_over_fogged): the middle of the stretch of [0, t_max] inside the nearest volume.
+float smoke_fog_distance(uint volume_count, vec3 world_origin, vec3 world_direction, float t_max) {
+  uint v;
+  float t_enter, t_exit;
+  if (!next_volume(volume_count, world_origin, world_direction, 0.0, t_max, -1.0, -1, v, t_enter, t_exit)) return 0.0;
+  return 0.5 * (t_enter + t_exit);
+}
+
 // ---- Brick walk ----
 #ifdef AVSM_VOLUME_WALK_STATE
 // Defined by the includer: called for each stretch [t_start, t_end] of the ray inside

@@ -42,6 +42,8 @@ CaptureOptions every_option_set() {
   o.path_trace_volumes = 16;
   o.volume_octaves = 2;
   o.volume_sky_light = 0.3f;
+  o.fog = true;
+  o.compare_fog = true;
   o.shadow.technique = "osm";
   o.shadow.nodes = 12;
   o.shadow.resolution = 64;
@@ -101,6 +103,8 @@ TEST(CaptureArgs, BadFlagsNameThemselves) {
   EXPECT_EQ(usage_error_of({"--light-orbit", "x"}), "--light-orbit expects -90 to 90 degrees per frame, got 'x'");
   EXPECT_EQ(usage_error_of({"--volume-octaves", "9"}), "--volume-octaves expects 1 (single scattering) to 8");
   EXPECT_EQ(usage_error_of({"--sky-light", "-1"}), "--sky-light expects 0 to 4, got '-1'");
+  EXPECT_EQ(usage_error_of({"--fog", "yes"}), "--fog expects on or off, got 'yes'");
+  EXPECT_EQ(usage_error_of({"--fog", "off", "--compare-fog"}), "--compare-fog needs the fog on (drop --fog off)");
   EXPECT_EQ(usage_error_of({"--path-trace-volumes", "8"}),
             "--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   EXPECT_EQ(usage_error_of({"--cascades", "2", "--clusters", "3"}),

@@ -253,6 +253,54 @@ TEST(SceneDescriptionErrors, VolumeMultipleScatteringAndSkyLightOutOfRange) {
   EXPECT_THAT(error_of(with(R"("sky_light": -1)")), HasSubstr("volumes[0].sky_light: must be 0 (no sky light) to 4"));
 }
 
+// The fog block (scene/fog.h): a global medium, boxes of their own, the sky and the grid.
+std::string with_fog(const std::string& fog) { return full_scene(R"("version": 1,)", R"("version": 1, "fog": )" + fog + ","); }
+
+TEST(SceneDescription, Fog) {
+  const SceneDescription none = parse(full_scene());
+  EXPECT_FALSE(none.fog.enabled()) << "no fog unless the file has one";
+  const SceneDescription scene = parse(with_fog(R"({ "scattering": 0.1, "absorption": 0.02, "color": [1, 0.9, 0.8],
+      "phase_g": 0.6, "sky_light": 0.5, "froxel_pixels": 8, "slices": 32, "distance": 20,
+      "boxes": [ { "min": [-1, 0, -1], "max": [1, 0.5, 1], "scattering": 0.4, "phase_g": -0.2 } ] })"));
+  const Fog& fog = scene.fog;
+  EXPECT_TRUE(fog.enabled());
+  EXPECT_FLOAT_EQ(fog.global.scattering, 0.1f);
+  EXPECT_FLOAT_EQ(fog.global.absorption, 0.02f);
+  EXPECT_EQ(fog.global.color, glm::vec3(1.0f, 0.9f, 0.8f));
+  EXPECT_FLOAT_EQ(fog.global.phase_g, 0.6f);
+  EXPECT_FLOAT_EQ(fog.sky_light, 0.5f);
+  EXPECT_EQ(fog.grid.froxel_pixels, 8);
+  EXPECT_EQ(fog.grid.slices, 32);
+  EXPECT_FLOAT_EQ(fog.grid.distance, 20.0f);
+  ASSERT_EQ(fog.boxes.size(), 1u);
+  EXPECT_EQ(fog.boxes[0].bounds.min, glm::vec3(-1.0f, 0.0f, -1.0f));
+  EXPECT_EQ(fog.boxes[0].bounds.max, glm::vec3(1.0f, 0.5f, 1.0f));
+  EXPECT_FLOAT_EQ(fog.boxes[0].medium.scattering, 0.4f);
+  EXPECT_FLOAT_EQ(fog.boxes[0].medium.absorption, 0.0f) << "a box's medium starts empty, not as the global one";
+  EXPECT_FLOAT_EQ(fog.boxes[0].medium.phase_g, -0.2f);
+  EXPECT_TRUE(parse(with_fog(R"({ "boxes": [ { "min": [0, 0, 0], "max": [1, 1, 1], "absorption": 1 } ] })")).fog.enabled())
+      << "a box alone is fog";
+}
+
+TEST(SceneDescriptionErrors, FogOutOfRange) {
+  EXPECT_THAT(error_of(with_fog(R"({ "scattering": -1 })")), HasSubstr("fog.scattering: must be 0 to 100 per metre"));
+  EXPECT_THAT(error_of(with_fog(R"({ "absorption": 200 })")), HasSubstr("fog.absorption: must be 0 to 100 per metre"));
+  EXPECT_THAT(error_of(with_fog(R"({ "phase_g": 1 })")), HasSubstr("fog.phase_g: must be -0.95 to 0.95"));
+  EXPECT_THAT(error_of(with_fog(R"({ "color": [2, 1, 1] })")), HasSubstr("fog.color: each component must be in [0, 1]"));
+  EXPECT_THAT(error_of(with_fog(R"({ "sky_light": 5 })")), HasSubstr("fog.sky_light: must be 0 (no sky light) to 4"));
+  EXPECT_THAT(error_of(with_fog(R"({ "froxel_pixels": 2 })")), HasSubstr("fog.froxel_pixels: must be 4 to 64 pixels"));
+  EXPECT_THAT(error_of(with_fog(R"({ "slices": 300 })")), HasSubstr("fog.slices: must be 8 to 256 depth slices"));
+  EXPECT_THAT(error_of(with_fog(R"({ "distance": -2 })")), HasSubstr("fog.distance: must be >= 0 metres"));
+  EXPECT_THAT(error_of(with_fog(R"({ "density": 1 })")), HasSubstr("fog.density: unknown key"));
+  EXPECT_THAT(error_of(with_fog(R"({ "boxes": {} })")), HasSubstr("fog.boxes: expected an array of boxes"));
+  EXPECT_THAT(error_of(with_fog(R"({ "boxes": [ { "min": [0, 0, 0], "max": [1, 0, 1] } ] })")),
+              HasSubstr("fog.boxes[0].max: must be greater than min on every axis"));
+  EXPECT_THAT(error_of(with_fog(R"({ "boxes": [ { "max": [1, 1, 1] } ] })")),
+              HasSubstr("fog.boxes[0].min: required key is missing"));
+  EXPECT_THAT(error_of(with_fog(R"({ "boxes": [ { "min": [0, 0, 0], "max": [1, 1, 1], "phase_g": -1 } ] })")),
+              HasSubstr("fog.boxes[0].phase_g: must be -0.95 to 0.95"));
+}
+
 TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", "")), HasSubstr("scene.json: version: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 2,)")), HasSubstr("version: unsupported version 2"));

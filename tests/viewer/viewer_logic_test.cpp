@@ -179,6 +179,28 @@ TEST(SceneOverrides, VolumeScatteringEditsAreClampedToTheSceneFilesRanges) {
   EXPECT_FLOAT_EQ(scene.volumes[1].sky_light, 1.0f);
 }
 
+// The fog switch: off removes every medium; on over a scene without fog adds a thin global
+// one; the global medium's edits are clamped to the scene file's ranges, the boxes kept.
+TEST(SceneOverrides, FogSwitchAndEdits) {
+  scene::Scene scene;
+  SceneOverrides overrides;
+  overrides.fog.enabled = true;
+  overrides.apply(scene);
+  EXPECT_TRUE(scene.fog.enabled()) << "switched on over a scene without fog";
+  scene::Scene fogged;
+  fogged.fog.boxes.push_back({scene::Bounds{glm::vec3(0.0f), glm::vec3(1.0f)}, {.scattering = 0.5f}});
+  overrides.fog = {.scattering = 300.0f, .absorption = -1.0f, .phase_g = 2.0f, .sky_light = 9.0f};
+  overrides.apply(fogged);
+  EXPECT_FLOAT_EQ(fogged.fog.global.scattering, 100.0f);
+  EXPECT_FLOAT_EQ(fogged.fog.global.absorption, 0.0f);
+  EXPECT_FLOAT_EQ(fogged.fog.global.phase_g, 0.95f);
+  EXPECT_FLOAT_EQ(fogged.fog.sky_light, 4.0f);
+  EXPECT_EQ(fogged.fog.boxes.size(), 1u);
+  overrides.fog.enabled = false;
+  overrides.apply(fogged);
+  EXPECT_FALSE(fogged.fog.enabled()) << "switched off";
+}
+
 TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(parse_control_command("frame").kind, ControlCommand::Kind::frame);
   const ControlCommand inspect = parse_control_command("inspect 12,34");

@@ -30,12 +30,13 @@ rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass
       [&](rg::PassBuilder& b, Output& d) {
         if (inputs.cache) inputs.cache->declare_reads(b);
         inputs.shadows.declare_reads(b);
+        inputs.fog.declare_reads(b);
         d.page_requests = inputs.ask_for_pages(b);  // the fibres and the smoke in front of them
         const rg::BufferDesc lights{uint64_t(hair.point_count()) * sizeof(HairVertexLight),
                                     "the scene's hair: grooms with fewer strand vertices"};
         d.lights = b.write(b.create_buffer("hair vertex lights", lights), rg::Usage::StorageWrite);
       },
-      [this, &hair, inputs, camera = view.camera_position](const Output& d, rg::PassContext& c) {
+      [this, &hair, inputs, view](const Output& d, rg::PassContext& c) {
         const VolumeCasters volumes = inputs.volumes->casters();
         const bool cached = inputs.cache.has_value();
         const gpu::Pipeline& pipeline = cached ? cached_ : reference_;
@@ -47,10 +48,12 @@ rg::BufferHandle HairLightingPass::add_to_graph(rg::Graph& graph, const HairPass
             .buffer("Lights", *inputs.lights);
         inputs.shadows.bind(b, c);
         inputs.shadows.bind_page_requests(b, c, d.page_requests);
+        inputs.fog.bind(b, c);
         bind_volumes(b, volumes, /*with_atlas=*/cached);
         if (cached) inputs.cache->bind(b, c);
         b.push(c.cmd());
-        pipeline.push_constants(c.cmd(), Push{glm::vec4(camera, 1.0f), hair.point_count(),
+        pipeline.push_constants(c.cmd(), Push{view.view_projection, glm::vec4(view.camera_position, 1.0f),
+                                              {view.width, view.height}, hair.point_count(),
                                               inputs.smoke_visible() ? volumes.volume_count : 0u, inputs.light_count,
                                               inputs.shading.step_voxels});
         pipeline.dispatch_threads(c.cmd(), hair.point_count());

@@ -211,11 +211,12 @@ rg::TextureHandle VolumePass::add_to_graph(rg::Graph& graph, rg::TextureHandle c
         d.depth = b.read(depth, rg::Usage::Sampled);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
         shadows.declare_reads(b);
+        frame.fog.declare_reads(b);
         d.page_requests = frame.ask_for_pages(b);
       },
-      [this, view, &lights, light_count, shadows, skipping = majorant_skipping_](const Targets& d,
+      [this, view, &lights, light_count, shadows, fog = frame.fog, skipping = majorant_skipping_](const Targets& d,
                                                                                  rg::PassContext& c) {
-        record(c, d.color, d.depth, view, lights, light_count, shadows, d.page_requests, skipping);
+        record(c, d.color, d.depth, view, lights, light_count, shadows, fog, d.page_requests, skipping);
       });
   return targets.color;
 }
@@ -239,7 +240,7 @@ void VolumePass::check_targets(const rg::Graph& graph, rg::TextureHandle color, 
 
 void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
                         const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
-                        rg::BufferHandle page_requests, bool majorant_skipping) const {
+                        const FogInputs& fog, rg::BufferHandle page_requests, bool majorant_skipping) const {
   const rg::TextureDesc& size = c.desc(color);
   pipeline_.bind(c.cmd());
   gpu::Bindings bindings(ctx_, pipeline_);
@@ -251,6 +252,7 @@ void VolumePass::record(rg::PassContext& c, rg::TextureHandle color, rg::Texture
       .buffer("Lights", lights);
   shadows.bind(bindings, c);
   shadows.bind_page_requests(bindings, c, page_requests);
+  fog.bind(bindings, c);
   bindings.push(c.cmd());
   Push push{view.inverse_view_projection, view.camera_position, volume_count_, {size.width, size.height},
             light_count, majorant_skipping ? 0u : shared::kMarchNoMajorantSkipping};

@@ -43,6 +43,7 @@
 namespace avsm::passes {
 
 struct FrameInputs;  // passes/frame/frame_inputs.h
+struct FogInputs;    // passes/camera/fog/fog_media.h
 
 using shared::GpuVolume;  // shaders/shared/volume.h
 
@@ -109,7 +110,7 @@ class VolumePass {
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
   void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
-              const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows,
+              const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows, const FogInputs& fog,
               rg::BufferHandle page_requests, bool majorant_skipping) const;
 
   gpu::Context& ctx_;

@@ -32,6 +32,7 @@ rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::Texture
         d.scattering = b.read(march.scattering, rg::Usage::Sampled);
         d.distance = b.read(march.distance, rg::Usage::Sampled);
         d.page_requests = inputs.declare_volume_access(b);
+        inputs.fog.declare_reads(b);
         d.color = b.read_write(color, rg::Usage::StorageReadWrite);
       },
       [this, view, divisor = march.divisor, inputs](const Targets& d, rg::PassContext& c) {
@@ -44,6 +45,7 @@ rg::TextureHandle VolumeUpsamplePass::add_to_graph(rg::Graph& graph, rg::Texture
             .image("scattering_texture", c.view(d.scattering), c.layout(d.scattering), nearest_.handle())
             .image("distance_texture", c.view(d.distance), c.layout(d.distance), nearest_.handle());
         inputs.bind_volumes(b, c, d.page_requests);
+        inputs.fog.bind(b, c);
         b.push(c.cmd());
         const bool skipping = inputs.volumes->majorant_skipping();
         pipeline.push_constants(c.cmd(), Push{view.inverse_view_projection, view.camera_position, divisor,

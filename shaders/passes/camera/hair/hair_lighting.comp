@@ -13,4 +13,7 @@
 #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // hair vertices (and the smoke before them) ask for pages
 #define AVSM_MARCH_MAP_LOOKUPS  // the lights are needed anyway, and a vertex is one thread
 #include "common/volume_cached_march.glsl"
+#define AVSM_FOG_BINDING 16
+#define AVSM_FOG_INTEGRATED_BINDING 17
+#include "common/fog.glsl"
 #include "common/hair_lighting.glsl"

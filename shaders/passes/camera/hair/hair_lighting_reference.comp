@@ -11,4 +11,7 @@
 #define AVSM_SHADOW_BINDING 4
 #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 15  // hair vertices (and the smoke before them) ask for pages
 #include "common/volume_reference_march.glsl"
+#define AVSM_FOG_BINDING 16
+#define AVSM_FOG_INTEGRATED_BINDING 17
+#include "common/fog.glsl"
 #include "common/hair_lighting.glsl"

@@ -1,7 +1,8 @@
 #version 460
 // The reference camera march (passes/camera/volumes/volume_pass.h): one thread per pixel, composited
 // onto the lit opaque colour in place: color = color * T_camera + in-scattered light.
-// The ray ends at the opaque surface in the depth buffer. Volumes are marched front
+// The ray ends at the opaque surface in the depth buffer. With fog, the colour is already
+// fogged (fog_apply.comp) and the smoke goes over it at its distance (smoke_over_fogged). Volumes are marched front
 // to back by their entry distance along this pixel's ray; transmittance carries from
 // one to the next. Inside a volume the ray walks the majorant bricks (3D DDA); empty
 // bricks are skipped, and the others are sampled at the midpoints of equal steps of
@@ -16,6 +17,9 @@
 #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 10  // the smoke asks for the pages it reads
 #include "common/volume_reference_march.glsl"
 #include "common/camera_rays.glsl"
+#define AVSM_FOG_BINDING 11
+#define AVSM_FOG_INTEGRATED_BINDING 12
+#include "common/fog.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -44,5 +48,9 @@ void main() {
   // Pixels whose ray meets no volume keep their colour bit for bit.
   if (!touched) return;
   vec4 color = imageLoad(color_image, pixel);
-  imageStore(color_image, pixel, vec4(color.rgb * state.transmittance + state.in_scattered, color.a));
+  vec3 composite = color.rgb * state.transmittance + state.in_scattered;
+  if (fog_grid.enabled != 0u)
+    composite = smoke_over_fogged(color.rgb, vec4(state.in_scattered, state.transmittance), vec2(pixel) + 0.5,
+                                  smoke_fog_distance(pc.volume_count, origin, direction, t_max));
+  imageStore(color_image, pixel, vec4(composite, color.a));
 }

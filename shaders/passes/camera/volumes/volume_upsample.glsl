@@ -21,6 +21,9 @@
 #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 16  // with lookups: the smoke asks for the pages it reads
 #include "common/volume_cached_march.glsl"
 #include "common/camera_rays.glsl"
+#define AVSM_FOG_BINDING 17
+#define AVSM_FOG_INTEGRATED_BINDING 18
+#include "common/fog.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -77,7 +80,12 @@ void main() {
   // Where no smoke is, the colour keeps its bits.
   if (state.transmittance == 1.0 && all(equal(state.in_scattered, vec3(0.0)))) return;
   vec4 color = imageLoad(color_image, pixel);
-  imageStore(color_image, pixel, vec4(color.rgb * state.transmittance + state.in_scattered, color.a));
+  vec3 composite = color.rgb * state.transmittance + state.in_scattered;
+  // With fog the colour is already fogged (fog_apply.comp); the smoke goes over it at its distance.
+  if (fog_grid.enabled != 0u)
+    composite = smoke_over_fogged(color.rgb, vec4(state.in_scattered, state.transmittance), vec2(pixel) + 0.5,
+                                  smoke_fog_distance(pc.volume_count, pc.camera_position, direction, t_surface));
+  imageStore(color_image, pixel, vec4(composite, color.a));
 }
 
 #endif

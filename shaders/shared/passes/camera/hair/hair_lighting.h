@@ -5,7 +5,9 @@
 GPU_NAMESPACE_BEGIN
 
 #define GPU_HAIR_LIGHTING_PUSH(F, A)\
+  F(mat4, view_projection)  /* where each vertex looks the fog up */ \
   F(vec4, camera_position)  \
+  F(uvec2, output_size)     \
   F(uint, point_count)      \
   F(uint, volume_count)     \
   F(uint, light_count)      \
