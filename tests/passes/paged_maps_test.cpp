@@ -101,10 +101,11 @@ glm::vec4 uv_rectangle(const passes::LightView& view, const scene::Bounds& box) 
 
 // A 512^2 virtual map in pages of 32 with level 2 (128^2) all resident: every texel of
 // every page is the 128^2 dense map's, for the sun and the spot (smoke, hair, meshes),
-// at every AVSM node count.
+// with one vec4 of nodes a texel and with four (8 and 12 nodes lie between and share
+// the same addressing).
 TEST_F(PagedMapsTest, OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit) {
   constexpr uint32_t kVirtual = 512, kPage = 32, kLevel = 2, kDense = kVirtual >> kLevel;
-  for (const int nodes : {4, 8, 12, 16}) {
+  for (const int nodes : {4, 16}) {
     SCOPED_TRACE("AVSM-" + std::to_string(nodes));
     const uint32_t kVec4s = uint32_t(nodes) / 4;  // a word per node, four to a vec4
     const scene::Scene dense_scene = default_scene(scene::ShadowLayout::dense, int(kDense), nodes);
