@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -154,6 +155,62 @@ TEST_F(FogTest, TheFroxelGridMatchesThePerPixelMarch) {
   std::cout << "[ fog vs march ] " << comparison.fogged_pixels << " fogged pixels, relative L1 of the fog's effect "
             << comparison.relative_l1() << "\n";
   EXPECT_TRUE(comparison.within_bound()) << comparison.relative_l1();
+}
+
+// Opaque hair in front of a far background, in a uniform fog lit by the sky alone (no
+// lights, no smoke), so the fog over a pixel of colour c at distance d is
+// c T + S_inf (1 - T), T = exp(-sigma_t d), S_inf = sigma_s sky / sigma_t. Solving each pixel
+// for d shows where the frame fogged it: the hair at the hair's distance (per strand vertex,
+// in front of what lies behind it), the background behind it farther.
+TEST_F(FogTest, HairIsFoggedAtItsOwnDistance) {
+  scene::Scene scene = scene::load_scene(std::filesystem::path(AVSM_DEFAULT_SCENE).parent_path() /
+                                         "hair_in_front_of_smoke.scene.json");
+  scene.lights.clear();
+  scene.volume_shading.mode = scene::VolumeShading::Mode::hidden;
+  scene::HairGroom& groom = scene.hair.at(0);
+  for (float& opacity : groom.strand_opacity) opacity = 1.0f;
+  for (float& width : groom.strand_width) width *= 40.0f;  // a pixel covered sees one strand only
+  scene::Scene bare = scene;
+  bare.hair.clear();
+  scene::Fog fog;
+  fog.global = {.scattering = 0.3f, .absorption = 0.0f, .color = glm::vec3(1.0f), .phase_g = 0.0f};
+  fog.grid.distance = 30.0f;
+  const gpu::ImageRGBA32F hair = render(scene), background = render(bare);
+  scene.fog = fog;
+  bare.fog = fog;
+  const gpu::ImageRGBA32F fogged_hair = render(scene), fogged_background = render(bare);
+  const glm::vec3 far_fog(0.08f, 0.1f, 0.14f);  // S_inf: kSkyAmbient (shared/lights.h), sigma_s = sigma_t
+  // The distance the fog over a pixel went to, from its blue channel (farthest from S_inf).
+  auto fogged_distance = [&](const float* clear, const float* fogged) {
+    const float transmittance = (fogged[2] - far_fog.z) / (clear[2] - far_fog.z);
+    return -std::log(std::clamp(transmittance, 1e-6f, 1.0f)) / fog.global.scattering;
+  };
+  float nearest = 1e9f, farthest = 0.0f;  // the groom's distances from the camera
+  for (int c = 0; c < 8; ++c) {
+    const float d = glm::length(groom.bounds.corner(c) - scene.cameras[0].position);
+    nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+  }
+  std::vector<float> hair_distances, background_distances;
+  for (uint32_t y = 0; y < kSmallHeight; ++y)
+    for (uint32_t x = 0; x < kSmallWidth; ++x) {
+      const float* h = hair.at(x, y);
+      const float* b = background.at(x, y);
+      if (std::abs(h[2] - b[2]) < 0.05f) continue;  // not covered by a strand
+      hair_distances.push_back(fogged_distance(h, fogged_hair.at(x, y)));
+      background_distances.push_back(fogged_distance(b, fogged_background.at(x, y)));
+    }
+  ASSERT_GT(hair_distances.size(), 200u) << "the curtain covers the frame's middle";
+  auto median = [](std::vector<float> v) {
+    std::nth_element(v.begin(), v.begin() + ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const float hair_median = median(hair_distances), background_median = median(background_distances);
+  std::cout << "[ hair in fog  ] " << hair_distances.size() << " hair pixels fogged at a median " << hair_median
+            << " m (the groom lies " << nearest << " to " << farthest << " m away), the background behind at "
+            << background_median << " m\n";
+  EXPECT_GT(hair_median, nearest - 0.1f);
+  EXPECT_LT(hair_median, farthest + 0.1f);
+  EXPECT_GT(background_median, farthest + 1.0f) << "not vacuous: the background lies well behind the hair";
 }
 
 }  // namespace fog_test
