@@ -98,17 +98,30 @@ vec3 fog_in_scattering(vec3 p, vec3 view_direction, FogMediumSample m, uint ligh
 #endif
 
 #ifdef AVSM_FOG_INTEGRATED_BINDING
-layout(binding = AVSM_FOG_INTEGRATED_BINDING) uniform sampler3D fog_integrated;
+layout(std430, binding = AVSM_FOG_INTEGRATED_BINDING) readonly buffer FogIntegrated { vec4 fog_integrated[]; };
+
+vec4 fog_integrated_at(ivec3 froxel) {
+  return fog_integrated[(uint(froxel.z) * fog_grid.froxels.y + uint(froxel.y)) * fog_grid.froxels.x + uint(froxel.x)];
+}
 
 // The fog between the camera and `distance` along the ray through `pixel` (pixels, a
-// centre at +0.5): rgb in-scattered radiance, a transmittance. Trilinear in the grid;
-// between the camera and the first boundary, linear from no fog.
+// centre at +0.5): rgb in-scattered radiance, a transmittance. Trilinear between the
+// froxel centres across the view and the slice boundaries in depth (clamped at the grid's
+// edges); between the camera and the first boundary, linear from no fog.
 vec4 fog_towards(vec2 pixel, float distance) {
   if (fog_grid.enabled == 0u) return vec4(0.0, 0.0, 0.0, 1.0);
   float k = fog_boundary_at(distance);
-  float slices = float(fog_grid.slices);
-  vec2 uv = pixel / vec2(fog_grid.froxels * fog_grid.froxel_pixels);
-  vec4 fog = textureLod(fog_integrated, vec3(uv, (max(k, 1.0) - 0.5) / slices), 0.0);
+  vec3 position = vec3(pixel / float(fog_grid.froxel_pixels) - 0.5, max(k, 1.0) - 1.0);
+  ivec3 last = ivec3(fog_grid.froxels, fog_grid.slices) - 1;
+  position = clamp(position, vec3(0.0), vec3(last));
+  ivec3 base = min(ivec3(floor(position)), last);
+  vec3 f = position - vec3(base);
+  vec4 fog = vec4(0.0);
+  for (int corner = 0; corner < 8; ++corner) {
+    ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+    vec3 w = mix(1.0 - f, f, vec3(offset));
+    fog += w.x * w.y * w.z * fog_integrated_at(min(base + offset, last));
+  }
   return k < 1.0 ? mix(vec4(0.0, 0.0, 0.0, 1.0), fog, k) : fog;
 }
 

@@ -4,8 +4,11 @@
 //
 // The grid: froxels.x x froxels.y columns of froxel_pixels pixels a side, each cut into
 // `slices` slices along the pixel rays. Slice boundary k (1..slices) lies at distance
-// near * exp(log_range * k / slices) from the camera, and boundary 0 at the camera; the
-// integrated grid's texel k holds the fog from the camera to boundary k + 1.
+// near * exp(log_range * k / slices) from the camera, and boundary 0 at the camera. The
+// integrated grid is a storage buffer of one vec4 per froxel (rgb in-scattered radiance, a
+// transmittance), froxel (x, y, k) at (k * froxels.y + y) * froxels.x + x, holding the fog
+// from the camera to boundary k + 1: a buffer, so that it outlives a host's pass list
+// (avsm/shadows.h) and needs no sampler.
 #ifndef AVSM_SHARED_FOG_H
 #define AVSM_SHARED_FOG_H
 #include "shared/gpu_struct.h"

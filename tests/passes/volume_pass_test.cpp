@@ -205,7 +205,7 @@ gpu::ImageRGBA32F render(gpu::Context& ctx, passes::VolumePass& pass, const pass
   frame.lights = &light_buffer;
   frame.light_count = uint32_t(lights.lights.size());
   frame.shadows = unshadowed.inputs();
-  const passes::FogMedia no_fog(ctx);  // a frame without fog still binds the fog's buffer
+  passes::FogMedia no_fog(ctx);  // a frame without fog still binds the fog's buffer
   frame.fog = no_fog.write(0, view);
   pass.add_to_graph(graph, color_handle, depth_handle, frame);
 

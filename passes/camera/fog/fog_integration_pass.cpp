@@ -1,8 +1,10 @@
 #include "passes/camera/fog/fog_integration_pass.h"
 
+#include <rendergraph/vulkan/executor.h>
 #include <rendergraph/vulkan/pass_context.h>
 
 #include "gpu/context.h"
+#include "passes/frame/frames_in_flight.h"
 
 namespace avsm::passes {
 
@@ -14,21 +16,25 @@ FogIntegrationPass::FogIntegrationPass(gpu::Context& ctx, const gpu::ShaderLibra
 void FogIntegrationPass::add_to_graph(rg::Graph& graph, rg::TextureHandle froxels, FrameInputs& inputs) {
   const FogGridSize size = inputs.fog.size;
   const gpu::Buffer* parameters = inputs.fog.parameters;
+  // Rewritten whole every frame; the frame before (perhaps still running) and the host
+  // read it in shaders.
+  const rg::ImportState read = rg::ImportState::of(rg::Usage::StorageRead);
+  const rg::BufferHandle grid =
+      rg::vulkan::import(graph, "fog integrated", *inputs.fog.integrated_buffer, rewritten_after(read), read);
   struct Output {
-    rg::TextureHandle froxels, integrated;
+    rg::TextureHandle froxels;
+    rg::BufferHandle integrated;
   };
   const Output& output = graph.add_pass<Output>("fog integration", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, Output& d) {
         d.froxels = b.read(froxels, rg::Usage::StorageRead);
-        const rg::TextureDesc integrated{size.columns, size.rows, size.slices, 1, 1, kFormat,
-                                         "the fog's froxel_pixels and slices"};
-        d.integrated = b.write(b.create_texture("fog integrated", integrated), rg::Usage::StorageWrite);
+        d.integrated = b.write(grid, rg::Usage::StorageWrite);
       },
       [this, parameters, size](const Output& d, rg::PassContext& c) {
         pipeline_.bind(c.cmd());
         gpu::Bindings b(ctx_, pipeline_);
         b.image("scattering_image", c.view(d.froxels), c.layout(d.froxels))
-            .image("integrated_image", c.view(d.integrated), c.layout(d.integrated))
+            .buffer("FogIntegrated", c.buffer(d.integrated))
             .buffer("Fog", *parameters);
         b.push(c.cmd());
         pipeline_.dispatch_threads(c.cmd(), size.columns, size.rows);

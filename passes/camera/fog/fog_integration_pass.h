@@ -2,7 +2,9 @@
 // The fog's integrated grid (shaders/passes/camera/fog/fog_integration.comp): each froxel
 // column walked front to back, each slice's constant medium integrated exactly, texel k
 // holding the fog from the camera to slice boundary k + 1 (rgb in-scattered radiance, a
-// transmittance). Sets FrameInputs::fog.integrated, which the composites then read.
+// transmittance), into the frame slot's grid buffer (FogMedia), which persists: a host's
+// shading reads it after the pass list. Sets FrameInputs::fog.integrated, which the
+// composites then read.
 #include <rendergraph/graph.h>
 
 #include "gpu/pipeline.h"
@@ -13,8 +15,6 @@ namespace avsm::passes {
 
 class FogIntegrationPass {
  public:
-  static constexpr VkFormat kFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-
   FogIntegrationPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
   // `froxels`: FogScatteringPass's output.

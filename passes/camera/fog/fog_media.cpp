@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "gpu/transfer.h"
+#include "gpu/context.h"
 
 namespace avsm::passes {
 namespace {
@@ -56,31 +56,14 @@ GpuFog gpu_fog(const scene::Fog& fog, const View& view, const scene::Bounds& sce
 FogGridSize fog_grid_size(const shared::GpuFogGrid& grid) { return {grid.froxels.x, grid.froxels.y, grid.slices}; }
 
 void FogInputs::declare_reads(rg::PassBuilder& builder) const {
-  if (enabled()) builder.read(integrated, rg::Usage::Sampled);
+  if (enabled()) builder.read(integrated, rg::Usage::StorageRead);
 }
 
 void FogInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {
-  bindings.buffer("Fog", *parameters);
-  if (enabled())
-    bindings.image("fog_integrated", context.view(integrated), context.layout(integrated), sampler);
-  else
-    bindings.image("fog_integrated", no_fog->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler);
+  bindings.buffer("Fog", *parameters).buffer("FogIntegrated", enabled() ? context.buffer(integrated) : *parameters);
 }
 
-FogMedia::FogMedia(gpu::Context& ctx)
-    : ctx_(ctx),
-      sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false,
-                     VK_COMPARE_OP_LESS_OR_EQUAL, VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE, "fog grid"}) {
-  gpu::ImageDesc desc;
-  desc.volume = true;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = "no fog";
-  no_fog_ = gpu::Image::create(ctx, desc);
-  const uint16_t no_fog_texel[4] = {0, 0, 0, 0x3c00};  // half floats: no light, transmittance 1
-  gpu::upload_image(ctx, no_fog_, no_fog_texel, sizeof(no_fog_texel), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  set_fog({}, {});
-}
+FogMedia::FogMedia(gpu::Context& ctx) : ctx_(ctx) { set_fog({}, {}); }
 
 void FogMedia::set_fog(const scene::Fog& fog, const scene::Bounds& scene_bounds) {
   fog_ = fog;
@@ -89,7 +72,10 @@ void FogMedia::set_fog(const scene::Fog& fog, const scene::Bounds& scene_bounds)
   buffers_.create(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "fog media"});
 }
 
-void FogMedia::set_frames_in_flight(uint32_t count) { buffers_.set_frames(ctx_, count); }
+void FogMedia::set_frames_in_flight(uint32_t count) {
+  buffers_.set_frames(ctx_, count);
+  integrated_.set_frames(ctx_, count);
+}
 
 GpuFog FogMedia::describe(const View& view) const {
   GpuFog fog = gpu_fog(fog_, view, scene_bounds_);
@@ -97,12 +83,20 @@ GpuFog FogMedia::describe(const View& view) const {
   return fog;
 }
 
-FogInputs FogMedia::write(uint32_t slot, const View& view) const {
+FogInputs FogMedia::write(uint32_t slot, const View& view) {
   const GpuFog fog = describe(view);
+  const FogGridSize size = fog_grid_size(fog.grid);
+  const uint64_t grid_bytes = uint64_t(size.columns) * size.rows * size.slices * sizeof(glm::vec4);
+  if (fog.grid.enabled && grid_bytes > integrated_bytes_) {
+    vkDeviceWaitIdle(ctx_.device());  // frames in flight read the slots' grids
+    integrated_.create(ctx_, {grid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal,
+                              "fog integrated", "the fog's froxel_pixels and slices, or the image size"});
+    integrated_bytes_ = grid_bytes;
+  }
   auto* bytes = static_cast<std::byte*>(buffers_[slot].mapped());
   std::memcpy(bytes, &fog.grid, sizeof(fog.grid));
   std::memcpy(bytes + sizeof(fog.grid), fog.media.data(), fog.media.size() * sizeof(shared::GpuFogBox));
-  return {&buffers_[slot], fog_grid_size(fog.grid), {}, &no_fog_, sampler_.handle()};
+  return {&buffers_[slot], integrated_ ? &integrated_[slot] : nullptr, size, {}};
 }
 
 }  // namespace avsm::passes

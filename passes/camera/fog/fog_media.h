@@ -34,14 +34,15 @@ GpuFog gpu_fog(const scene::Fog& fog, const View& view, const scene::Bounds& sce
 FogGridSize fog_grid_size(const shared::GpuFogGrid& grid);
 
 // What the passes that composite fog bind (AVSM_FOG_BINDING, AVSM_FOG_INTEGRATED_BINDING
-// in common/fog.glsl): the frame's Fog buffer, and the integrated grid, or when the
-// frame has no fog a 1-texel grid of no fog (the buffer's header says enabled = 0).
+// in common/fog.glsl): the frame's Fog buffer and its integrated grid (a buffer of the
+// frame slot's, which outlives the frame's passes: a host reads it after its pass list).
+// A frame without fog binds the Fog buffer in the grid's place, unread (its header says
+// enabled = 0).
 struct FogInputs {
   const gpu::Buffer* parameters = nullptr;
-  FogGridSize size;              // this frame's grid
-  rg::TextureHandle integrated;  // invalid: no fog this frame (set by FogIntegrationPass)
-  const gpu::Image* no_fog = nullptr;
-  VkSampler sampler = VK_NULL_HANDLE;
+  const gpu::Buffer* integrated_buffer = nullptr;  // the slot's grid
+  FogGridSize size;               // this frame's grid
+  rg::BufferHandle integrated;    // invalid: no fog this frame (set by FogIntegrationPass)
 
   bool enabled() const { return integrated.valid(); }
   void declare_reads(rg::PassBuilder& builder) const;
@@ -60,8 +61,10 @@ class FogMedia {
   void set_frames_in_flight(uint32_t count);
 
   // Writes slot's buffer for `view` (the slot's previous frame has completed) and returns
-  // the inputs of a frame without fog yet: FogIntegrationPass sets `integrated`.
-  FogInputs write(uint32_t slot, const View& view) const;
+  // the inputs of a frame without fog yet: FogIntegrationPass sets `integrated`. A grid
+  // larger than the slots' buffers hold (a larger view, finer froxels) makes them again,
+  // after waiting for the device to idle.
+  FogInputs write(uint32_t slot, const View& view);
   // The grid that write() describes for `view`.
   GpuFog describe(const View& view) const;
 
@@ -71,8 +74,8 @@ class FogMedia {
   scene::Bounds scene_bounds_;
   bool enabled_ = true;
   FrameBuffers buffers_;
-  gpu::Image no_fog_;
-  gpu::Sampler sampler_;
+  FrameBuffers integrated_;  // the integrated grid, per slot
+  uint64_t integrated_bytes_ = 0;
 };
 
 }  // namespace avsm::passes

@@ -1,7 +1,7 @@
 #version 460
 // The fog's integrated grid (passes/camera/fog/fog_integration_pass.h): each froxel column
-// walked front to back, texel k holding the fog from the camera to slice boundary k + 1
-// (rgb in-scattered radiance, a transmittance; shared/fog.h).
+// walked front to back, froxel k holding the fog from the camera to slice boundary k + 1
+// (rgb in-scattered radiance, a transmittance; its layout in shared/fog.h).
 #extension GL_GOOGLE_include_directive : require
 
 #define AVSM_FOG_BINDING 2
@@ -10,7 +10,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 0, rgba16f) uniform readonly image3D scattering_image;
-layout(binding = 1, rgba16f) uniform writeonly image3D integrated_image;
+layout(std430, binding = 1) writeonly buffer FogIntegrated { vec4 fog_integrated[]; };
 
 void main() {
   uvec2 column = gl_GlobalInvocationID.xy;
@@ -22,7 +22,7 @@ void main() {
     float back = fog_boundary_distance(float(k + 1u));
     vec4 medium = imageLoad(scattering_image, ivec3(column, k));
     fog = fog_then(fog, fog_slice(medium.rgb, medium.a, back - front));
-    imageStore(integrated_image, ivec3(column, k), fog);
+    fog_integrated[(k * fog_grid.froxels.y + column.y) * fog_grid.froxels.x + column.x] = fog;
     front = back;
   }
 }
