@@ -4,12 +4,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
+#include "passes/camera/fog/fog_integration_pass.h"
+#include "passes/camera/fog/fog_media.h"
+#include "passes/camera/fog/fog_scattering_pass.h"
+#include "passes/frame/frame_inputs.h"
+#include "passes/frame/frames_in_flight.h"
+#include "passes/frame/lights.h"
 #include "passes/shadows/shadow_maps.h"
 #include "passes/shadows/shadow_pass_list_builder.h"
 #include "passes/frame/view.h"
@@ -87,6 +94,44 @@ void check_light(const Precondition& check, const Light& light, size_t index) {
   if (light.paged)
     check.require(std::isfinite(light.page_pool_mib),
                   who + ": page_pool_mib " + text(light.page_pool_mib) + " must be finite");
+  check.require(finite(light.radiance) && glm::all(glm::greaterThanEqual(light.radiance, glm::vec3(0.0f))),
+                who + ": radiance " + text(light.radiance) + " must be finite and >= 0 in each component");
+}
+
+bool within(float value, float low, float high) { return std::isfinite(value) && value >= low && value <= high; }
+
+void check_fog_medium(const Precondition& check, const FogMedium& m, const std::string& who) {
+  using namespace scene;
+  check.require(within(m.scattering, 0.0f, kFogMaxCoefficient),
+                who + ".scattering " + text(m.scattering) + " must be 0 to 100 per metre");
+  check.require(within(m.absorption, 0.0f, kFogMaxCoefficient),
+                who + ".absorption " + text(m.absorption) + " must be 0 to 100 per metre");
+  check.require(within(m.color.x, 0.0f, 1.0f) && within(m.color.y, 0.0f, 1.0f) && within(m.color.z, 0.0f, 1.0f),
+                who + ".color " + text(m.color) + " must be in [0, 1] in each component");
+  check.require(within(m.phase_g, -kFogMaxPhaseG, kFogMaxPhaseG),
+                who + ".phase_g " + text(m.phase_g) + " must be -0.95 to 0.95");
+}
+
+// The scene file's ranges (scene/fog.h), with the field's name.
+void check_fog(const Precondition& check, const Fog& fog) {
+  using namespace scene;
+  check_fog_medium(check, fog.global, "fog.global");
+  check.require(within(fog.sky_light, 0.0f, kFogMaxSkyLight), "fog.sky_light " + text(fog.sky_light) + " must be 0 to 4");
+  check.require(fog.grid.froxel_pixels >= kFogMinFroxelPixels && fog.grid.froxel_pixels <= kFogMaxFroxelPixels,
+                "fog.grid.froxel_pixels " + std::to_string(fog.grid.froxel_pixels) + " must be 4 to 64");
+  check.require(fog.grid.slices >= kFogMinSlices && fog.grid.slices <= kFogMaxSlices,
+                "fog.grid.slices " + std::to_string(fog.grid.slices) + " must be 8 to 256");
+  check.require(std::isfinite(fog.grid.distance) && fog.grid.distance >= 0.0f,
+                "fog.grid.distance " + text(fog.grid.distance) + " must be finite and >= 0 (0: the casters' far side)");
+  for (size_t i = 0; i < fog.boxes.size(); ++i) {
+    const FogBox& box = fog.boxes[i];
+    const std::string who = "fog.boxes[" + std::to_string(i) + "]";
+    check.require(finite(box.bounds.min) && finite(box.bounds.max) &&
+                      glm::all(glm::lessThan(box.bounds.min, box.bounds.max)),
+                  who + ": min " + text(box.bounds.min) + " and max " + text(box.bounds.max) +
+                      " must be finite with min < max on every axis");
+    check_fog_medium(check, box.medium, who + ".medium");
+  }
 }
 
 // A count of the API's (unsigned) as the scene light's int, without wrapping to negative.
@@ -106,6 +151,8 @@ scene::Light to_scene(const Light& light) {
   out.shadow.distance = light.shadow_distance;
   out.shadow.cascades = to_int(light.cascades);
   out.shadow.clusters = to_int(light.clusters);
+  out.color = light.radiance;  // what the fog scatters of it
+  out.intensity = 1.0f;
   out.inner_cone_angle = light.outer_cone_radians;
   out.outer_cone_angle = light.outer_cone_radians;
   out.shadow.technique = "avsm";
@@ -270,6 +317,7 @@ passes::View to_view(const Camera& camera) {
   view.view_projection = view.projection * view.view;
   view.inverse_view_projection = glm::inverse(view.view_projection);
   view.height = camera.height_pixels;
+  view.width = std::max(1u, uint32_t(std::lround(float(camera.height_pixels) * camera.aspect)));
   view.near_plane = camera.near_plane;
   view.far_plane = camera.far_plane;
   return view;
@@ -282,11 +330,37 @@ struct Shadows::Impl {
       : context(context),
         location(location),
         library({location.glsl_root, location.spirv_root}, location.compile_from_source),
-        maps(context, library) {}
+        maps(context, library),
+        fog(context),
+        fog_scattering(context, library),
+        fog_integration(context, library) {
+    // One entry that lights nothing until set_lights gives the lights.
+    light_buffers.create(context, {sizeof(passes::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   gpu::MemoryLocation::HostUpload, "fog lights"});
+  }
   gpu::Context& context;
   ShaderLocation location;
   gpu::ShaderLibrary library;
   passes::ShadowMaps maps;
+  passes::FogMedia fog;
+  passes::FogScatteringPass fog_scattering;
+  passes::FogIntegrationPass fog_integration;
+  std::vector<scene::Light> scene_lights;  // set_lights' lights as the passes take them
+  passes::FrameBuffers light_buffers;      // the fog's GpuLights, per frame slot
+
+  // The fog's two passes after the shadow work in `graph` (frame.shadows set), when on.
+  void add_fog(rg::Graph& graph, passes::FrameInputs& frame) {
+    frame.fog = fog.write(frame.shadows.frame_slot, frame.view);
+    if (!fog.enabled()) return;
+    const gpu::Buffer& lights = light_buffers[frame.shadows.frame_slot];
+    std::vector<passes::GpuLight> data(std::max<size_t>(scene_lights.size(), 1), passes::GpuLight{});
+    for (size_t i = 0; i < scene_lights.size(); ++i) data[i] = passes::to_gpu(scene_lights[i]);
+    std::memcpy(lights.mapped(), data.data(), data.size() * sizeof(passes::GpuLight));
+    frame.lights = &lights;
+    frame.light_count = uint32_t(scene_lights.size());
+    const rg::TextureHandle froxels = fog_scattering.add_to_graph(graph, frame);
+    fog_integration.add_to_graph(graph, froxels, frame);
+  }
   std::vector<CasterObject> objects;  // set_lights' (pass_list checks them against its casters)
   std::vector<Light> lights;          // set_lights', as given
   Bounds casters_bounds;
@@ -357,17 +431,41 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
       impl_->maps.place_light(i, scene_lights[i].position, scene_lights[i].direction);
   } else {
     impl_->maps.set_lights(scene_lights, casters_bounds, {}, objects);
+    impl_->light_buffers.create(impl_->context, {std::max<uint64_t>(scene_lights.size(), 1) * sizeof(passes::GpuLight),
+                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
+                                                 "fog lights"});
   }
+  impl_->scene_lights = scene_lights;
+  impl_->fog.set_fog(impl_->fog.fog(), casters_bounds);
   impl_->objects = objects;
   impl_->lights = lights;
   impl_->casters_bounds = casters_bounds;
 }
 
-void Shadows::set_frames_in_flight(uint32_t count) { impl_->maps.set_frames_in_flight(count); }
+void Shadows::set_frames_in_flight(uint32_t count) {
+  impl_->maps.set_frames_in_flight(count);
+  impl_->fog.set_frames_in_flight(count);
+  impl_->light_buffers.set_frames(impl_->context, count);
+}
+
+void Shadows::set_fog(const Fog& fog) {
+  check_fog(Precondition{"set_fog"}, fog);
+  impl_->fog.set_fog(fog, impl_->casters_bounds);
+}
+
+void Shadows::set_fog_enabled(bool enabled) { impl_->fog.set_enabled(enabled); }
 
 ShadowPassList Shadows::pass_list(const Camera& camera, const ShadowCasters& casters, uint32_t frame_slot) {
   check_frame(camera, casters, impl_->objects);
-  return passes::describe_shadow_frame(impl_->maps, impl_->context, to_view(camera), casters, frame_slot);
+  rg::Graph graph;
+  passes::FrameInputs frame;
+  frame.view = to_view(camera);
+  frame.shadows = impl_->maps.add_to_graph(graph, frame.view, casters, frame_slot);
+  impl_->add_fog(graph, frame);
+  ShadowPassList list = passes::pass_list_of(graph, &impl_->context);
+  list.lookup = passes::lookup_of(frame.shadows);
+  list.fog = passes::fog_lookup_of(frame.fog);
+  return list;
 }
 
 std::vector<LightStats> Shadows::finish_frame(uint32_t frame_slot) {

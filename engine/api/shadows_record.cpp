@@ -119,10 +119,14 @@ ShadowLookupBuffers Shadows::record(VkCommandBuffer cmd, const ShadowFrame& fram
   gpu::memory_barrier(cmd, {frame.casters_written.stages | frame.lookup_read_stages, frame.casters_written.access},
                       {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT});
   recorder_->executor(frame.frame_slot).record(graph, cmd);
-  // (Paged lights: the lookups also write the request bits the frame cleared.)
+  // (Paged lights: the lookups also write the request bits the frame cleared. The fog's
+  // composite reads its grid in the same stages.)
   gpu::memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
                       {frame.lookup_read_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT});
-  return lookup_buffers(list.lookup);
+  ShadowLookupBuffers buffers = lookup_buffers(list.lookup);
+  buffers.fog_parameters = region(list.fog.parameters);
+  buffers.fog_grid = region(list.fog.grid);
+  return buffers;
 }
 
 }  // namespace avsm

@@ -78,7 +78,8 @@ void declare_use(rg::PassBuilder& b, const ShadowPass& pass, const PassResourceU
   }
 }
 
-ShadowInputs inputs_of(const ShadowLookupResources& lookup, const std::vector<Declared>& declared) {
+ShadowInputs inputs_of(const ShadowLookupResources& lookup, const FogLookupResources& fog,
+                       const std::vector<Declared>& declared) {
   auto range = [](const PassBufferRange& r) {
     return r.buffer ? gpu::BufferRange(r.buffer, r.size, r.offset) : gpu::BufferRange();
   };
@@ -96,6 +97,9 @@ ShadowInputs inputs_of(const ShadowLookupResources& lookup, const std::vector<De
   }
   inputs.unused_buffer = lookup.unused_buffer;
   inputs.frame_slot = lookup.frame_slot;
+  if (fog.integrated != kNoPassResource) inputs.fog_grid = declared.at(fog.integrated).buffer;
+  inputs.fog_parameters = range(fog.parameters);
+  inputs.fog_grid_bytes = range(fog.grid);
   return inputs;
 }
 
@@ -149,7 +153,7 @@ ShadowInputs add_to_graph(rg::Graph& graph, const ShadowPassList& list) {
   if (list.lookup.records != kNoPassResource) declared_persistent(graph, list, declared, list.lookup.records);
   if (list.lookup.page_requests != kNoPassResource)
     declared_persistent(graph, list, declared, list.lookup.page_requests);
-  return inputs_of(list.lookup, declared);
+  return inputs_of(list.lookup, list.fog, declared);
 }
 
 ShadowInputs add_to_graph(rg::Graph& graph, Shadows& shadows, const Camera& camera, const ShadowCasters& casters,
@@ -157,6 +161,6 @@ ShadowInputs add_to_graph(rg::Graph& graph, Shadows& shadows, const Camera& came
   return add_to_graph(graph, shadows.pass_list(camera, casters, frame_slot));
 }
 
-ShadowInputs unshadowed_inputs(const Shadows& shadows) { return inputs_of(shadows.unshadowed_lookup(), {}); }
+ShadowInputs unshadowed_inputs(const Shadows& shadows) { return inputs_of(shadows.unshadowed_lookup(), {}, {}); }
 
 }  // namespace avsm

@@ -224,17 +224,17 @@ VolumeShading read_volume_shading(const Reader& reader, const json& value) {
 // The medium keys a fog and its boxes share, over the values `medium` starts with.
 FogMedium read_fog_medium(ObjectReader& object, FogMedium medium) {
   medium.scattering = object.number_or("scattering", medium.scattering);
-  object.check(medium.scattering >= 0.0f && medium.scattering <= 100.0f, "scattering",
+  object.check(medium.scattering >= 0.0f && medium.scattering <= kFogMaxCoefficient, "scattering",
                "must be 0 to 100 per metre (sigma_s)");
   medium.absorption = object.number_or("absorption", medium.absorption);
-  object.check(medium.absorption >= 0.0f && medium.absorption <= 100.0f, "absorption",
+  object.check(medium.absorption >= 0.0f && medium.absorption <= kFogMaxCoefficient, "absorption",
                "must be 0 to 100 per metre (sigma_a)");
   medium.color = object.vec3_or("color", medium.color);
   object.check(glm::all(glm::greaterThanEqual(medium.color, glm::vec3(0.0f))) &&
                    glm::all(glm::lessThanEqual(medium.color, glm::vec3(1.0f))),
                "color", "each component must be in [0, 1] (the scattered light's tint)");
   medium.phase_g = object.number_or("phase_g", medium.phase_g);
-  object.check(medium.phase_g >= -0.95f && medium.phase_g <= 0.95f, "phase_g",
+  object.check(medium.phase_g >= -kFogMaxPhaseG && medium.phase_g <= kFogMaxPhaseG, "phase_g",
                "must be -0.95 to 0.95 (Henyey-Greenstein: 0 isotropic, > 0 forward)");
   return medium;
 }
@@ -256,13 +256,15 @@ Fog read_fog(const Reader& reader, const json& value) {
   Fog fog;
   fog.global = read_fog_medium(object, fog.global);
   fog.sky_light = object.number_or("sky_light", fog.sky_light);
-  object.check(fog.sky_light >= 0.0f && fog.sky_light <= 4.0f, "sky_light",
+  object.check(fog.sky_light >= 0.0f && fog.sky_light <= kFogMaxSkyLight, "sky_light",
                "must be 0 (no sky light) to 4 (the sky's share of the fog's light)");
   fog.grid.froxel_pixels = object.integer_or("froxel_pixels", fog.grid.froxel_pixels);
-  object.check(fog.grid.froxel_pixels >= 4 && fog.grid.froxel_pixels <= 64, "froxel_pixels",
+  object.check(fog.grid.froxel_pixels >= kFogMinFroxelPixels && fog.grid.froxel_pixels <= kFogMaxFroxelPixels,
+               "froxel_pixels",
                "must be 4 to 64 pixels a side");
   fog.grid.slices = object.integer_or("slices", fog.grid.slices);
-  object.check(fog.grid.slices >= 8 && fog.grid.slices <= 256, "slices", "must be 8 to 256 depth slices");
+  object.check(fog.grid.slices >= kFogMinSlices && fog.grid.slices <= kFogMaxSlices, "slices",
+               "must be 8 to 256 depth slices");
   fog.grid.distance = object.number_or("distance", fog.grid.distance);
   object.check(fog.grid.distance >= 0.0f, "distance", "must be >= 0 metres (0: to the scene's far side)");
   if (const json* boxes = object.optional("boxes")) {

@@ -15,6 +15,13 @@
 
 namespace avsm::scene {
 
+// The ranges the scene file (scene/description.cpp) and avsm::Shadows::set_fog hold a fog to.
+inline constexpr float kFogMaxCoefficient = 100.0f;  // scattering, absorption: 0..this per metre
+inline constexpr float kFogMaxPhaseG = 0.95f;        // phase_g: -this..this
+inline constexpr float kFogMaxSkyLight = 4.0f;       // sky_light: 0..this
+inline constexpr int kFogMinFroxelPixels = 4, kFogMaxFroxelPixels = 64;
+inline constexpr int kFogMinSlices = 8, kFogMaxSlices = 256;
+
 // Coefficients per world unit (metres). Extinction is grey: sigma_t = scattering + absorption;
 // `color` tints the scattered light (a single-scattering albedo per channel of at most 1).
 struct FogMedium {

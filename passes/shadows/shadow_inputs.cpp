@@ -13,6 +13,11 @@ void ShadowInputs::declare_reads(rg::PassBuilder& builder) const {
   if (records.valid()) builder.read(records, rg::Usage::StorageRead);
   for (rg::BufferHandle map : maps) builder.read(map, rg::Usage::StorageRead);
   for (rg::BufferHandle list : lists) builder.read(list, rg::Usage::StorageRead);
+  if (fog_grid.valid()) builder.read(fog_grid, rg::Usage::StorageRead);
+}
+
+void ShadowInputs::bind_fog(gpu::Bindings& bindings, const rg::PassContext& context) const {
+  bindings.buffer("Fog", fog_parameters).buffer("FogIntegrated", fog_grid.valid() ? context.buffer(fog_grid) : fog_parameters);
 }
 
 void ShadowInputs::bind(gpu::Bindings& bindings, const rg::PassContext& context) const {

@@ -51,12 +51,21 @@ struct ShadowInputs {
   // The frame slot the graph records into (passes/frame/frames_in_flight.h): passes with a
   // buffer per frame in flight (readbacks) write this slot's.
   uint32_t frame_slot = 0;
+  // A host's frame with the engine's fog (avsm::Shadows::set_fog, through
+  // avsm::add_to_graph): the integrated grid the fog passes wrote (declared with the
+  // reads), and the buffers its composite binds (bind_fog). Invalid, and unset, otherwise:
+  // the engine's own camera passes take the fog from FrameInputs.
+  rg::BufferHandle fog_grid;
+  gpu::BufferRange fog_parameters, fog_grid_bytes;
 
   // Declares the reads in a camera pass's setup.
   void declare_reads(rg::PassBuilder& builder) const;
   // In the pass's execute step: the records, the atlas, the list heads and nodes, by
   // their shader names.
   void bind(gpu::Bindings& bindings, const rg::PassContext& context) const;
+  // For a host's composite of the fog (shaders/common/fog.glsl): the "Fog" and
+  // "FogIntegrated" buffers (the parameters twice when the frame has no fog; unread then).
+  void bind_fog(gpu::Bindings& bindings, const rg::PassContext& context) const;
   // For a pass whose lookups ask for pages (AVSM_SHADOW_PAGE_REQUESTS_BINDING): declares
   // its writes to the request bits (returns the new version, invalid without paged maps)
   // and binds them, or a stand-in where the frame has no paged map.

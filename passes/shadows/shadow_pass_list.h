@@ -120,6 +120,17 @@ struct ShadowLookupResources {
   uint32_t frame_slot = 0;
 };
 
+// What the host's shading binds to composite the engine's fog (shaders/common/fog.glsl:
+// AVSM_FOG_BINDING, AVSM_FOG_INTEGRATED_BINDING, then fog_towards(pixel, distance)): the
+// frame's fog parameters and its integrated grid, both storage buffers. `integrated` is
+// the list resource the fog passes write (declare it as a storage read after them);
+// kNoPassResource when the frame has no fog, and `grid` is then `parameters` again, bound
+// but unread (the header says there is no fog).
+struct FogLookupResources {
+  uint32_t integrated = kNoPassResource;
+  PassBufferRange parameters, grid;
+};
+
 // One frame's shadow work. Run the passes in list order (each pass's reads see the
 // writes of the passes before it, as the uses say); the list is valid until the frame
 // slot's finish_frame() (or new lights). Caster buffers are not listed: they are read as
@@ -128,6 +139,7 @@ struct ShadowPassList {
   std::vector<PassResource> resources;
   std::vector<ShadowPass> passes;
   ShadowLookupResources lookup;
+  FogLookupResources fog;  // with Shadows::set_fog; the fog passes end the list
 };
 
 }  // namespace avsm::passes

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gpu/resources.h"
+#include "passes/camera/fog/fog_media.h"
 #include "passes/shadows/shadow_maps.h"
 
 namespace avsm::passes {
@@ -211,6 +212,17 @@ ShadowPassList describe_shadow_frame(ShadowMaps& maps, const gpu::Context& ctx, 
   ShadowPassList list = pass_list_of(graph, &ctx);
   list.lookup = lookup_of(inputs);
   return list;
+}
+
+FogLookupResources fog_lookup_of(const FogInputs& inputs) {
+  auto range = [](const gpu::BufferRange& r) { return PassBufferRange{r.buffer, r.offset, r.size}; };
+  const PassBufferRange parameters = range(*inputs.parameters);
+  FogLookupResources fog{kNoPassResource, parameters, parameters};
+  if (inputs.enabled()) {
+    fog.integrated = inputs.integrated.index;
+    fog.grid = range(*inputs.integrated_buffer);
+  }
+  return fog;
 }
 
 }  // namespace avsm::passes

@@ -21,6 +21,7 @@ class Context;
 namespace avsm::passes {
 
 class ShadowMaps;
+struct FogInputs;  // passes/camera/fog/fog_media.h
 
 // The passes and resources of `graph`, in declaration order (list index = graph index).
 // Imported resources must be buffers carrying their gpu::Buffer (rg::vulkan::import).
@@ -30,6 +31,8 @@ ShadowPassList pass_list_of(const rg::Graph& graph, const gpu::Context* ctx);
 
 // What the shading reads, by the indices of the graph the inputs were declared in.
 ShadowLookupResources lookup_of(const ShadowInputs& inputs);
+// What a host's composite of the fog binds (passes/camera/fog/fog_media.h), likewise.
+FogLookupResources fog_lookup_of(const FogInputs& inputs);
 
 // This frame's shadow work of `maps` into frame slot `slot`, as ShadowMaps::add_to_graph
 // declares it (and with its preconditions).

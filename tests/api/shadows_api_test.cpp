@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
@@ -189,6 +190,8 @@ void run_as_foreign_host(const gpu::Context& ctx, const ShadowPassList& list) {
       gpu::ImageDesc desc;
       desc.width = r.image.width;
       desc.height = r.image.height;
+      desc.depth = r.image.depth;
+      desc.volume = r.image.depth > 1;  // the fog's froxels
       desc.format = r.image.format;
       desc.usage = r.image.usage;
       desc.name = r.name;
@@ -311,6 +314,112 @@ TEST_F(ShadowsApiTest, RecordChecksItsFrameThenRecordsIntoTheHostsCommandBuffer)
   ASSERT_EQ(stats.size(), 1u);
   EXPECT_EQ(stats[0].segments_captured, 0u);
   EXPECT_NE(lookup_buffers(shadows.unshadowed_lookup()).parameters.buffer, VK_NULL_HANDLE);
+}
+
+// The bytes of a buffer range the engine owns, copied back after the frames before.
+std::vector<glm::vec4> read_range(const gpu::Context& ctx, const PassBufferRange& range, size_t count) {
+  gpu::Buffer copy = gpu::Buffer::create(ctx, {count * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                               gpu::MemoryLocation::HostReadback, "fog grid copy"});
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    gpu::memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
+                        {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
+    const VkBufferCopy region{range.offset, 0, count * sizeof(glm::vec4)};
+    vkCmdCopyBuffer(cmd, range.buffer, copy.handle(), 1, &region);
+  });
+  std::vector<glm::vec4> values(count);
+  std::memcpy(values.data(), copy.mapped(), count * sizeof(glm::vec4));
+  return values;
+}
+
+float henyey_greenstein(float cos_theta, float g) {
+  const float d = 1.0f + g * g - 2.0f * g * cos_theta;
+  return (1.0f - g * g) / (4.0f * 3.14159265f * d * std::sqrt(d));
+}
+
+// The engine's fog through the API: set_fog checks its fog, and adds two passes at the end
+// of the list, whose `fog` names the grid they write and the buffers a host's composite
+// binds. Scheduled by a host of its own, with nothing to cast, the grid's last froxel of
+// each column holds the closed form of a uniform fog under the sun along the column's
+// centre ray. Switched off, the list has no fog pass and binds the parameters twice.
+TEST_F(ShadowsApiTest, FogPassesComeWithTheListAndHoldTheFog) {
+  Shadows shadows(ctx(), ShaderLocation::of_package());
+  Light sun = small_sun();
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.6f));
+  sun.radiance = glm::vec3(2.0f, 1.5f, 1.0f);
+  shadows.set_light(sun, unit_box());
+  Fog fog;
+  fog.global = {.scattering = 0.2f, .absorption = 0.05f, .color = glm::vec3(1.0f, 0.9f, 0.8f), .phase_g = 0.4f};
+  fog.grid = {.froxel_pixels = 8, .slices = 16, .distance = 4.0f};
+  fog.sky_light = 0.0f;
+  Fog bad = fog;
+  bad.global.phase_g = 1.0f;
+  EXPECT_NE(message_of([&] { shadows.set_fog(bad); })
+                .find("avsm::Shadows::set_fog: fog.global.phase_g 1 must be -0.95 to 0.95"),
+            std::string::npos);
+  bad = fog;
+  bad.boxes.push_back({Bounds{glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 1.0f)}, {}});
+  EXPECT_NE(message_of([&] { shadows.set_fog(bad); }).find("fog.boxes[0]: min (0, 0, 0) and max (1, 0, 1) must be"),
+            std::string::npos);
+  shadows.set_fog(fog);
+
+  Camera camera;  // at the origin, looking down -z
+  camera.height_pixels = 32;
+  camera.aspect = 1.0f;  // 32 x 32 pixels: 4 x 4 columns of froxels
+  const ShadowPassList list = shadows.pass_list(camera, ShadowCasters{});
+  expect_whole_and_in_usage_table_terms(list);
+  ASSERT_GE(list.passes.size(), 2u);
+  EXPECT_EQ(list.passes[list.passes.size() - 2].name, "fog scattering");
+  EXPECT_EQ(list.passes.back().name, "fog integration");
+  ASSERT_NE(list.fog.integrated, kNoPassResource);
+  EXPECT_FALSE(list.resources[list.fog.integrated].transient) << "the grid outlives the list";
+  run_as_foreign_host(ctx(), list);
+  shadows.finish_frame();
+
+  constexpr uint32_t kColumns = 4, kSlices = 16;
+  const std::vector<glm::vec4> grid = read_range(ctx(), list.fog.grid, kColumns * kColumns * kSlices);
+  const float extinction = fog.global.scattering + fog.global.absorption;
+  const float transmittance = std::exp(-extinction * fog.grid.distance);
+  const float tangent = std::tan(0.5f * camera.vertical_fov_radians);
+  double largest = 0.0;
+  for (uint32_t y = 0; y < kColumns; ++y)
+    for (uint32_t x = 0; x < kColumns; ++x) {
+      const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / kColumns - 1.0f, 1.0f - 2.0f * (float(y) + 0.5f) / kColumns);
+      const glm::vec3 direction = glm::normalize(glm::vec3(ndc.x * tangent, ndc.y * tangent, -1.0f));
+      const glm::vec3 scattered = fog.global.scattering * fog.global.color * sun.radiance *
+                                  henyey_greenstein(glm::dot(-sun.direction, direction), fog.global.phase_g) *
+                                  ((1.0f - transmittance) / extinction);
+      const glm::vec4 got = grid[((kSlices - 1) * kColumns + y) * kColumns + x];
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, double(std::abs(got[c] - scattered[c]) / scattered[c]));
+      EXPECT_NEAR(got.a, transmittance, 1e-4f) << "column " << x << ", " << y;
+    }
+  EXPECT_LT(largest, 1e-3) << "largest relative error of the in-scattered light";
+
+  // Through the engine's graph: the grid among the reads a host's shading declares.
+  rg::Graph graph;
+  const ShadowInputs inputs = add_to_graph(graph, shadows.pass_list(camera, ShadowCasters{}));
+  EXPECT_TRUE(inputs.fog_grid.valid());
+  EXPECT_EQ(inputs.fog_grid_bytes.buffer, list.fog.grid.buffer);
+  rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
+  ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+  shadows.finish_frame();
+
+  // record(): the same frame into a command buffer of the test's own, the fog's buffers
+  // given back for the host's composite.
+  ShadowFrame frame;
+  frame.camera = camera;
+  ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    const ShadowLookupBuffers buffers = shadows.record(cmd, frame);
+    EXPECT_EQ(buffers.fog_grid.buffer, list.fog.grid.buffer);
+    EXPECT_NE(buffers.fog_grid.buffer, buffers.fog_parameters.buffer);
+  });
+  shadows.finish_frame();
+
+  shadows.set_fog_enabled(false);
+  const ShadowPassList off = shadows.pass_list(camera, ShadowCasters{});
+  for (const ShadowPass& pass : off.passes) EXPECT_EQ(pass.name.find("fog"), std::string::npos) << pass.name;
+  EXPECT_EQ(off.fog.integrated, kNoPassResource);
+  EXPECT_EQ(off.fog.grid.buffer, off.fog.parameters.buffer);
+  shadows.finish_frame();
 }
 
 }  // namespace

@@ -89,7 +89,9 @@ FogInputs FogMedia::write(uint32_t slot, const View& view) {
   const uint64_t grid_bytes = uint64_t(size.columns) * size.rows * size.slices * sizeof(glm::vec4);
   if (fog.grid.enabled && grid_bytes > integrated_bytes_) {
     vkDeviceWaitIdle(ctx_.device());  // frames in flight read the slots' grids
-    integrated_.create(ctx_, {grid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal,
+    // Copied from too: a host (or a test) may read the grid back.
+    integrated_.create(ctx_, {grid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              gpu::MemoryLocation::DeviceLocal,
                               "fog integrated", "the fog's froxel_pixels and slices, or the image size"});
     integrated_bytes_ = grid_bytes;
   }

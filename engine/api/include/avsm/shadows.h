@@ -62,6 +62,7 @@
 #include "passes/shadows/shadow_clusters.h"
 #include "passes/shadows/shadow_pass_list.h"
 #include "scene/bounds.h"
+#include "scene/fog.h"
 
 namespace avsm::gpu {
 class Context;
@@ -87,7 +88,12 @@ using passes::StrandCasters;
 using passes::StrandParameters;
 using passes::StrandSegment;
 using passes::VolumeCasters;
+using passes::FogLookupResources;
 using scene::Bounds;
+using scene::Fog;
+using scene::FogBox;
+using scene::FogGrid;
+using scene::FogMedium;
 
 // Where the engine's shaders are: GLSL under glsl_root/shaders/, SPIR-V compiled at
 // build time under spirv_root/shaders/ (<name>.spv).
@@ -151,6 +157,11 @@ struct Light {
   uint32_t page_size = 64;
   float page_pool_mib = 32.0f;
   uint32_t page_builds_per_frame = 16;
+  // What the engine's fog (set_fog) scatters of this light: its colour x intensity, the
+  // radiance a white Lambertian surface facing it reflects (docs/embedding.md, "Fog").
+  // Spot lights reach it with a hard cone edge. Finite, each component >= 0. The host's
+  // own shading is its own.
+  glm::vec3 radiance{1.0f};
 
   bool operator==(const Light&) const = default;
 };
@@ -225,6 +236,10 @@ std::array<VkDescriptorSetLayoutBinding, 5> shadow_lookup_layout(const ShadowLoo
 // their stages' SHADER_STORAGE_WRITE to HOST / HOST_READ) before the frame's fence.
 struct ShadowLookupBuffers {
   VkDescriptorBufferInfo parameters{}, atlas{}, list_heads{}, list_nodes{}, page_requests{};
+  // The fog's two storage buffers (set_fog; shaders/common/fog.glsl's AVSM_FOG_BINDING and
+  // AVSM_FOG_INTEGRATED_BINDING), from record(): the host writes them where its composite
+  // has them (not among writes() below). Empty from lookup_buffers().
+  VkDescriptorBufferInfo fog_parameters{}, fog_grid{};
   // Five STORAGE_BUFFER writes into `set` at `bindings`, for vkUpdateDescriptorSets (or
   // vkCmdPushDescriptorSetKHR, which ignores dstSet). They point into this object: keep
   // it alive until the call.
@@ -328,6 +343,21 @@ class Shadows {
   // Buffers that leave every light unshadowed (for a pass drawn without maps): no
   // resources to read, only buffers to bind.
   ShadowLookupResources unshadowed_lookup() const;
+
+  // The engine's fog (scene/fog.h; content/README.md, "fog"): a global medium and fog
+  // boxes, lit by every light (Light::radiance, and the uniform sky scaled by
+  // fog.sky_light) through the lights' maps, reaching fog.grid.distance from the camera or
+  // else the far side of set_lights' casters_bounds. While it is set and on, each pass list
+  // ends with its two passes ("fog scattering", into a transient 3D image of
+  // fog.grid.froxel_pixels and slices; "fog integration", into a buffer of the frame
+  // slot's) and its `fog` says what the host's composite binds. Preconditions (std::
+  // invalid_argument naming the field, nothing changed): every number finite; scattering
+  // and absorption 0 to 100 per metre, phase_g -0.95 to 0.95, colours in [0, 1], sky_light
+  // 0 to 4, froxel_pixels 4 to 64, slices 8 to 256, distance >= 0, each box's min below its
+  // max. A fog with no medium is no fog.
+  void set_fog(const Fog& fog);
+  // Off: no fog passes, the settings kept (on until set otherwise).
+  void set_fog_enabled(bool enabled);
 
   // ---- Your command buffer (no rendergraph type; docs/embedding.md, "Your command buffer: record()").
   // Records the frame's shadow work (every light's capture, sort, build and mips, with the

@@ -28,7 +28,8 @@ using passes::ShadowInputs;
 // Declares every pass of `list` into `graph`, in list order, with the uses the list gives
 // (transients created by the pass that first uses them, persistent resources imported
 // with their handles, so any executor can run it); each pass records through the list's
-// record function. Returns what the host's shading passes declare as reads and bind.
+// record function. Returns what the host's shading passes declare as reads and bind
+// (with the fog: its grid among the reads, and bind_fog for the composite).
 ShadowInputs add_to_graph(rg::Graph& graph, const ShadowPassList& list);
 
 // shadows.pass_list(camera, casters, frame_slot) declared into `graph` (its preconditions
