@@ -213,5 +213,24 @@ TEST_F(FogTest, HairIsFoggedAtItsOwnDistance) {
   EXPECT_GT(background_median, farthest + 1.0f) << "not vacuous: the background lies well behind the hair";
 }
 
+// A grid larger than a shader binding can see (maxStorageBufferRange: 128 MiB on lavapipe)
+// is an error that names the settings to change, before anything is recorded.
+TEST_F(FogTest, AGridTheDeviceCannotBindIsAnErrorNamingItsSettings) {
+  scene::Scene scene = default_scene();
+  scene.fog = ground_fog();
+  scene.fog.grid.froxel_pixels = 4;
+  scene.fog.grid.slices = 256;  // 320 x 180 x 256 froxels at 1280x720: 225 MiB
+  renderer::SceneRenderer renderer(ctx(), shaders(), scene, 1280, 720);
+  try {
+    renderer.build_frame(passes::make_view(scene.cameras.front(), 1280, 720));
+    ADD_FAILURE() << "accepted";
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'fog integrated"), std::string::npos) << message;
+    EXPECT_NE(message.find("lower the fog's slices or the image size (or raise its froxel_pixels)"), std::string::npos)
+        << message;
+  }
+}
+
 }  // namespace fog_test
 }  // namespace avsm

@@ -92,7 +92,7 @@ FogInputs FogMedia::write(uint32_t slot, const View& view) {
     // Copied from too: a host (or a test) may read the grid back.
     integrated_.create(ctx_, {grid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               gpu::MemoryLocation::DeviceLocal,
-                              "fog integrated", "the fog's froxel_pixels and slices, or the image size"});
+                              "fog integrated", "the fog's slices or the image size (or raise its froxel_pixels)"});
     integrated_bytes_ = grid_bytes;
   }
   auto* bytes = static_cast<std::byte*>(buffers_[slot].mapped());

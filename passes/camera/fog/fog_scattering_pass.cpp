@@ -28,7 +28,7 @@ rg::TextureHandle FogScatteringPass::add_to_graph(rg::Graph& graph, FrameInputs&
         inputs.shadows.declare_reads(b);
         d.page_requests = inputs.ask_for_pages(b);
         const rg::TextureDesc froxels{size.columns, size.rows, size.slices, 1, 1, kFormat,
-                                      "the fog's froxel_pixels and slices"};
+                                      "the fog's slices or the image size (or raise its froxel_pixels)"};
         d.froxels = b.write(b.create_texture("fog froxels", froxels), rg::Usage::StorageWrite);
       },
       [this, inputs, size](const Output& d, rg::PassContext& c) {
