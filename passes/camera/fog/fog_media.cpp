@@ -68,8 +68,13 @@ FogMedia::FogMedia(gpu::Context& ctx) : ctx_(ctx) { set_fog({}, {}); }
 void FogMedia::set_fog(const scene::Fog& fog, const scene::Bounds& scene_bounds) {
   fog_ = fog;
   scene_bounds_ = scene_bounds;
+  // Each frame writes its own slot's copy (write()); only more boxes than it holds make them again.
   const uint64_t bytes = sizeof(shared::GpuFogGrid) + (fog.boxes.size() + 1) * sizeof(shared::GpuFogBox);
+  if (buffers_ && bytes <= media_bytes_) return;
+  vkDeviceWaitIdle(ctx_.device());  // frames in flight read the slots' media
+  media_bytes_ = 0;  // until made: a failure leaves none to reuse
   buffers_.create(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "fog media"});
+  media_bytes_ = bytes;
 }
 
 void FogMedia::set_frames_in_flight(uint32_t count) {
@@ -89,6 +94,7 @@ FogInputs FogMedia::write(uint32_t slot, const View& view) {
   const uint64_t grid_bytes = uint64_t(size.columns) * size.rows * size.slices * sizeof(glm::vec4);
   if (fog.grid.enabled && grid_bytes > integrated_bytes_) {
     vkDeviceWaitIdle(ctx_.device());  // frames in flight read the slots' grids
+    integrated_bytes_ = 0;            // until made: a grid the device refuses leaves none to reuse
     // Copied from too: a host (or a test) may read the grid back.
     integrated_.create(ctx_, {grid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               gpu::MemoryLocation::DeviceLocal,
@@ -98,7 +104,7 @@ FogInputs FogMedia::write(uint32_t slot, const View& view) {
   auto* bytes = static_cast<std::byte*>(buffers_[slot].mapped());
   std::memcpy(bytes, &fog.grid, sizeof(fog.grid));
   std::memcpy(bytes + sizeof(fog.grid), fog.media.data(), fog.media.size() * sizeof(shared::GpuFogBox));
-  return {&buffers_[slot], integrated_ ? &integrated_[slot] : nullptr, size, {}};
+  return {&buffers_[slot], integrated_bytes_ > 0 ? &integrated_[slot] : nullptr, size, {}};
 }
 
 }  // namespace avsm::passes

@@ -53,6 +53,8 @@ class FogMedia {
  public:
   explicit FogMedia(gpu::Context& ctx);
 
+  // Another fog (or the same over other bounds) for the next frame written; waits for the
+  // device to idle only when it has more boxes than the slots' buffers hold.
   void set_fog(const scene::Fog& fog, const scene::Bounds& scene_bounds);
   const scene::Fog& fog() const { return fog_; }
   // Hosts and the viewer switch the fog off without losing its settings.
@@ -73,7 +75,8 @@ class FogMedia {
   scene::Fog fog_;
   scene::Bounds scene_bounds_;
   bool enabled_ = true;
-  FrameBuffers buffers_;
+  FrameBuffers buffers_;     // the grid header and media, per slot
+  uint64_t media_bytes_ = 0;
   FrameBuffers integrated_;  // the integrated grid, per slot
   uint64_t integrated_bytes_ = 0;
 };
