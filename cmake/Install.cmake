@@ -17,7 +17,8 @@ set(AVSM_INSTALL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/avsm)
 set_target_properties(avsm_gpu PROPERTIES EXPORT_NAME gpu)
 set_target_properties(avsm_scene PROPERTIES EXPORT_NAME scene)
 set_target_properties(avsm_passes PROPERTIES EXPORT_NAME passes)
-install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_passes avsm_shadows avsm
+set_target_properties(avsm_lighting PROPERTIES EXPORT_NAME lighting)
+install(TARGETS rendergraph rendergraph_vulkan avsm_gpu avsm_scene avsm_lighting avsm_passes avsm_shadows avsm
         EXPORT avsmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 

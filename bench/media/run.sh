@@ -4,6 +4,8 @@
 #    the real-asset scene (when ../shared/content is there) and the default scene (smoke.py).
 #  - Fog through the froxel grid against its per-pixel march, at 1280x720, on the default
 #    scene under a ground fog and on content/examples/fog.scene.json (fog.py).
+#  - A rect light's cost against a hard spot light at its centre, on the softbox example
+#    (area.py; needs ../shared/content).
 # Extra arguments go to smoke.py (e.g. --width 640 --height 360 --paths 128).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -23,3 +25,6 @@ for scene in "${fog_scenes[@]}"; do
   python3 bench/media/fog.py --scene "$scene"
   echo
 done
+if [ -f ../shared/content/sintel/sintel_head.glb ]; then
+  python3 bench/media/area.py --scene content/examples/softbox.scene.json
+fi

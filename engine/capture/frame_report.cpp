@@ -50,8 +50,8 @@ scene::ShadowBuild build_from_json(const json& object) {
 
 std::string map_kind_from_json(const json& object) {
   const std::string kind = value_of<std::string>(object, "map_kind");
-  if (kind != "single" && kind != "cube" && kind != "cascades" && kind != "clusters")
-    throw std::runtime_error("unknown map kind '" + kind + "' (single, cube, cascades or clusters)");
+  if (kind != "single" && kind != "cube" && kind != "cascades" && kind != "clusters" && kind != "virtual")
+    throw std::runtime_error("unknown map kind '" + kind + "' (single, cube, cascades, clusters or virtual)");
   return kind;
 }
 
@@ -313,7 +313,8 @@ ProbeLight probe_light_from_json(const json& in) {
 
 scene::LightType light_type_from_json(const json& object) {
   const std::string name = value_of<std::string>(object, "type");
-  for (scene::LightType type : {scene::LightType::directional, scene::LightType::spot, scene::LightType::point})
+  for (scene::LightType type :
+       {scene::LightType::directional, scene::LightType::spot, scene::LightType::point, scene::LightType::rect})
     if (name == scene::to_string(type)) return type;
   throw std::runtime_error("unknown light type '" + name + "'");
 }

@@ -279,28 +279,55 @@ Fog read_fog(const Reader& reader, const json& value) {
   return fog;
 }
 
+// "size": [width, height] of a rect light, in world units, each > 0.
+glm::vec2 read_rect_size(ObjectReader& object) {
+  const json& value = object.required("size");
+  const std::string path = object.path_of("size");
+  object.reader().expect(value.is_array() && value.size() == 2, path, "expected [width, height]");
+  const glm::vec2 size(float(object.reader().number(value[0], index_path(path, 0))),
+                       float(object.reader().number(value[1], index_path(path, 1))));
+  object.check(size.x > 0.0f && size.y > 0.0f, "size", "width and height must be > 0");
+  return size;
+}
+
 Light read_light(ObjectReader& object, std::size_t index) {
   Light light;
   light.name = name_or(object, "light" + std::to_string(index));
   light.type = choice<LightType>(
       object, "type", LightType::directional,
-      {{"directional", LightType::directional}, {"spot", LightType::spot}, {"point", LightType::point}}, true);
+      {{"directional", LightType::directional}, {"spot", LightType::spot}, {"point", LightType::point},
+       {"rect", LightType::rect}},
+      true);
   light.color = object.vec3_or("color", glm::vec3(1.0f));
   object.check(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))), "color", "components must be >= 0");
   light.intensity = object.number_or("intensity", 1.0f);
   object.check(light.intensity >= 0.0f, "intensity", "must be >= 0");
 
   const bool spot = light.type == LightType::spot, point = light.type == LightType::point;
-  for (const char* key : {"target", "inner_cone_deg", "outer_cone_deg"})
+  const bool rect = light.type == LightType::rect;
+  for (const char* key : {"inner_cone_deg", "outer_cone_deg"})
     object.check(spot || !object.has(key), key, "only spot lights have this");
+  object.check(spot || rect || !object.has("target"), "target", "only spot and rect lights have this");
   for (const char* key : {"position", "range"})
-    object.check(spot || point || !object.has(key), key, "only spot and point lights have this");
+    object.check(spot || point || rect || !object.has(key), key, "only spot, point and rect lights have this");
+  for (const char* key : {"size", "two_sided", "virtual_lights"})
+    object.check(rect || !object.has(key), key, "only rect lights have this");
   object.check(!point || !object.has("direction"), "direction", "point lights shine every way; remove it");
   light.range = object.number_or("range", 0.0f);
   object.check(light.range >= 0.0f, "range", "must be >= 0 (0: no limit)");
   glm::vec3 direction{0.0f, -1.0f, 0.0f};
   if (point) {
     light.position = object.vec3("position");
+  } else if (rect) {
+    light.position = object.vec3("position");
+    object.check(object.has("direction") != object.has("target"), "direction",
+                 "give exactly one of 'direction' and 'target' (where the rectangle faces)");
+    direction = object.has("target") ? object.vec3("target") - light.position : object.vec3("direction");
+    light.size = read_rect_size(object);
+    light.two_sided = object.boolean_or("two_sided", false);
+    light.virtual_lights = object.integer_or("virtual_lights", light.virtual_lights);
+    object.check(light.virtual_lights >= 1 && light.virtual_lights <= kMaxVirtualLights, "virtual_lights",
+                 "must be 1 to " + std::to_string(kMaxVirtualLights) + " (maps for its soft shadows)");
   } else if (spot) {
     light.position = object.vec3("position");
     object.check(object.has("direction") != object.has("target"), "direction",

@@ -51,6 +51,7 @@ std::string_view to_string(LightType type) {
     case LightType::directional: return "directional";
     case LightType::spot: return "spot";
     case LightType::point: return "point";
+    case LightType::rect: return "rect";
   }
   return "?";
 }
@@ -95,7 +96,7 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
 void ShadowOverrides::apply(Light& light) const {
   ShadowOverrides fitting = *this;
   if (light.type != LightType::directional) fitting.cascades.reset();
-  if (light.type == LightType::point) fitting.clusters.reset();
+  if (light.type == LightType::point || light.type == LightType::rect) fitting.clusters.reset();
   fitting.apply(light.shadow);
 }
 

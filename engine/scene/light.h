@@ -108,7 +108,11 @@ struct ShadowOverrides {
   void apply(Light& light) const;
 };
 
-enum class LightType { directional, spot, point };
+// rect: an area light, a rectangle that emits a uniform radiance (Light::size, two_sided).
+enum class LightType { directional, spot, point, rect };
+
+// The most virtual lights (maps) an area light's soft shadows take: shared::kMaxViewsPerLight.
+inline constexpr int kMaxVirtualLights = 64;
 
 // The scene's "shadows" block: what holds for all of its lights' maps.
 struct SceneShadows {
@@ -129,6 +133,14 @@ struct Light {
   // Spot and point: where the light's inverse-square falloff is windowed to 0 (world
   // units; 0: no window). Point lights are shadowed out to it.
   float range = 0.0f;
+  // Rect lights: a rectangle `size` wide (along shared::area_light_axes' u) and high
+  // (along v) centred at `position`, facing `direction` (its normal: it emits that way,
+  // both ways when two_sided), of uniform radiance color x intensity (a white Lambertian
+  // surface that it fills the sky of reflects that much). Its soft shadows are the mean of
+  // `virtual_lights` maps, each from a point spread over the rectangle (passes/shadows/).
+  glm::vec2 size{1.0f};
+  bool two_sided = false;
+  int virtual_lights = 16;
   ShadowSettings shadow;
 };
 

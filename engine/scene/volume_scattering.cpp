@@ -207,6 +207,12 @@ glm::vec3 light_radiance(const Light& light, const glm::vec3& p, glm::vec3& to_l
     const float w = std::clamp(1.0f - x * x, 0.0f, 1.0f);
     window = w * w;
   }
+  if (light.type == LightType::rect) {  // from its centre, as common/lights.glsl's rect_light_share
+    float cos_emit = glm::dot(glm::normalize(light.direction), -to_light);
+    if (light.two_sided) cos_emit = std::abs(cos_emit);
+    const float area = light.size.x * light.size.y;
+    return radiance * window * std::min(area * std::max(cos_emit, 0.0f) / (3.14159265f * distance2), 1.0f);
+  }
   const float falloff = window / distance2;
   if (light.type == LightType::point) return radiance * falloff;
   const float cos_angle = glm::dot(-to_light, glm::normalize(light.direction));

@@ -155,6 +155,11 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
   const scene::ShadowSettings& shadow = light.shadow;
   bool paged = shadow.layout == scene::ShadowLayout::paged;
   const bool can_page = passes::pages_technique(shadow) && shadow.build == scene::ShadowBuild::lists;
+  if (light.type == scene::LightType::rect) {  // small dense maps, one per virtual light
+    ImGui::Text("%d virtual lights, %gx%g%s", light.virtual_lights, light.size.x, light.size.y,
+                light.two_sided ? ", two-sided" : "");
+    return;
+  }
   ImGui::BeginDisabled(!paged && !can_page);
   if (ImGui::Checkbox("paged maps", &paged)) {
     o.layout = paged ? scene::ShadowLayout::paged : scene::ShadowLayout::dense;
@@ -179,7 +184,8 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
 // the controls that would make one rather than let an edit fail.
 void draw_light_fitting(const scene::Light& light, const scene::SceneShadows& scene_shadows, LightOverride& o,
                         PanelRequests& requests) {
-  if (light.type == scene::LightType::point) return;  // a cube covers every way: nothing to fit
+  // A cube covers every way, and a rect light's virtual lights fit to the casters: nothing to fit.
+  if (light.type == scene::LightType::point || light.type == scene::LightType::rect) return;
   const scene::ShadowSettings& shadow = light.shadow;
   const bool cascaded = shadow.cascades > 1, clustered = shadow.clusters > 1;
   // A paged map is one virtual map over the scene: no fitting to the view, no cascades

@@ -12,6 +12,7 @@ uint32_t type_code(scene::LightType type) {
     case scene::LightType::directional: return shared::kLightDirectional;
     case scene::LightType::spot: return shared::kLightSpot;
     case scene::LightType::point: return shared::kLightPoint;
+    case scene::LightType::rect: return shared::kLightRect;
   }
   return shared::kLightDirectional;
 }
@@ -21,7 +22,9 @@ GpuLight to_gpu(const scene::Light& light) {
   return {glm::vec4(light.position, float(type_code(light.type))),
           glm::vec4(glm::normalize(light.direction), std::cos(light.outer_cone_angle)),
           glm::vec4(light.color * light.intensity, std::cos(light.inner_cone_angle)),
-          glm::vec4(light.range, 0.0f, 0.0f, 0.0f)};
+          light.type == scene::LightType::rect
+              ? glm::vec4(light.range, 0.5f * light.size.x, 0.5f * light.size.y, light.two_sided ? 1.0f : 0.0f)
+              : glm::vec4(light.range, 0.0f, 0.0f, 0.0f)};
 }
 
 gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {

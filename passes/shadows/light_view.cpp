@@ -2,6 +2,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "shared/lights.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -193,6 +195,43 @@ LightView make_light_view(const scene::Light& light, const scene::Bounds& caster
   LightView v = light.type == scene::LightType::spot ? spot_view(light, box)
                                                      : directional_scene_view(glm::normalize(light.direction), box);
   return finish_view(v, resolution);
+}
+
+namespace {
+
+float radical_inverse(uint32_t bits) {
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  return float(bits) * 2.3283064365386963e-10f;  // / 2^32
+}
+
+// Wide enough for what an area light lights in front of it; spot_view narrows it to the casters.
+constexpr float kVirtualLightCone = glm::radians(80.0f);
+
+}  // namespace
+
+glm::vec3 virtual_light_position(const scene::Light& rect, uint32_t index, uint32_t count) {
+  const glm::vec3 n = glm::normalize(rect.direction);
+  const glm::vec3 u = shared::area_light_u_axis(n), v = glm::cross(n, u);
+  const glm::vec2 s((float(index) + 0.5f) / float(std::max(count, 1u)), radical_inverse(index) + 0.5f / float(count));
+  const glm::vec2 offset = (glm::fract(s) - 0.5f) * rect.size;
+  return rect.position + offset.x * u + offset.y * v;
+}
+
+LightView make_virtual_light_view(const scene::Light& rect, uint32_t index, uint32_t count,
+                                  const scene::Bounds& casters, uint32_t resolution) {
+  scene::Light spot = rect;
+  spot.type = scene::LightType::spot;
+  spot.position = virtual_light_position(rect, index, count);
+  spot.direction = glm::normalize(rect.direction);
+  const scene::Bounds box = usable_bounds(casters);
+  if (rect.two_sided && glm::dot(box.center() - rect.position, spot.direction) < 0.0f) spot.direction = -spot.direction;
+  spot.outer_cone_angle = spot.inner_cone_angle = kVirtualLightCone;
+  spot.shadow.fit = scene::ShadowFit::view;
+  return finish_view(spot_view(spot, box), resolution);
 }
 
 float cube_face_tangent(uint32_t resolution) {

@@ -32,7 +32,8 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
   merged.fit_budget = merged.fit_budget || scene.shadows.fit_budget;
   std::vector<scene::Light> lights = scene.lights;
   for (scene::Light& light : lights)
-    if (light.shadow.clusters == 0 && light.type != scene::LightType::point && light.shadow.cascades == 1)
+    if (light.shadow.clusters == 0 && light.type != scene::LightType::point && light.type != scene::LightType::rect &&
+        light.shadow.cascades == 1)
       light.shadow.clusters = scene.shadows.clusters;
   try {
     set_lights(lights, scene.bounds, merged, scene_caster_objects(scene));
@@ -120,7 +121,8 @@ void ShadowMaps::create_frame_buffers(MapState& map) const {
   map.declared.resize(frames_in_flight());
 }
 
-// A light's maps: one, six cube faces, a map per cascade or per caster cluster.
+// A light's maps: one, six cube faces, a map per cascade, per caster cluster or per
+// virtual light of an area light.
 void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, const std::vector<CasterObject>& objects) {
   LightState& light = lights_[index];
   const scene::Light& l = light.light;
@@ -137,6 +139,9 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   if (l.type == scene::LightType::point) {
     light.views = shared::kViewsCube;
     for (int face = 0; face < 6; ++face) add(name + " face " + std::to_string(face), casters)->face = face;
+  } else if (l.type == scene::LightType::rect) {
+    light.views = shared::kViewsVirtualLights;
+    for (int k = 0; k < l.virtual_lights; ++k) add(name + " virtual " + std::to_string(k), casters)->virtual_light = k;
   } else if (l.shadow.cascades > 1) {
     light.views = shared::kViewsCascades;  // update_views() fits each to the camera
     for (int c = 0; c < l.shadow.cascades; ++c) add(name + " cascade " + std::to_string(c), casters);

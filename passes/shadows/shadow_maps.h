@@ -203,6 +203,7 @@ class ShadowMaps {
     std::string prefix;   // its passes' names start with it ("light 0", "light 1 face 2")
     LightView view;
     int face = -1;               // a point light's cube face, else -1
+    int virtual_light = -1;      // a rect light's virtual light, else -1
     scene::Bounds fit_bounds;    // what it covers before a camera is known
     std::optional<std::vector<uint32_t>> objects;  // a cluster's CasterObjects; unset: every caster
     TechniqueMapState map_state;

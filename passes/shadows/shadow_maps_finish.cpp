@@ -173,6 +173,7 @@ void ShadowMaps::finish_frame(uint32_t slot) {
     stats.map_kind = light.views == shared::kViewsCube        ? "cube"
                      : light.views == shared::kViewsCascades  ? "cascades"
                      : light.views == shared::kViewsClusters  ? "clusters"
+                     : light.views == shared::kViewsVirtualLights ? "virtual"
                                                               : "single";
     stats.lowered_from = light.lowered_from;
     for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m)

@@ -22,6 +22,9 @@ LightView ShadowMaps::initial_view(const MapState& map) const {
   const LightState& light = lights_[map.light];
   const scene::ShadowSettings& s = light.light.shadow;
   const uint32_t resolution = uint32_t(is_paged(light) ? s.virtual_resolution : s.resolution);  // paged: the virtual map
+  if (map.virtual_light >= 0)
+    return make_virtual_light_view(light.light, uint32_t(map.virtual_light), light.map_count, map.fit_bounds,
+                                   resolution);
   if (map.face >= 0)  // paged: the guard texels of its coarsest level, one page
     return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution,
                                 is_paged(light) ? uint32_t(s.page_size) : 0u);

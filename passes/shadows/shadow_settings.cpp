@@ -24,12 +24,17 @@ void check_light_settings(const scene::Light& light, size_t index) {
                                 std::string(scene::to_string(light.type)) + " light");
   if (s.cascades > 1 && s.fit != scene::ShadowFit::view)
     throw std::invalid_argument(who + ": cascades follow the camera; set shadow.fit to \"view\"");
-  if (s.clusters < 0 || s.clusters > int(shared::kMaxViewsPerLight))
+  if (s.clusters < 0 || s.clusters > int(shared::kMaxClustersPerLight))
     throw std::invalid_argument(who + ": " + std::to_string(s.clusters) + " clusters; use 0 (off) to " +
-                                std::to_string(shared::kMaxViewsPerLight));
-  if (s.clusters > 1 && (light.type == scene::LightType::point || s.cascades > 1))
+                                std::to_string(shared::kMaxClustersPerLight));
+  if (s.clusters > 1 && (light.type == scene::LightType::point || light.type == scene::LightType::rect ||
+                         s.cascades > 1))
     throw std::invalid_argument(who + ": clustered maps are for directional and spot lights without cascades; "
                                 "set shadow.clusters to 0");
+  if (light.type == scene::LightType::rect &&
+      (light.virtual_lights < 1 || light.virtual_lights > int(shared::kMaxViewsPerLight)))
+    throw std::invalid_argument(who + ": " + std::to_string(light.virtual_lights) + " virtual lights; use 1 to " +
+                                std::to_string(shared::kMaxViewsPerLight));
   if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
     throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
   if (s.kernel_radius < 1 || s.kernel_radius > int(shared::kMaxKernelRadius))
@@ -59,6 +64,9 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
     refuse("matches texels to pixels instead of blurring them; set shadow.kernel to \"none\"");
   if (light.type == scene::LightType::directional && s.fit == scene::ShadowFit::view)
     refuse("keeps pages while the camera moves, so its map covers the scene; set shadow.fit to \"scene\"");
+  if (light.type == scene::LightType::rect)
+    refuse("is not built for area lights yet (their virtual lights' maps are small and dense); set shadow.layout "
+           "to \"dense\"");
   if (s.page_size != 32 && s.page_size != 64 && s.page_size != 128)
     refuse("pages are 32, 64 or 128 texels wide, not " + std::to_string(s.page_size) + "; set shadow.page_size");
   const int v = s.virtual_resolution;

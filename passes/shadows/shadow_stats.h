@@ -45,7 +45,7 @@ struct LightShadowStats {
   std::string technique = "avsm";  // a name of passes/shadows/techniques/registry.h
   uint32_t nodes = 0, resolution = 0, mip_levels = 0;  // of each of its maps
   uint32_t maps = 1;                 // point lights: 6 faces; cascades; clusters
-  std::string map_kind = "single";   // single, cube, cascades or clusters
+  std::string map_kind = "single";   // single, cube, cascades, clusters or virtual (a rect light's virtual lights)
   uint32_t lowered_from = 0;         // the resolution asked for, when the map budget lowered it; else 0
   uint64_t map_bytes = 0;               // persistent maps, all of the light's (0 for uncompressed)
   uint64_t capture_capacity = 0;        // segments the node buffer held this frame

@@ -404,7 +404,7 @@ uint shadow_cascade_at(GpuShadow s, vec3 p, out uint count, out float blend) {
 uint light_map_record_at(uint record, vec3 p) {
   GpuShadow s = shadows[record];
   if (s.views == kViewsCube) return s.first_view + shadow_cube_face(p - s.view_select.xyz);
-  if (s.views == kViewsClusters) return s.first_view;
+  if (s.views == kViewsClusters || s.views == kViewsVirtualLights) return s.first_view;
   if (s.views != kViewsCascades) return record;
   uint count;
   float blend;
@@ -412,8 +412,9 @@ uint light_map_record_at(uint record, vec3 p) {
 }
 
 // Transmittance from the light whose record is shadows[record] to p: its one map, the
-// cube face p lies in, the cascade(s) at p's camera depth (blended across a split), or
-// the product over its cluster maps. A surface receiver (kReceiverSurface) is on a
+// cube face p lies in, the cascade(s) at p's camera depth (blended across a split), the
+// product over its cluster maps, or the mean over an area light's virtual lights' maps
+// (the share of the light that reaches p: its soft shadow). A surface receiver (kReceiverSurface) is on a
 // surface with that normal and is moved off it in each map's own texels. The maps are
 // looked up in one loop so that
 // shadow_transmittance() is compiled once (see above).
@@ -424,10 +425,11 @@ float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal
   float blend = 0.0;  // cascades: weight of the second map
   if (s.views == kViewsCascades) {
     shadow_cascade_at(s, p, count, blend);
-  } else if (s.views == kViewsClusters) {
+  } else if (s.views == kViewsClusters || s.views == kViewsVirtualLights) {
     count = s.view_count;
   }
   bool product = s.views == kViewsClusters;
+  bool mean = s.views == kViewsVirtualLights;
   float result = product ? 1.0 : 0.0;
   for (uint k = 0u; k < kMaxViewsPerLight; ++k) {
     if (k >= count) break;
@@ -435,7 +437,8 @@ float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal
     if (s.views != kViewsSingle) v = shadows[first + k];
     vec3 q = receiver == kReceiverSurface ? shadow_surface_point(v, p, normal, to_light) : p;
     float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance_filtered(v, q, receiver);
-    result = product ? result * t : result + (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend)) * t;
+    float weight = mean ? 1.0 / float(count) : (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend));
+    result = product ? result * t : result + weight * t;
   }
   return result;
 }

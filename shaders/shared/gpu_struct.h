@@ -71,9 +71,13 @@ using uint = uint32_t;
 #define GPU_FUNCTION inline
 
 namespace avsm::shared {
+using glm::abs;
 using glm::clamp;
+using glm::cross;
+using glm::dot;
 using glm::max;
 using glm::min;
+using glm::normalize;
 }  // namespace avsm::shared
 
 #else  // GLSL

@@ -29,8 +29,11 @@ GPU_CONST(uint, kViewsSingle, 0u)    // the record is the light's one map
 GPU_CONST(uint, kViewsCube, 1u)      // a point light: six face maps, +x -x +y -y +z -z
 GPU_CONST(uint, kViewsCascades, 2u)  // a directional light split along the camera's view
 GPU_CONST(uint, kViewsClusters, 3u)  // one map per caster cluster; transmittances multiply
-// The most maps one light has (cube faces, cascades or clusters): the lookup loops to it.
-GPU_CONST(uint, kMaxViewsPerLight, 8u)
+GPU_CONST(uint, kViewsVirtualLights, 4u)  // an area light: one map per virtual light; transmittances average
+// The most maps one light has (cube faces, cascades, clusters or virtual lights): the
+// lookup loops to it.
+GPU_CONST(uint, kMaxViewsPerLight, 64u)
+GPU_CONST(uint, kMaxClustersPerLight, 8u)
 
 #define GPU_SHADOW(F, A)                                                                                        \
   F(mat4, light_from_world) /* world -> light clip; uv = clip.xy / clip.w * 0.5 + 0.5 */                       \
@@ -55,7 +58,7 @@ GPU_CONST(uint, kMaxViewsPerLight, 8u)
   F(uint, list_nodes_offset) /* and first node in ShadowListNodes */                                           \
   F(uint, reference)        /* index of this record's exact-reference record in shadows[], or kNoReference */  \
   F(uint, views)            /* kViews*: a light's record; the maps' own records are kViewsSingle */            \
-  F(uint, first_view)       /* kViewsCube..Clusters: the light's maps are records first_view ..              \
+  F(uint, first_view)       /* kViewsCube..VirtualLights: the light's maps are records first_view ..         \
                                first_view + view_count - 1 */                                                  \
   F(uint, view_count)                                                                                          \
   F(uint, kernel)           /* kKernel*: the soft-shadow kernel of surface lookups */                          \

@@ -1,5 +1,5 @@
 # Checks DIR/memory.json's per-light map figures: EXPECT is a list of LIGHT=KIND
-# (KIND: single, cube, cascades or clusters; a light named there must have that kind,
+# (KIND: single, cube, cascades, clusters or virtual; a light named there must have that kind,
 # "maps" > 1 unless single, and "lowered_from" present).
 file(READ "${DIR}/memory.json" memory)
 string(JSON lights LENGTH "${memory}" lights)

@@ -253,6 +253,46 @@ TEST(SceneDescriptionErrors, VolumeMultipleScatteringAndSkyLightOutOfRange) {
   EXPECT_THAT(error_of(with(R"("sky_light": -1)")), HasSubstr("volumes[0].sky_light: must be 0 (no sky light) to 4"));
 }
 
+// A rect light added to the scene's lights: `keys` after its type.
+std::string with_rect(const std::string& keys) {
+  return full_scene(R"("lights": [)", R"("lights": [ { "name": "softbox", "type": "rect", )" + keys + " },");
+}
+
+TEST(SceneDescription, RectLight) {
+  const SceneDescription scene = parse(with_rect(
+      R"("position": [0, 3, 0], "target": [0, 0, 0], "size": [2, 0.5], "two_sided": true, "virtual_lights": 32,
+         "color": [1, 0.9, 0.8], "intensity": 4, "range": 10, "shadow": { "resolution": 128 })"));
+  const Light& light = scene.lights.at(0);
+  EXPECT_EQ(light.type, LightType::rect);
+  EXPECT_EQ(light.position, glm::vec3(0.0f, 3.0f, 0.0f));
+  EXPECT_EQ(light.direction, glm::vec3(0.0f, -1.0f, 0.0f));
+  EXPECT_EQ(light.size, glm::vec2(2.0f, 0.5f));
+  EXPECT_TRUE(light.two_sided);
+  EXPECT_EQ(light.virtual_lights, 32);
+  EXPECT_FLOAT_EQ(light.range, 10.0f);
+  EXPECT_EQ(light.shadow.resolution, 128);
+  const Light defaults = parse(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1])")).lights[0];
+  EXPECT_FALSE(defaults.two_sided);
+  EXPECT_EQ(defaults.virtual_lights, 16);
+}
+
+TEST(SceneDescriptionErrors, RectLight) {
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0])")),
+              HasSubstr("lights[0].size: required key is missing"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 0])")),
+              HasSubstr("lights[0].size: width and height must be > 0"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1])")),
+              HasSubstr("lights[0].size: expected [width, height]"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "size": [1, 1])")),
+              HasSubstr("lights[0].direction: give exactly one of 'direction' and 'target'"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1], "virtual_lights": 0)")),
+              HasSubstr("lights[0].virtual_lights: must be 1 to 64"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1], "outer_cone_deg": 30)")),
+              HasSubstr("lights[0].outer_cone_deg: only spot lights have this"));
+  EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "size": [1, 1],)")),
+              HasSubstr("lights[0].size: only rect lights have this"));
+}
+
 // The fog block (scene/fog.h): a global medium, boxes of their own, the sky and the grid.
 std::string with_fog(const std::string& fog) { return full_scene(R"("version": 1,)", R"("version": 1, "fog": )" + fog + ","); }
 
@@ -309,7 +349,7 @@ TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", "")), HasSubstr("volumes[0].grid: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("type": "spot", )", "")), HasSubstr("lights[1].type: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "position": [1, 1, 1],)")),
-              HasSubstr("lights[0].position: only spot and point lights have this"));
+              HasSubstr("lights[0].position: only spot, point and rect lights have this"));
   EXPECT_THAT(error_of(full_scene(R"("target": [0, 0, 0], "inner)", R"("target": [0, 0, 0], "direction": [0, -1, 0], "inner)")),
               HasSubstr("lights[1].direction: give exactly one of 'direction' and 'target'"));
   EXPECT_THAT(error_of(full_scene(R"("scale": 2 })", R"("scale": 2, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1] })")),

@@ -5,6 +5,7 @@
 #include "gpu/context.h"
 #include "gpu/rendering.h"
 #include "gpu/transfer.h"
+#include "lighting/ltc.h"
 #include "passes/frame/caster_alpha.h"
 #include "passes/shadows/shadow_maps.h"
 #include "shared/passes/camera/surfaces/opaque.h"
@@ -35,6 +36,19 @@ GpuMaterial gpu_material(const scene::Material& m) {
   return g;
 }
 
+// One table of the LTC fit as a size x size texture: x the view angle, y the roughness.
+gpu::Image ltc_table_image(const gpu::Context& ctx, uint32_t size, VkFormat format, const void* texels,
+                           VkDeviceSize bytes, const char* name) {
+  gpu::ImageDesc desc;
+  desc.width = desc.height = size;
+  desc.format = format;
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = name;
+  gpu::Image image = gpu::Image::create(ctx, desc);
+  gpu::upload_image(ctx, image, texels, bytes, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  return image;
+}
+
 // For meshes without a material: grey, rough, not metallic.
 scene::Material fallback_material() {
   scene::Material m;
@@ -46,7 +60,9 @@ scene::Material fallback_material() {
 }  // namespace
 
 OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
-    : ctx_(ctx), sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}) {
+    : ctx_(ctx),
+      sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}),
+      ltc_sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
   gpu::GraphicsPipelineDesc desc;
   desc.name = "opaque";
   desc.vertex = shaders.load("shaders/passes/camera/surfaces/opaque.vert");
@@ -58,6 +74,11 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
   pipeline_ = gpu::Pipeline::graphics(ctx, desc);
   const uint8_t white[4] = {255, 255, 255, 255};
   white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
+  const lighting::LtcTable& table = lighting::builtin_ggx_table();
+  ltc_matrix_ = ltc_table_image(ctx, table.size, VK_FORMAT_R32G32B32A32_SFLOAT, table.inverse_matrix.data(),
+                                table.inverse_matrix.size() * sizeof(glm::vec4), "ltc inverse matrices");
+  ltc_magnitude_ = ltc_table_image(ctx, table.size, VK_FORMAT_R32G32_SFLOAT, table.magnitude.data(),
+                                   table.magnitude.size() * sizeof(glm::vec2), "ltc magnitudes");
 }
 
 namespace {
@@ -176,6 +197,9 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
       const int texture = material ? *material->textures()[i] : -1;  // -1: the white texture
       bindings.image(kTextureBindings[i], texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
     }
+    bindings.image("ltc_matrix_table", ltc_matrix_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, ltc_sampler_.handle())
+        .image("ltc_magnitude_table", ltc_magnitude_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               ltc_sampler_.handle());
     shadows.bind(bindings, c);
     shadows.bind_page_requests(bindings, c, targets.page_requests);
     bindings.push(cmd);

@@ -59,6 +59,10 @@ class OpaquePass {
   gpu::Context& ctx_;
   gpu::Pipeline pipeline_;
   gpu::Sampler sampler_;
+  // The LTC table of rect lights (engine/lighting/ltc.h, common/area_light.glsl): M^-1's
+  // coefficients and the lobe's magnitudes, filtered bilinearly.
+  gpu::Image ltc_matrix_, ltc_magnitude_;
+  gpu::Sampler ltc_sampler_;
   gpu::Buffer vertices_, tangents_, indices_, materials_;
   std::vector<gpu::Image> textures_;
   gpu::Image white_;

@@ -1,6 +1,7 @@
 #version 460
 // glTF metallic-roughness shading (common/pbr_brdf.glsl): every light times its
-// transmittance map, the sky, emission.
+// transmittance map (rect lights integrated over their rectangle, common/area_light.glsl,
+// times the mean of their virtual lights' maps), the sky, emission.
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
 #include "common/pbr_brdf.glsl"
@@ -9,6 +10,8 @@
 // masks discard, so depth is not tested before the shader).
 #define AVSM_SHADOW_PAGE_REQUESTS_BINDING 13
 #include "common/shadow_lookup.glsl"
+#define AVSM_LTC_BINDING 14
+#include "common/area_light.glsl"
 
 #include "shared/mesh.h"
 
@@ -63,6 +66,13 @@ void main() {
   vec3 lit = pbr_sky(surface, dot(n, to_camera), kSkyAmbient, occlusion);
   lit += m.emissive.rgb * texture(emissive_texture, in_uv).rgb;
   for (uint i = 0u; i < pc.light_count; ++i) {
+    if (uint(lights[i].position_type.w + 0.5) == kLightRect) {
+      vec3 to_centre = normalize(lights[i].position_type.xyz - in_world);
+      vec3 reflected = rect_light_reflected(lights[i], surface, in_world, n, to_camera);
+      if (all(equal(reflected, vec3(0.0)))) continue;
+      lit += reflected * surface_light_transmittance(i, in_world, geometric_n, to_centre);
+      continue;
+    }
     vec3 to_light;
     vec3 radiance = light_radiance(lights[i], in_world, to_light);
     // A light behind the surface itself does not reach it, whatever the normal texture says.
