@@ -1,5 +1,7 @@
 #include "lighting/ltc.h"
 
+#include "lighting/hammersley.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -55,19 +57,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // ---- Sampling ------------------------------------------------------------------------------
 
-double radical_inverse(uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return double(bits) * 2.3283064365386963e-10;  // / 2^32
-}
-
-// Point i of a Hammersley set of `count`: low discrepancy and fixed, so that every
-// evaluation of a fit's error sees the same samples and the error is a smooth function of
-// the parameters, which Nelder-Mead needs.
-glm::dvec2 hammersley(uint32_t i, uint32_t count) { return {(i + 0.5) / count, radical_inverse(i)}; }
+// The fit's samples are Hammersley points (lighting/hammersley.h): low discrepancy and fixed,
+// so that every evaluation of a fit's error sees the same samples and the error is a smooth
+// function of the parameters, which Nelder-Mead needs.
 
 // The clamped cosine max(z, 0) / pi, and a direction drawn from it (Malley's method).
 double clamped_cosine(const glm::dvec3& unit_direction) { return std::max(unit_direction.z, 0.0) / kPi; }

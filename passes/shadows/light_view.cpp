@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "lighting/hammersley.h"
 #include "shared/lights.h"
 
 #include <algorithm>
@@ -199,15 +200,6 @@ LightView make_light_view(const scene::Light& light, const scene::Bounds& caster
 
 namespace {
 
-float radical_inverse(uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return float(bits) * 2.3283064365386963e-10f;  // / 2^32
-}
-
 // Wide enough for what an area light lights in front of it; spot_view narrows it to the casters.
 constexpr float kVirtualLightCone = glm::radians(80.0f);
 
@@ -216,7 +208,8 @@ constexpr float kVirtualLightCone = glm::radians(80.0f);
 glm::vec3 virtual_light_position(const scene::Light& rect, uint32_t index, uint32_t count) {
   const glm::vec3 n = glm::normalize(rect.direction);
   const glm::vec3 u = shared::area_light_u_axis(n), v = glm::cross(n, u);
-  const glm::vec2 s((float(index) + 0.5f) / float(std::max(count, 1u)), radical_inverse(index) + 0.5f / float(count));
+  // Hammersley points, shifted half a stratum up so that they sit mid-stratum both ways.
+  const glm::vec2 s = glm::vec2(lighting::hammersley(index, std::max(count, 1u))) + glm::vec2(0.0f, 0.5f / float(count));
   const glm::vec2 offset = (glm::fract(s) - 0.5f) * rect.size;
   return rect.position + offset.x * u + offset.y * v;
 }
