@@ -314,7 +314,8 @@ ProbeLight probe_light_from_json(const json& in) {
 scene::LightType light_type_from_json(const json& object) {
   const std::string name = value_of<std::string>(object, "type");
   for (scene::LightType type :
-       {scene::LightType::directional, scene::LightType::spot, scene::LightType::point, scene::LightType::rect})
+       {scene::LightType::directional, scene::LightType::spot, scene::LightType::point, scene::LightType::rect,
+        scene::LightType::disk, scene::LightType::sphere})
     if (name == scene::to_string(type)) return type;
   throw std::runtime_error("unknown light type '" + name + "'");
 }

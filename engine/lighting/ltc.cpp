@@ -34,6 +34,8 @@ using glm::vec4;
 using glm::abs;
 using glm::atan;
 using glm::clamp;
+using glm::cos;
+using glm::sin;
 using glm::cross;
 using glm::dot;
 using glm::length;

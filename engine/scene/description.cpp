@@ -296,7 +296,7 @@ Light read_light(ObjectReader& object, std::size_t index) {
   light.type = choice<LightType>(
       object, "type", LightType::directional,
       {{"directional", LightType::directional}, {"spot", LightType::spot}, {"point", LightType::point},
-       {"rect", LightType::rect}},
+       {"rect", LightType::rect}, {"disk", LightType::disk}, {"sphere", LightType::sphere}},
       true);
   light.color = object.vec3_or("color", glm::vec3(1.0f));
   object.check(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))), "color", "components must be >= 0");
@@ -304,27 +304,38 @@ Light read_light(ObjectReader& object, std::size_t index) {
   object.check(light.intensity >= 0.0f, "intensity", "must be >= 0");
 
   const bool spot = light.type == LightType::spot, point = light.type == LightType::point;
-  const bool rect = light.type == LightType::rect;
+  const bool rect = light.type == LightType::rect, disk = light.type == LightType::disk;
+  const bool sphere = light.type == LightType::sphere, area = is_area_light(light.type);
   for (const char* key : {"inner_cone_deg", "outer_cone_deg"})
     object.check(spot || !object.has(key), key, "only spot lights have this");
-  object.check(spot || rect || !object.has("target"), "target", "only spot and rect lights have this");
+  object.check(spot || rect || disk || !object.has("target"), "target", "only spot, rect and disk lights have this");
   for (const char* key : {"position", "range"})
-    object.check(spot || point || rect || !object.has(key), key, "only spot, point and rect lights have this");
-  for (const char* key : {"size", "two_sided", "virtual_lights"})
-    object.check(rect || !object.has(key), key, "only rect lights have this");
+    object.check(spot || point || area || !object.has(key), key, "only spot, point and area lights have this");
+  object.check(rect || !object.has("size"), "size", "only rect lights have this");
+  object.check(disk || sphere || !object.has("radius"), "radius", "only disk and sphere lights have this");
+  object.check(rect || disk || !object.has("two_sided"), "two_sided", "only rect and disk lights have this");
+  object.check(area || !object.has("virtual_lights"), "virtual_lights", "only area lights have this");
+  object.check(!sphere || !object.has("direction"), "direction", "sphere lights shine every way; remove it");
   object.check(!point || !object.has("direction"), "direction", "point lights shine every way; remove it");
   light.range = object.number_or("range", 0.0f);
   object.check(light.range >= 0.0f, "range", "must be >= 0 (0: no limit)");
   glm::vec3 direction{0.0f, -1.0f, 0.0f};
   if (point) {
     light.position = object.vec3("position");
-  } else if (rect) {
+  } else if (area) {
     light.position = object.vec3("position");
-    object.check(object.has("direction") != object.has("target"), "direction",
-                 "give exactly one of 'direction' and 'target' (where the rectangle faces)");
-    direction = object.has("target") ? object.vec3("target") - light.position : object.vec3("direction");
-    light.size = read_rect_size(object);
-    light.two_sided = object.boolean_or("two_sided", false);
+    if (!sphere) {
+      object.check(object.has("direction") != object.has("target"), "direction",
+                   "give exactly one of 'direction' and 'target' (where the light faces)");
+      direction = object.has("target") ? object.vec3("target") - light.position : object.vec3("direction");
+      light.two_sided = object.boolean_or("two_sided", false);
+    }
+    if (rect) {
+      light.size = read_rect_size(object);
+    } else {
+      light.radius = object.number("radius");
+      object.check(light.radius > 0.0f, "radius", "must be > 0");
+    }
     light.virtual_lights = object.integer_or("virtual_lights", light.virtual_lights);
     object.check(light.virtual_lights >= 1 && light.virtual_lights <= kMaxVirtualLights, "virtual_lights",
                  "must be 1 to " + std::to_string(kMaxVirtualLights) + " (maps for its soft shadows)");
@@ -342,7 +353,7 @@ Light read_light(ObjectReader& object, std::size_t index) {
   } else {
     direction = object.vec3("direction");
   }
-  object.check(point || glm::length(direction) > 1e-6f, object.has("target") ? "target" : "direction",
+  object.check(point || sphere || glm::length(direction) > 1e-6f, object.has("target") ? "target" : "direction",
                "gives no direction (zero length)");
   light.direction = glm::normalize(direction);
   if (const json* shadow = object.optional("shadow")) light.shadow = read_shadow(object.reader(), *shadow, object.path_of("shadow"));

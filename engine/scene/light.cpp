@@ -52,6 +52,8 @@ std::string_view to_string(LightType type) {
     case LightType::spot: return "spot";
     case LightType::point: return "point";
     case LightType::rect: return "rect";
+    case LightType::disk: return "disk";
+    case LightType::sphere: return "sphere";
   }
   return "?";
 }
@@ -96,7 +98,7 @@ void ShadowOverrides::apply(ShadowSettings& settings) const {
 void ShadowOverrides::apply(Light& light) const {
   ShadowOverrides fitting = *this;
   if (light.type != LightType::directional) fitting.cascades.reset();
-  if (light.type == LightType::point || light.type == LightType::rect) fitting.clusters.reset();
+  if (light.type == LightType::point || is_area_light(light.type)) fitting.clusters.reset();
   fitting.apply(light.shadow);
 }
 

@@ -108,8 +108,11 @@ struct ShadowOverrides {
   void apply(Light& light) const;
 };
 
-// rect: an area light, a rectangle that emits a uniform radiance (Light::size, two_sided).
-enum class LightType { directional, spot, point, rect };
+// rect, disk, sphere: area lights of uniform radiance (Light::size, radius, two_sided).
+enum class LightType { directional, spot, point, rect, disk, sphere };
+inline bool is_area_light(LightType type) {
+  return type == LightType::rect || type == LightType::disk || type == LightType::sphere;
+}
 
 // The most virtual lights (maps) an area light's soft shadows take: shared::kMaxViewsPerLight.
 inline constexpr int kMaxVirtualLights = 64;
@@ -138,7 +141,11 @@ struct Light {
   // both ways when two_sided), of uniform radiance color x intensity (a white Lambertian
   // surface that it fills the sky of reflects that much). Its soft shadows are the mean of
   // `virtual_lights` maps, each from a point spread over the rectangle (passes/shadows/).
+  // Disk lights: a disk of `radius` facing `direction` (two_sided as a rectangle). Sphere
+  // lights: a sphere of `radius`, emitting every way; its virtual lights spread over the
+  // disk it shows the casters.
   glm::vec2 size{1.0f};
+  float radius = 0.5f;
   bool two_sided = false;
   int virtual_lights = 16;
   ShadowSettings shadow;

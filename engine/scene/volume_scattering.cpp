@@ -207,11 +207,16 @@ glm::vec3 light_radiance(const Light& light, const glm::vec3& p, glm::vec3& to_l
     const float w = std::clamp(1.0f - x * x, 0.0f, 1.0f);
     window = w * w;
   }
-  if (light.type == LightType::rect) {  // from its centre, as common/lights.glsl's rect_light_share
-    float cos_emit = glm::dot(glm::normalize(light.direction), -to_light);
-    if (light.two_sided) cos_emit = std::abs(cos_emit);
-    const float area = light.size.x * light.size.y;
-    return radiance * window * std::min(area * std::max(cos_emit, 0.0f) / (3.14159265f * distance2), 1.0f);
+  if (is_area_light(light.type)) {  // from its centre, as common/lights.glsl's area_light_share
+    constexpr float kPi = 3.14159265f;
+    float share = light.radius * light.radius / distance2;  // a sphere
+    if (light.type != LightType::sphere) {
+      float cos_emit = glm::dot(glm::normalize(light.direction), -to_light);
+      if (light.two_sided) cos_emit = std::abs(cos_emit);
+      const float area = light.type == LightType::rect ? light.size.x * light.size.y : kPi * light.radius * light.radius;
+      share = area * std::max(cos_emit, 0.0f) / (kPi * distance2);
+    }
+    return radiance * window * std::min(share, 1.0f);
   }
   const float falloff = window / distance2;
   if (light.type == LightType::point) return radiance * falloff;

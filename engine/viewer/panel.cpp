@@ -130,7 +130,7 @@ void draw_light_switches(const scene::Light& light, LightOverride& o, PanelReque
 
 // Direction (directional, spot), position (spot, point) and a point light's range.
 void draw_light_placement(const scene::Light& light, LightOverride& o, PanelRequests& requests) {
-  if (light.type != scene::LightType::point) {
+  if (light.type != scene::LightType::point && light.type != scene::LightType::sphere) {
     glm::vec3 direction = light.direction;
     if (ImGui::DragFloat3("direction", &direction.x, 0.01f, -1.0f, 1.0f))
       o.direction = direction, requests.scene_edited = true;
@@ -155,9 +155,12 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
   const scene::ShadowSettings& shadow = light.shadow;
   bool paged = shadow.layout == scene::ShadowLayout::paged;
   const bool can_page = passes::pages_technique(shadow) && shadow.build == scene::ShadowBuild::lists;
-  if (light.type == scene::LightType::rect) {  // small dense maps, one per virtual light
-    ImGui::Text("%d virtual lights, %gx%g%s", light.virtual_lights, light.size.x, light.size.y,
-                light.two_sided ? ", two-sided" : "");
+  if (scene::is_area_light(light.type)) {  // small dense maps, one per virtual light
+    if (light.type == scene::LightType::rect)
+      ImGui::Text("%d virtual lights, %gx%g%s", light.virtual_lights, light.size.x, light.size.y,
+                  light.two_sided ? ", two-sided" : "");
+    else
+      ImGui::Text("%d virtual lights, radius %g%s", light.virtual_lights, light.radius, light.two_sided ? ", two-sided" : "");
     return;
   }
   ImGui::BeginDisabled(!paged && !can_page);
@@ -185,7 +188,7 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
 void draw_light_fitting(const scene::Light& light, const scene::SceneShadows& scene_shadows, LightOverride& o,
                         PanelRequests& requests) {
   // A cube covers every way, and a rect light's virtual lights fit to the casters: nothing to fit.
-  if (light.type == scene::LightType::point || light.type == scene::LightType::rect) return;
+  if (light.type == scene::LightType::point || scene::is_area_light(light.type)) return;
   const scene::ShadowSettings& shadow = light.shadow;
   const bool cascaded = shadow.cascades > 1, clustered = shadow.clusters > 1;
   // A paged map is one virtual map over the scene: no fitting to the view, no cascades

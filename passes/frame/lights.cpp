@@ -7,12 +7,25 @@
 namespace avsm::passes {
 
 namespace {
+// GpuLight::range: the falloff's end, and an area light's extent.
+glm::vec4 area_extent(const scene::Light& light) {
+  const float two_sided = light.two_sided ? 1.0f : 0.0f;
+  switch (light.type) {
+    case scene::LightType::rect: return {light.range, 0.5f * light.size.x, 0.5f * light.size.y, two_sided};
+    case scene::LightType::disk: return {light.range, light.radius, 0.0f, two_sided};
+    case scene::LightType::sphere: return {light.range, light.radius, 0.0f, 0.0f};
+    default: return {light.range, 0.0f, 0.0f, 0.0f};
+  }
+}
+
 uint32_t type_code(scene::LightType type) {
   switch (type) {
     case scene::LightType::directional: return shared::kLightDirectional;
     case scene::LightType::spot: return shared::kLightSpot;
     case scene::LightType::point: return shared::kLightPoint;
     case scene::LightType::rect: return shared::kLightRect;
+    case scene::LightType::disk: return shared::kLightDisk;
+    case scene::LightType::sphere: return shared::kLightSphere;
   }
   return shared::kLightDirectional;
 }
@@ -22,9 +35,7 @@ GpuLight to_gpu(const scene::Light& light) {
   return {glm::vec4(light.position, float(type_code(light.type))),
           glm::vec4(glm::normalize(light.direction), std::cos(light.outer_cone_angle)),
           glm::vec4(light.color * light.intensity, std::cos(light.inner_cone_angle)),
-          light.type == scene::LightType::rect
-              ? glm::vec4(light.range, 0.5f * light.size.x, 0.5f * light.size.y, light.two_sided ? 1.0f : 0.0f)
-              : glm::vec4(light.range, 0.0f, 0.0f, 0.0f)};
+          area_extent(light)};
 }
 
 gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {

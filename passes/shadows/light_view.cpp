@@ -205,23 +205,35 @@ constexpr float kVirtualLightCone = glm::radians(80.0f);
 
 }  // namespace
 
-glm::vec3 virtual_light_position(const scene::Light& rect, uint32_t index, uint32_t count) {
-  const glm::vec3 n = glm::normalize(rect.direction);
-  const glm::vec3 u = shared::area_light_u_axis(n), v = glm::cross(n, u);
-  // Hammersley points, shifted half a stratum up so that they sit mid-stratum both ways.
-  const glm::vec2 s = glm::vec2(lighting::hammersley(index, std::max(count, 1u))) + glm::vec2(0.0f, 0.5f / float(count));
-  const glm::vec2 offset = (glm::fract(s) - 0.5f) * rect.size;
-  return rect.position + offset.x * u + offset.y * v;
+glm::vec3 virtual_light_facing(const scene::Light& light, const scene::Bounds& casters) {
+  const glm::vec3 to_casters = usable_bounds(casters).center() - light.position;
+  if (light.type == scene::LightType::sphere)
+    return glm::length(to_casters) > 1e-6f ? glm::normalize(to_casters) : glm::vec3(0.0f, -1.0f, 0.0f);
+  const glm::vec3 n = glm::normalize(light.direction);
+  return light.two_sided && glm::dot(to_casters, n) < 0.0f ? -n : n;
 }
 
-LightView make_virtual_light_view(const scene::Light& rect, uint32_t index, uint32_t count,
+glm::vec3 virtual_light_position(const scene::Light& light, const glm::vec3& facing, uint32_t index, uint32_t count) {
+  const glm::vec3 u = shared::area_light_u_axis(facing), v = glm::cross(facing, u);
+  // Hammersley points, shifted half a stratum up so that they sit mid-stratum both ways.
+  const glm::vec2 s =
+      glm::fract(glm::vec2(lighting::hammersley(index, std::max(count, 1u))) + glm::vec2(0.0f, 0.5f / float(count)));
+  if (light.type == scene::LightType::rect) {
+    const glm::vec2 offset = (s - 0.5f) * light.size;
+    return light.position + offset.x * u + offset.y * v;
+  }
+  // A disk (a sphere's: the one it shows the casters), area-uniform: radius sqrt(s.x).
+  const float radius = light.radius * std::sqrt(s.x), angle = 2.0f * 3.14159265f * s.y;
+  return light.position + radius * (std::cos(angle) * u + std::sin(angle) * v);
+}
+
+LightView make_virtual_light_view(const scene::Light& light, uint32_t index, uint32_t count,
                                   const scene::Bounds& casters, uint32_t resolution) {
-  scene::Light spot = rect;
+  scene::Light spot = light;
   spot.type = scene::LightType::spot;
-  spot.position = virtual_light_position(rect, index, count);
-  spot.direction = glm::normalize(rect.direction);
+  spot.direction = virtual_light_facing(light, casters);
+  spot.position = virtual_light_position(light, spot.direction, index, count);
   const scene::Bounds box = usable_bounds(casters);
-  if (rect.two_sided && glm::dot(box.center() - rect.position, spot.direction) < 0.0f) spot.direction = -spot.direction;
   spot.outer_cone_angle = spot.inner_cone_angle = kVirtualLightCone;
   spot.shadow.fit = scene::ShadowFit::view;
   return finish_view(spot_view(spot, box), resolution);

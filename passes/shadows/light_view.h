@@ -81,14 +81,17 @@ CameraSlice camera_slice(const View& camera, float near_distance, float far_dist
 // just in front of the casters to the farthest corner; a point light its +x face.
 LightView make_light_view(const scene::Light& light, const scene::Bounds& casters, uint32_t resolution);
 
-// Where virtual light `index` of `count` sits on a rect light: stratified over the
-// rectangle (a Hammersley set: the index in even steps across its width, the radical
-// inverse up its height), so that any count covers it evenly.
-glm::vec3 virtual_light_position(const scene::Light& rect, uint32_t index, uint32_t count);
-// Virtual light `index`'s map: a spot light's at virtual_light_position, facing the way
-// the rectangle does (a two-sided one: the side the casters are on), of a 80 degree cone
-// narrowed to the casters in front of it, as spot lights fit theirs.
-LightView make_virtual_light_view(const scene::Light& rect, uint32_t index, uint32_t count,
+// Which way an area light's virtual lights face: its normal (a two-sided one's: towards the
+// casters); a sphere's towards the casters.
+glm::vec3 virtual_light_facing(const scene::Light& light, const scene::Bounds& casters);
+// Where virtual light `index` of `count` sits on area light `light` facing `facing`:
+// stratified over its shape (a Hammersley set, mapped area-uniformly onto a rectangle, a
+// disk, or the disk a sphere shows the casters), so that any count covers it evenly.
+glm::vec3 virtual_light_position(const scene::Light& light, const glm::vec3& facing, uint32_t index, uint32_t count);
+// Virtual light `index`'s map: a spot light's at virtual_light_position, facing
+// virtual_light_facing, of a 80 degree cone narrowed to the casters in front of it, as spot
+// lights fit theirs.
+LightView make_virtual_light_view(const scene::Light& light, uint32_t index, uint32_t count,
                                   const scene::Bounds& casters, uint32_t resolution);
 
 // A directional light's map over what the camera slice sees of the casters: a square

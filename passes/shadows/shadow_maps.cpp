@@ -32,7 +32,7 @@ void ShadowMaps::set_scene(const scene::Scene& scene, const ShadowOptions& optio
   merged.fit_budget = merged.fit_budget || scene.shadows.fit_budget;
   std::vector<scene::Light> lights = scene.lights;
   for (scene::Light& light : lights)
-    if (light.shadow.clusters == 0 && light.type != scene::LightType::point && light.type != scene::LightType::rect &&
+    if (light.shadow.clusters == 0 && light.type != scene::LightType::point && !scene::is_area_light(light.type) &&
         light.shadow.cascades == 1)
       light.shadow.clusters = scene.shadows.clusters;
   try {
@@ -139,7 +139,7 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   if (l.type == scene::LightType::point) {
     light.views = shared::kViewsCube;
     for (int face = 0; face < 6; ++face) add(name + " face " + std::to_string(face), casters)->face = face;
-  } else if (l.type == scene::LightType::rect) {
+  } else if (scene::is_area_light(l.type)) {
     light.views = shared::kViewsVirtualLights;
     for (int k = 0; k < l.virtual_lights; ++k) add(name + " virtual " + std::to_string(k), casters)->virtual_light = k;
   } else if (l.shadow.cascades > 1) {

@@ -27,11 +27,10 @@ void check_light_settings(const scene::Light& light, size_t index) {
   if (s.clusters < 0 || s.clusters > int(shared::kMaxClustersPerLight))
     throw std::invalid_argument(who + ": " + std::to_string(s.clusters) + " clusters; use 0 (off) to " +
                                 std::to_string(shared::kMaxClustersPerLight));
-  if (s.clusters > 1 && (light.type == scene::LightType::point || light.type == scene::LightType::rect ||
-                         s.cascades > 1))
+  if (s.clusters > 1 && (light.type == scene::LightType::point || scene::is_area_light(light.type) || s.cascades > 1))
     throw std::invalid_argument(who + ": clustered maps are for directional and spot lights without cascades; "
                                 "set shadow.clusters to 0");
-  if (light.type == scene::LightType::rect &&
+  if (scene::is_area_light(light.type) &&
       (light.virtual_lights < 1 || light.virtual_lights > int(shared::kMaxViewsPerLight)))
     throw std::invalid_argument(who + ": " + std::to_string(light.virtual_lights) + " virtual lights; use 1 to " +
                                 std::to_string(shared::kMaxViewsPerLight));
@@ -64,7 +63,7 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
     refuse("matches texels to pixels instead of blurring them; set shadow.kernel to \"none\"");
   if (light.type == scene::LightType::directional && s.fit == scene::ShadowFit::view)
     refuse("keeps pages while the camera moves, so its map covers the scene; set shadow.fit to \"scene\"");
-  if (light.type == scene::LightType::rect)
+  if (scene::is_area_light(light.type))
     refuse("is not built for area lights yet (their virtual lights' maps are small and dense); set shadow.layout "
            "to \"dense\"");
   if (s.page_size != 32 && s.page_size != 64 && s.page_size != 128)

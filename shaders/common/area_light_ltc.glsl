@@ -122,6 +122,49 @@ float ltc_rect_integral(mat3 to_cosine, vec3 p0, vec3 p1, vec3 p2, vec3 p3, bool
   return two_sided ? abs(signed_integral) : max(signed_integral, 0.0f);
 }
 
+// A disk light's share of a lobe, as ltc_rect_integral's: the disk (centre relative to the
+// shading point, radius, emitting along cross(t1, t2)) as a regular polygon of
+// kLtcShaderDiskEdges edges with the disk's area. Each edge's corners are mapped as they
+// come, and the horizon is crossed at most once each way (the polygon is convex), so the
+// clipping needs no list of corners.
+const int kLtcShaderDiskEdges = 16;
+float ltc_disk_integral(mat3 to_cosine, vec3 centre, vec3 t1, vec3 t2, float radius, bool two_sided) {
+  float wedge = 2.0f * kLtcPi / float(kLtcShaderDiskEdges);
+  // An inscribed regular polygon has less area than its circle; this radius gives it the same.
+  float polygon_radius = radius * sqrt(wedge / sin(wedge));
+  vec3 first = to_cosine * (centre + polygon_radius * t1);
+  vec3 previous = first;
+  float sum = 0.0f;
+  vec3 exit_point = vec3(0.0f);
+  vec3 entry_point = vec3(0.0f);
+  for (int k = 1; k <= kLtcShaderDiskEdges; ++k) {
+    float angle = wedge * float(k);
+    vec3 current = k == kLtcShaderDiskEdges
+                       ? first
+                       : to_cosine * (centre + polygon_radius * (cos(angle) * t1 + sin(angle) * t2));
+    sum += ltc_clipped_edge_integral(previous, current);
+    exit_point += ltc_exit_point(previous, current);
+    entry_point += ltc_entry_point(previous, current);
+    previous = current;
+  }
+  sum += ltc_horizon_edge_integral(exit_point, entry_point);
+  float signed_integral = sum / (2.0f * kLtcPi);
+  return two_sided ? abs(signed_integral) : max(signed_integral, 0.0f);
+}
+
+// A sphere light's share: the disk of its silhouette (where the cone from the shading point
+// touches it), which subtends the same solid angle, facing the point. Inside it: the whole lobe.
+float ltc_sphere_integral(mat3 to_cosine, vec3 centre, float radius) {
+  float distance = length(centre);
+  if (distance <= radius) return 1.0f;
+  float ratio = radius / distance;
+  vec3 towards_point = -centre / distance;
+  vec3 t1 = ltc_any_tangent(towards_point);
+  vec3 t2 = cross(towards_point, t1);
+  return ltc_disk_integral(to_cosine, centre + towards_point * (radius * ratio), t1, t2,
+                           radius * sqrt(1.0f - ratio * ratio), false);
+}
+
 // The GGX lobe's magnitude with Schlick's Fresnel from a table entry's (norm, fresnel):
 // the integral of D V F cos over the sphere is F0 norm + (1 - F0) fresnel.
 vec3 ltc_specular_magnitude(float norm, float fresnel, vec3 f0) { return f0 * (norm - fresnel) + vec3(fresnel); }

@@ -9,7 +9,9 @@ GPU_NAMESPACE_BEGIN
 GPU_CONST(uint, kLightDirectional, 0u)
 GPU_CONST(uint, kLightSpot, 1u)
 GPU_CONST(uint, kLightPoint, 2u)
-GPU_CONST(uint, kLightRect, 3u)  // range.yz: half width and height; range.w: 1 when two-sided
+GPU_CONST(uint, kLightRect, 3u)    // range.yz: half width and height; range.w: 1 when two-sided
+GPU_CONST(uint, kLightDisk, 4u)    // range.y: radius; range.w: 1 when two-sided
+GPU_CONST(uint, kLightSphere, 5u)  // range.y: radius
 
 // Light from the sky, the same on every surface, fibre and volume (the radiance a white
 // Lambertian surface reflects under it: shaders/common/pbr_brdf.glsl); the CPU's
@@ -21,7 +23,7 @@ GPU_CONST(vec3, kSkyAmbient, vec3(0.08, 0.1, 0.14))
   F(vec4, direction_cos_outer) /* xyz: direction the light travels; w: cos(outer cone) */     \
   F(vec4, radiance_cos_inner)  /* rgb: colour * intensity; w: cos(inner cone) */              \
   F(vec4, range)               /* x: where the falloff reaches 0 (0: no limit); rect: yz half      \
-                                  width and height, w 1 when two-sided */
+                                  width and height, disk and sphere: y radius; w 1 when two-sided */
 GPU_STRUCT(GpuLight, GPU_LIGHT)
 
 // A rect light's axes from its normal n: u (its width) horizontal where it can be (across

@@ -1,6 +1,6 @@
-// Rect lights (scene::LightType::rect): on a plane with nothing to shadow it, the opaque
-// pass's LTC shading (common/area_light.glsl) against a Monte Carlo integral of the engine's
-// own BRDF over the rectangle; and their soft shadows, the mean of their virtual lights'
+// Area lights (scene::LightType rect, disk, sphere): on a plane with nothing to shadow it, the
+// opaque pass's LTC shading (common/area_light.glsl) against a Monte Carlo integral of the
+// engine's own BRDF over the light; and their soft shadows, the mean of their virtual lights'
 // maps: a plank's penumbra on the floor widens with the plank's height, as the geometry of
 // the rectangle says, and one virtual light is the hard shadow of a point.
 #include <gtest/gtest.h>
@@ -111,29 +111,55 @@ Rendered render(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, const scen
   return {gpu::read_image(ctx, renderer.hdr(), renderer::SceneRenderer::kOutputLayout), renderer.probe_results()};
 }
 
-// The integral over the rectangle of the engine's BRDF (pbr_brdf.h, the shader's own
-// formulas) times the cosine, by stratified sampling of its area with the solid-angle
-// Jacobian cos_light / d^2: what the surface reflects per unit of the light's radiance.
-glm::vec3 monte_carlo_rect(const scene::Light& rect, const pbr::PbrSurface& s, const glm::vec3& p, const glm::vec3& n,
-                           const glm::vec3& v) {
-  const glm::vec3 normal = glm::normalize(rect.direction);
+// A point of an area light's surface and its outward normal, for a stratified sample t in
+// [0, 1)^2 (area-uniform), and the light's area.
+struct EmitterPoint {
+  glm::vec3 position, normal;
+};
+EmitterPoint emitter_point(const scene::Light& light, glm::vec2 t) {
+  const glm::vec3 normal = glm::normalize(light.direction);
   const glm::vec3 u = shared::area_light_u_axis(normal), w = glm::cross(normal, u);
-  constexpr int kSide = 96;
+  const float angle = 2.0f * 3.14159265f * t.y;
+  switch (light.type) {
+    case scene::LightType::rect:
+      return {light.position + (t.x - 0.5f) * light.size.x * u + (t.y - 0.5f) * light.size.y * w, normal};
+    case scene::LightType::disk:
+      return {light.position + light.radius * std::sqrt(t.x) * (std::cos(angle) * u + std::sin(angle) * w), normal};
+    default: {  // sphere
+      const float z = 1.0f - 2.0f * t.x, ring = std::sqrt(std::max(1.0f - z * z, 0.0f));
+      const glm::vec3 outward(ring * std::cos(angle), z, ring * std::sin(angle));
+      return {light.position + light.radius * outward, outward};
+    }
+  }
+}
+float emitter_area(const scene::Light& light) {
+  constexpr float kPi = 3.14159265f;
+  if (light.type == scene::LightType::rect) return light.size.x * light.size.y;
+  if (light.type == scene::LightType::disk) return kPi * light.radius * light.radius;
+  return 4.0f * kPi * light.radius * light.radius;
+}
+
+// The integral over the light of the engine's BRDF (pbr_brdf.h, the shader's own formulas)
+// times the cosine, by stratified sampling of its area with the solid-angle Jacobian
+// cos_light / d^2: what the surface reflects per unit of the light's radiance.
+glm::vec3 monte_carlo_area_light(const scene::Light& light, const pbr::PbrSurface& s, const glm::vec3& p,
+                                 const glm::vec3& n, const glm::vec3& v) {
+  constexpr int kSide = 128;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
   glm::dvec3 sum(0.0);
   for (int i = 0; i < kSide; ++i)
     for (int j = 0; j < kSide; ++j) {
-      const glm::vec2 t((float(i) + jitter(random)) / kSide - 0.5f, (float(j) + jitter(random)) / kSide - 0.5f);
-      const glm::vec3 q = rect.position + t.x * rect.size.x * u + t.y * rect.size.y * w;
-      const glm::vec3 d = q - p;
+      const glm::vec2 t((float(i) + jitter(random)) / kSide, (float(j) + jitter(random)) / kSide);
+      const EmitterPoint q = emitter_point(light, t);
+      const glm::vec3 d = q.position - p;
       const float distance2 = glm::dot(d, d);
       const glm::vec3 l = d / std::sqrt(distance2);
-      const float cos_surface = glm::dot(n, l), cos_light = glm::dot(normal, -l);
+      const float cos_surface = glm::dot(n, l), cos_light = glm::dot(q.normal, -l);
       if (cos_surface <= 0.0f || cos_light <= 0.0f) continue;
       sum += glm::dvec3(pbr::pbr_brdf(s, n, v, l)) * double(cos_surface * cos_light / distance2);
     }
-  return glm::vec3(sum * double(rect.size.x * rect.size.y) / double(kSide * kSide));
+  return glm::vec3(sum * double(emitter_area(light)) / double(kSide * kSide));
 }
 
 // Where the ray through pixel (x, y)'s centre meets the floor, well inside it.
@@ -174,20 +200,26 @@ float penumbra_width(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, float
 
 }  // namespace
 
-// Unshadowed, a rect light's reflection off a grey (roughness 0.5) floor matches the Monte
-// Carlo integral of the engine's BRDF over the rectangle, on each pixel it lights well (at
-// least a quarter of the sky's), for a large light close by and a small one far away:
-// within 1% on average, 2% seen within 60 degrees of the normal.
-TEST_F(AreaLightTest, SurfacesReflectTheRectangleAsTheBrdfIntegratedOverIt) {
+// Unshadowed, an area light's reflection off a grey (roughness 0.5) floor matches the Monte
+// Carlo integral of the engine's BRDF over the light, on each pixel it lights well (at least
+// a quarter of the sky's): a large rectangle close by, a small one far away, a disk and a
+// sphere; within 1% on average, 2% seen within 60 degrees of the normal.
+TEST_F(AreaLightTest, SurfacesReflectTheLightAsTheBrdfIntegratedOverIt) {
   struct Case {
+    scene::LightType type;
     float height;
-    glm::vec2 size;
-    float intensity;  // the small, far light as bright on the floor as the large one
+    glm::vec2 size;  // rect: width, height; disk, sphere: x the radius
+    float intensity;  // each about as bright on the floor as the first
   };
-  for (const Case& c : {Case{1.5f, {2.0f, 1.0f}, 2.0f}, Case{4.0f, {0.4f, 0.3f}, 200.0f}}) {
+  for (const Case& c : {Case{scene::LightType::rect, 1.5f, {2.0f, 1.0f}, 2.0f},
+                        Case{scene::LightType::rect, 4.0f, {0.4f, 0.3f}, 200.0f},
+                        Case{scene::LightType::disk, 1.5f, {0.6f, 0.0f}, 4.0f},
+                        Case{scene::LightType::sphere, 2.0f, {0.3f, 0.0f}, 20.0f}}) {
     const float height = c.height;
     const glm::vec2 size = c.size;
     scene::Scene scene = floor_under_rect_light(height, size, 1);
+    scene.lights[0].type = c.type;
+    scene.lights[0].radius = c.size.x;
     scene.lights[0].intensity = c.intensity;
     scene.lights[0].shadow.technique = "constant";  // no map: the shading alone
     scene.lights[0].shadow.parameters["transmittance"] = 1.0;
@@ -206,7 +238,7 @@ TEST_F(AreaLightTest, SurfacesReflectTheRectangleAsTheBrdfIntegratedOverIt) {
         if (!p) continue;
         const glm::vec3 v = glm::normalize(view.camera_position - *p);
         const glm::vec3 expected =
-            light.color * light.intensity * monte_carlo_rect(light, surface, *p, glm::vec3(0, 1, 0), v);
+            light.color * light.intensity * monte_carlo_area_light(light, surface, *p, glm::vec3(0, 1, 0), v);
         // Where the light's part is a small share of the pixel, the half-float colour (11
         // bits) cannot resolve it after the sky is taken away.
         if (expected.g < 0.25f * sky.at(x, y)[1]) continue;
@@ -219,7 +251,10 @@ TEST_F(AreaLightTest, SurfacesReflectTheRectangleAsTheBrdfIntegratedOverIt) {
         }
         ++checked;
       }
-    std::cout << "[ rect light  ] " << size.x << "x" << size.y << " m at " << height << " m: " << checked
+    const std::string extent = c.type == scene::LightType::rect
+                                   ? std::to_string(size.x) + " x " + std::to_string(size.y) + " m"
+                                   : "radius " + std::to_string(size.x) + " m";
+    std::cout << "[ area light  ] " << scene::to_string(c.type) << ", " << extent << ", at " << height << " m: " << checked
               << " pixels, mean error " << total_error / (3 * checked) << ", worst " << worst_within_60
               << " viewed within 60 degrees of the normal, " << worst << " beyond\n";
     EXPECT_GT(checked, 50);

@@ -276,6 +276,18 @@ TEST(SceneDescription, RectLight) {
   EXPECT_EQ(defaults.virtual_lights, 16);
 }
 
+TEST(SceneDescription, DiskAndSphereLights) {
+  const SceneDescription scene = parse(full_scene(R"("lights": [)", R"("lights": [
+      { "name": "disk", "type": "disk", "position": [0, 3, 0], "direction": [0, -1, 0], "radius": 0.4, "two_sided": true },
+      { "name": "bulb", "type": "sphere", "position": [1, 2, 0], "radius": 0.1, "virtual_lights": 8 },)"));
+  EXPECT_EQ(scene.lights.at(0).type, LightType::disk);
+  EXPECT_FLOAT_EQ(scene.lights[0].radius, 0.4f);
+  EXPECT_TRUE(scene.lights[0].two_sided);
+  EXPECT_EQ(scene.lights.at(1).type, LightType::sphere);
+  EXPECT_FLOAT_EQ(scene.lights[1].radius, 0.1f);
+  EXPECT_EQ(scene.lights[1].virtual_lights, 8);
+}
+
 TEST(SceneDescriptionErrors, RectLight) {
   EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0])")),
               HasSubstr("lights[0].size: required key is missing"));
@@ -291,6 +303,17 @@ TEST(SceneDescriptionErrors, RectLight) {
               HasSubstr("lights[0].outer_cone_deg: only spot lights have this"));
   EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "size": [1, 1],)")),
               HasSubstr("lights[0].size: only rect lights have this"));
+  auto with_light = [](const std::string& light) {
+    return full_scene(R"("lights": [)", R"("lights": [ )" + light + ",");
+  };
+  EXPECT_THAT(error_of(with_light(R"({ "type": "disk", "position": [0, 3, 0], "direction": [0, -1, 0] })")),
+              HasSubstr("lights[0].radius: required key is missing"));
+  EXPECT_THAT(error_of(with_light(R"({ "type": "sphere", "position": [0, 3, 0], "radius": 0 })")),
+              HasSubstr("lights[0].radius: must be > 0"));
+  EXPECT_THAT(error_of(with_light(R"({ "type": "sphere", "position": [0, 3, 0], "radius": 1, "direction": [0, -1, 0] })")),
+              HasSubstr("lights[0].direction: sphere lights shine every way; remove it"));
+  EXPECT_THAT(error_of(with_light(R"({ "type": "sphere", "position": [0, 3, 0], "radius": 1, "two_sided": true })")),
+              HasSubstr("lights[0].two_sided: only rect and disk lights have this"));
 }
 
 // The fog block (scene/fog.h): a global medium, boxes of their own, the sky and the grid.
@@ -349,7 +372,7 @@ TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", "")), HasSubstr("volumes[0].grid: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("type": "spot", )", "")), HasSubstr("lights[1].type: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "position": [1, 1, 1],)")),
-              HasSubstr("lights[0].position: only spot, point and rect lights have this"));
+              HasSubstr("lights[0].position: only spot, point and area lights have this"));
   EXPECT_THAT(error_of(full_scene(R"("target": [0, 0, 0], "inner)", R"("target": [0, 0, 0], "direction": [0, -1, 0], "inner)")),
               HasSubstr("lights[1].direction: give exactly one of 'direction' and 'target'"));
   EXPECT_THAT(error_of(full_scene(R"("scale": 2 })", R"("scale": 2, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1] })")),

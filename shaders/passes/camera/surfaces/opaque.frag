@@ -1,6 +1,6 @@
 #version 460
 // glTF metallic-roughness shading (common/pbr_brdf.glsl): every light times its
-// transmittance map (rect lights integrated over their rectangle, common/area_light.glsl,
+// transmittance map (area lights integrated over their shape, common/area_light.glsl,
 // times the mean of their virtual lights' maps), the sky, emission.
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
@@ -66,9 +66,10 @@ void main() {
   vec3 lit = pbr_sky(surface, dot(n, to_camera), kSkyAmbient, occlusion);
   lit += m.emissive.rgb * texture(emissive_texture, in_uv).rgb;
   for (uint i = 0u; i < pc.light_count; ++i) {
-    if (uint(lights[i].position_type.w + 0.5) == kLightRect) {
+    uint type = uint(lights[i].position_type.w + 0.5);
+    if (is_area_light(type)) {
       vec3 to_centre = normalize(lights[i].position_type.xyz - in_world);
-      vec3 reflected = rect_light_reflected(lights[i], surface, in_world, n, to_camera);
+      vec3 reflected = area_light_reflected(lights[i], type, surface, in_world, n, to_camera);
       if (all(equal(reflected, vec3(0.0)))) continue;
       lit += reflected * surface_light_transmittance(i, in_world, geometric_n, to_centre);
       continue;
