@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -334,9 +333,7 @@ struct Shadows::Impl {
         fog(context),
         fog_scattering(context, library),
         fog_integration(context, library) {
-    // One entry that lights nothing until set_lights gives the lights.
-    light_buffers.create(context, {sizeof(passes::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                   gpu::MemoryLocation::HostUpload, "fog lights"});
+    light_buffers.create(context, passes::light_buffer_desc(0, "fog lights"));  // until set_lights
   }
   gpu::Context& context;
   ShaderLocation location;
@@ -353,9 +350,7 @@ struct Shadows::Impl {
     frame.fog = fog.write(frame.shadows.frame_slot, frame.view);
     if (!fog.enabled()) return;
     const gpu::Buffer& lights = light_buffers[frame.shadows.frame_slot];
-    std::vector<passes::GpuLight> data(std::max<size_t>(scene_lights.size(), 1), passes::GpuLight{});
-    for (size_t i = 0; i < scene_lights.size(); ++i) data[i] = passes::to_gpu(scene_lights[i]);
-    std::memcpy(lights.mapped(), data.data(), data.size() * sizeof(passes::GpuLight));
+    passes::write_lights(lights, scene_lights);  // the slot's previous frame has completed
     frame.lights = &lights;
     frame.light_count = uint32_t(scene_lights.size());
     const rg::TextureHandle froxels = fog_scattering.add_to_graph(graph, frame);
@@ -431,9 +426,7 @@ void Shadows::set_lights(const std::vector<Light>& lights, const Bounds& casters
       impl_->maps.place_light(i, scene_lights[i].position, scene_lights[i].direction);
   } else {
     impl_->maps.set_lights(scene_lights, casters_bounds, {}, objects);
-    impl_->light_buffers.create(impl_->context, {std::max<uint64_t>(scene_lights.size(), 1) * sizeof(passes::GpuLight),
-                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload,
-                                                 "fog lights"});
+    impl_->light_buffers.create(impl_->context, passes::light_buffer_desc(scene_lights.size(), "fog lights"));
   }
   impl_->scene_lights = scene_lights;
   impl_->fog.set_fog(impl_->fog.fog(), casters_bounds);

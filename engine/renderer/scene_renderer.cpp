@@ -1,6 +1,5 @@
 #include "renderer/scene_renderer.h"
 
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -55,9 +54,7 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   light_count_ = uint32_t(scene.lights.size());
   fitted_bounds_ = scene.bounds;
   mesh_objects_ = passes::mesh_caster_objects(scene);
-  // At least one entry, which lights nothing, so that a scene without lights binds something.
-  light_buffers_.create(ctx_, {std::max<uint64_t>(light_count_, 1) * sizeof(passes::GpuLight),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::HostUpload, "scene lights"});
+  light_buffers_.create(ctx_, passes::light_buffer_desc(light_count_, "scene lights"));
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
@@ -140,13 +137,6 @@ void SceneRenderer::update_mesh(uint32_t mesh, const scene::Mesh& now) {
   if (object != passes::kNoCasterObject) shadows_.caster_moved(object, now.bounds);
 }
 
-// The slot's previous frame has completed: nothing reads its copy any more.
-void SceneRenderer::write_lights(uint32_t slot) const {
-  std::vector<passes::GpuLight> data(std::max<size_t>(lights_.size(), 1), passes::GpuLight{});
-  for (size_t i = 0; i < lights_.size(); ++i) data[i] = passes::to_gpu(lights_[i]);
-  std::memcpy(light_buffers_[slot].mapped(), data.data(), data.size() * sizeof(passes::GpuLight));
-}
-
 void SceneRenderer::finish_frame(uint32_t slot) {
   shadows_.finish_frame(slot);
   finished_slot_ = slot;
@@ -177,7 +167,7 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   const rg::ImportState read_back = rg::ImportState::of(rg::Usage::TransferSrc);
   rg::TextureHandle hdr = rg::vulkan::import(graph, "hdr color", hdr_, passes::rewritten_after(read_back), read_back);
   rg::TextureHandle ldr = rg::vulkan::import(graph, "tonemapped", ldr_, passes::rewritten_after(read_back), read_back);
-  write_lights(slot);
+  passes::write_lights(light_buffers_[slot], lights_);  // the slot's previous frame has completed
 
   // What every camera pass reads this frame, published once.
   passes::FrameInputs frame;

@@ -186,7 +186,6 @@ class SceneRenderer {
   std::vector<glm::vec3> probe_points_;
   std::vector<glm::vec3> probe_normals_;  // set: the probes are surface points
   std::vector<passes::TexelSample> texel_samples_;
-  void write_lights(uint32_t slot) const;
   std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
   void create_resolution_pass();  // sized and ringed as the renderer is
 

@@ -1,6 +1,8 @@
 #include "passes/frame/lights.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "gpu/transfer.h"
 
@@ -38,11 +40,27 @@ GpuLight to_gpu(const scene::Light& light) {
           area_extent(light)};
 }
 
+namespace {
+// Every light as the shaders read it; no lights: one zero-radiance entry, which lights nothing.
+std::vector<GpuLight> gpu_lights(const std::vector<scene::Light>& lights) {
+  std::vector<GpuLight> data(std::max<size_t>(lights.size(), 1), GpuLight{});
+  for (size_t i = 0; i < lights.size(); ++i) data[i] = to_gpu(lights[i]);
+  return data;
+}
+}  // namespace
+
 gpu::Buffer upload_lights(const gpu::Context& ctx, const std::vector<scene::Light>& lights) {
-  std::vector<GpuLight> data;
-  for (const scene::Light& light : lights) data.push_back(to_gpu(light));
-  // No lights: one zero-radiance entry, which lights nothing.
-  return gpu::create_buffer_from(ctx, std::move(data), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene lights");
+  return gpu::create_buffer_from(ctx, gpu_lights(lights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene lights");
+}
+
+gpu::BufferDesc light_buffer_desc(size_t count, std::string name) {
+  return {std::max<size_t>(count, 1) * sizeof(GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+          gpu::MemoryLocation::HostUpload, std::move(name)};
+}
+
+void write_lights(const gpu::Buffer& buffer, const std::vector<scene::Light>& lights) {
+  const std::vector<GpuLight> data = gpu_lights(lights);
+  std::memcpy(buffer.mapped(), data.data(), data.size() * sizeof(GpuLight));
 }
 
 }  // namespace avsm::passes
