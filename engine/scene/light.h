@@ -115,7 +115,7 @@ inline bool is_area_light(LightType type) {
 }
 
 // The most virtual lights (maps) an area light's soft shadows take: shared::kMaxViewsPerLight.
-inline constexpr int kMaxVirtualLights = 64;
+inline constexpr int kMaxVirtualLights = 256;
 
 // The scene's "shadows" block: what holds for all of its lights' maps.
 struct SceneShadows {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace avsm::passes {
 namespace {
@@ -237,6 +238,45 @@ LightView make_virtual_light_view(const scene::Light& light, uint32_t index, uin
   spot.outer_cone_angle = spot.inner_cone_angle = kVirtualLightCone;
   spot.shadow.fit = scene::ShadowFit::view;
   return finish_view(spot_view(spot, box), resolution);
+}
+
+namespace {
+
+uint32_t virtual_lights_per_side(uint32_t count) {
+  return uint32_t(std::ceil(std::sqrt(double(std::max(count, 1u)))));
+}
+
+}  // namespace
+
+uint32_t virtual_light_tile_resolution(uint32_t resolution, uint32_t count) {
+  return std::max(resolution / virtual_lights_per_side(count), kMinVirtualLightTexels);
+}
+
+uint32_t virtual_light_shared_resolution(uint32_t resolution, uint32_t count) {
+  return virtual_light_tile_resolution(resolution, count) * virtual_lights_per_side(count);
+}
+
+VirtualLightMaps make_virtual_light_maps(const scene::Light& light, const scene::Bounds& casters,
+                                         uint32_t resolution) {
+  const uint32_t count = uint32_t(std::max(light.virtual_lights, 1));
+  VirtualLightMaps maps;
+  maps.tile = virtual_light_tile_resolution(resolution, count);
+  float near_depth = std::numeric_limits<float>::max(), far_depth = 0.0f;
+  for (uint32_t k = 0; k < count; ++k) {
+    LightView view = make_virtual_light_view(light, k, count, casters, maps.tile);
+    view.shared_first_texel = k * maps.tile * maps.tile;
+    near_depth = std::min(near_depth, view.near_depth);
+    far_depth = std::max(far_depth, view.far_depth);
+    maps.views.push_back(view);
+  }
+  for (LightView& view : maps.views) {
+    view.near_depth = near_depth;
+    view.far_depth = far_depth;
+  }
+  maps.shared = maps.views.front();
+  maps.shared.shared_first_texel = 0;
+  maps.shared.resolution = virtual_light_shared_resolution(resolution, count);
+  return maps;
 }
 
 float cube_face_tangent(uint32_t resolution) {

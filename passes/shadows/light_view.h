@@ -38,8 +38,15 @@ struct LightView {
   // exactly the texels the whole raster would. 0: the map is its own raster.
   uint32_t raster_resolution = 0;
   glm::uvec2 raster_origin{0u};
+  // A view whose map is a range of a map it shares (an area light's virtual light,
+  // VirtualLightMaps): its texels follow one another row by row from this texel of the
+  // shared map and its lists. 0 for a map of its own.
+  uint32_t shared_first_texel = 0;
 
   uint32_t raster() const { return raster_resolution != 0 ? raster_resolution : resolution; }
+  // Where the captures put its texels' lists (common/capture_lists.glsl): x its first
+  // texel, y its texels per row.
+  glm::uvec2 list_tile() const { return {shared_first_texel, resolution}; }
   float depth(const glm::vec3& p) const { return glm::dot(glm::vec3(depth_plane), p) + depth_plane.w; }
   float texel_size(float d) const { return texel_size_base + texel_size_per_depth * d; }
   // Where `world` lands on the map's uv square (unbounded: outside it beyond 0..1); nullopt
@@ -93,6 +100,27 @@ glm::vec3 virtual_light_position(const scene::Light& light, const glm::vec3& fac
 // lights fit theirs.
 LightView make_virtual_light_view(const scene::Light& light, uint32_t index, uint32_t count,
                                   const scene::Bounds& casters, uint32_t resolution);
+
+// An area light's virtual lights' maps, built as one batch: one shared map of about the
+// light's shadow.resolution holds a small map per virtual light (ceil(sqrt(K))^2 tiles'
+// worth of texels), so the captures, sort and build run once over as many texels as
+// one hard light's map, whatever K. Virtual light k's texels are the range from
+// k * tile^2 on (LightView::shared_first_texel), and every map's depths span the same
+// range (one build quantises them all).
+struct VirtualLightMaps {
+  LightView shared;              // the shared map: its view is virtual light 0's, its resolution the whole
+  std::vector<LightView> views;  // per virtual light, each `tile` texels per side
+  uint32_t tile = 1;
+};
+// The smallest virtual-light map, in texels per side: below it a map no longer
+// separates the casters of the scenes area lights light.
+inline constexpr uint32_t kMinVirtualLightTexels = 8;
+// Each virtual light's map and the shared map, in texels per side, for `count` virtual
+// lights of a light whose shadow.resolution is `resolution`.
+uint32_t virtual_light_tile_resolution(uint32_t resolution, uint32_t count);
+uint32_t virtual_light_shared_resolution(uint32_t resolution, uint32_t count);
+VirtualLightMaps make_virtual_light_maps(const scene::Light& light, const scene::Bounds& casters,
+                                         uint32_t resolution);
 
 // A directional light's map over what the camera slice sees of the casters: a square
 // of the slice's bounding-sphere size (or the casters' rectangle, when smaller) around

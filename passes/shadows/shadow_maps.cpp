@@ -121,8 +121,8 @@ void ShadowMaps::create_frame_buffers(MapState& map) const {
   map.declared.resize(frames_in_flight());
 }
 
-// A light's maps: one, six cube faces, a map per cascade, per caster cluster or per
-// virtual light of an area light.
+// A light's maps: one, six cube faces, a map per cascade or per caster cluster, or an
+// area light's one map of its virtual lights' maps.
 void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, const std::vector<CasterObject>& objects) {
   LightState& light = lights_[index];
   const scene::Light& l = light.light;
@@ -140,8 +140,8 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
     light.views = shared::kViewsCube;
     for (int face = 0; face < 6; ++face) add(name + " face " + std::to_string(face), casters)->face = face;
   } else if (scene::is_area_light(l.type)) {
-    light.views = shared::kViewsVirtualLights;
-    for (int k = 0; k < l.virtual_lights; ++k) add(name + " virtual " + std::to_string(k), casters)->virtual_light = k;
+    light.views = shared::kViewsVirtualLights;  // one map holds them all
+    add(name + " virtual lights", casters);
   } else if (l.shadow.cascades > 1) {
     light.views = shared::kViewsCascades;  // update_views() fits each to the camera
     for (int c = 0; c < l.shadow.cascades; ++c) add(name + " cascade " + std::to_string(c), casters);
@@ -162,13 +162,17 @@ void ShadowMaps::add_light_maps(uint32_t index, const scene::Bounds& casters, co
   const std::shared_ptr<PageTable> pages = is_paged(light) ? create_page_table(light) : nullptr;
   for (MapState& map : maps) {
     map.record = light.views == shared::kViewsSingle ? index : record_count_++;
+    if (light.views == shared::kViewsVirtualLights) {
+      map.first_virtual_record = record_count_;
+      record_count_ += uint32_t(l.virtual_lights);
+    }
     map.map_state = initial_map_state(light);
     if (pages) create_page_state(map, pages);
     create_frame_buffers(map);
     // A paged map's lists are its pages' (a pool of them), kept for the reference only on request.
     map.lookups_read_lists = light.technique->reads_capture_lists() || has_reference(index);
     maps_.push_back(std::move(map));
-    maps_.back().view = initial_view(maps_.back());
+    reset_view(maps_.back());
   }
 }
 

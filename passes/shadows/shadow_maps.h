@@ -203,7 +203,10 @@ class ShadowMaps {
     std::string prefix;   // its passes' names start with it ("light 0", "light 1 face 2")
     LightView view;
     int face = -1;               // a point light's cube face, else -1
-    int virtual_light = -1;      // a rect light's virtual light, else -1
+    // An area light's one map: its virtual lights' maps, each a range of it
+    // (make_virtual_light_maps); their records follow one another from first_virtual_record.
+    std::vector<LightView> virtual_views;
+    uint32_t first_virtual_record = 0;
     scene::Bounds fit_bounds;    // what it covers before a camera is known
     std::optional<std::vector<uint32_t>> objects;  // a cluster's CasterObjects; unset: every caster
     TechniqueMapState map_state;
@@ -251,17 +254,21 @@ class ShadowMaps {
   std::string list_readers() const;
   // shadow_maps_views.cpp: the light views.
   LightView initial_view(const MapState& map) const;
+  void reset_view(MapState& map) const;  // initial_view() and (area lights) the virtual lights' views
   void update_views(const View& camera);
   void move_page_windows(const View& camera);
   // shadow_maps_records.cpp: the frame's GpuShadow records.
   GpuShadow gpu_shadow(const MapState& map, const View& camera) const;
+  GpuShadow virtual_light_record(const MapState& map, const GpuShadow& shared, uint32_t k) const;
   std::vector<GpuShadow> frame_records(const View& camera) const;
   rg::BufferHandle add_parameter_upload(rg::Graph& graph, const View& camera, uint32_t slot) const;
   // shadow_maps_graph.cpp: the frame's passes.
   CaptureLists add_capture_lists(rg::Graph& graph, const MapState& map, const ShadowCasters& casters,
                                  uint32_t slot) const;
-  CaptureLists add_capture_lists(rg::Graph& graph, const std::string& prefix, const LightView& view, bool sort,
-                                 uint64_t capacity, rg::BufferHandle counter, const ShadowCasters& casters) const;
+  // Lists of `resolution`^2 texels holding each of `views` (one, or an area light's virtual lights).
+  CaptureLists add_capture_lists(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
+                                 const std::vector<LightView>& views, bool sort, uint64_t capacity,
+                                 rg::BufferHandle counter, const ShadowCasters& casters) const;
   void add_list_copy(rg::Graph& graph, const MapState& map, const CaptureLists& lists, ShadowInputs& inputs) const;
   void add_list_copy(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
                      const gpu::Buffer& target_heads, const gpu::Buffer& target_nodes, uint32_t resolution,

@@ -49,13 +49,16 @@ uint64_t ShadowMaps::map_budget() const {
 // A map's state before its first frame, at its light's (possibly lowered) resolution.
 TechniqueMapState ShadowMaps::initial_map_state(const LightState& light) const {
   // A paged map's builds are dense maps of a page each, of one level.
-  const bool paged = is_paged(light);
-  const uint32_t resolution = uint32_t(paged ? light.light.shadow.page_size : light.light.shadow.resolution);
+  // An area light's map holds its virtual lights' maps as ranges of its texels, none with mips.
+  const bool paged = is_paged(light), virtual_lights = light.views == shared::kViewsVirtualLights;
+  uint32_t resolution = uint32_t(paged ? light.light.shadow.page_size : light.light.shadow.resolution);
+  if (virtual_lights)
+    resolution = virtual_light_shared_resolution(resolution, uint32_t(light.light.virtual_lights));
   TechniqueMapState state;
   state.layout.resolution = resolution;
   state.layout.nodes = uint32_t(light.light.shadow.nodes);
   // Techniques without mips look trilinear up as bilinear.
-  state.layout.levels = paged ? 1 : light.technique->mip_levels(light.light.shadow, resolution);
+  state.layout.levels = paged || virtual_lights ? 1 : light.technique->mip_levels(light.light.shadow, resolution);
   light.technique->prepare(state);
   return state;
 }
@@ -113,7 +116,7 @@ void ShadowMaps::fit_to_budget() {
     for (uint32_t m = largest->first_map; m < largest->first_map + largest->map_count; ++m) {
       MapState& map = maps_[m];
       map.map_state = initial_map_state(*largest);
-      map.view = initial_view(map);
+      reset_view(map);
     }
   }
 }

@@ -169,7 +169,8 @@ void ShadowMaps::finish_frame(uint32_t slot) {
     LightShadowStats& stats = per_light[i];
     const LightState& light = lights_[i];
     stats.light = stats_[i].light;
-    stats.maps = light.map_count;
+    stats.maps = light.views == shared::kViewsVirtualLights ? uint32_t(maps_[light.first_map].virtual_views.size())
+                                                            : light.map_count;
     stats.map_kind = light.views == shared::kViewsCube        ? "cube"
                      : light.views == shared::kViewsCascades  ? "cascades"
                      : light.views == shared::kViewsClusters  ? "clusters"

@@ -70,18 +70,20 @@ CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const MapState& map
   const scene::ShadowSettings& settings = lights_[map.light].light.shadow;
   rg::BufferHandle counter = rg::vulkan::import(graph, map.prefix + " capture counter", map.counter[slot],
                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  return add_capture_lists(graph, map.prefix, map.view, settings.sort, map.capacity, counter, casters);
+  const std::vector<LightView> views = map.virtual_views.empty() ? std::vector<LightView>{map.view} : map.virtual_views;
+  return add_capture_lists(graph, map.prefix, map.view.resolution, views, settings.sort, map.capacity, counter, casters);
 }
 
-// The lists of one view (a map, or a page of a paged map).
-CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const std::string& prefix, const LightView& view, bool sort,
-                                           uint64_t capacity, rg::BufferHandle counter,
-                                           const ShadowCasters& casters) const {
-  CaptureLists lists = add_capture_clear_pass(graph, prefix, view.resolution, capacity, counter);
-  lists = capture_opaque_.add_to_graph(graph, prefix, lists, view, casters.meshes);
-  lists = capture_hair_.add_to_graph(graph, prefix, lists, view, casters.strands);
-  lists = capture_smoke_.add_to_graph(graph, prefix, lists, view, casters.volumes, options_.smoke_samples_per_segment);
-  if (sort) lists = sort_.add_to_graph(graph, prefix, lists, view.resolution);
+// The lists of a map, a page of a paged map, or an area light's virtual lights (each a
+// range of the lists' texels: one pass per caster kind draws them all).
+CaptureLists ShadowMaps::add_capture_lists(rg::Graph& graph, const std::string& prefix, uint32_t resolution,
+                                           const std::vector<LightView>& views, bool sort, uint64_t capacity,
+                                           rg::BufferHandle counter, const ShadowCasters& casters) const {
+  CaptureLists lists = add_capture_clear_pass(graph, prefix, resolution, capacity, counter);
+  lists = capture_opaque_.add_to_graph(graph, prefix, lists, views, casters.meshes);
+  lists = capture_hair_.add_to_graph(graph, prefix, lists, views, casters.strands);
+  lists = capture_smoke_.add_to_graph(graph, prefix, lists, views, casters.volumes, options_.smoke_samples_per_segment);
+  if (sort) lists = sort_.add_to_graph(graph, prefix, lists, resolution);
   return lists;
 }
 

@@ -132,7 +132,7 @@ void ShadowMaps::add_page_build(rg::Graph& graph, MapState& map, DeclaredMap& de
       gpu::Buffer::region(map.page_counters[slot], index * page_counter_stride(), 16, prefix + " capture counter")));
   rg::BufferHandle counter = rg::vulkan::import(graph, prefix + " capture counter", counter_region,
                                                 rg::ImportState::none(), rg::ImportState::of(rg::Usage::HostRead));
-  CaptureLists lists = add_capture_lists(graph, prefix, view, settings.sort, map.capacity, counter, casters);
+  CaptureLists lists = add_capture_lists(graph, prefix, view.resolution, {view}, settings.sort, map.capacity, counter, casters);
   if (map.lookups_read_lists) add_page_list_copy(graph, declared, map, page, prefix, lists, inputs);
   if (!light.technique->has_map()) return;  // the uncompressed technique: its lists are its pages
   const uint64_t bytes_per_slot = paged_slot_bytes(settings);

@@ -70,11 +70,37 @@ GpuShadow ShadowMaps::gpu_shadow(const MapState& map, const View& camera) const 
   return g;
 }
 
+// Virtual light k's record of an area light's map whose record is `shared`: its range of
+// the map's texels and lists, seen from its own view, bilinear (the mean over the virtual
+// lights is the soft shadow's filter, and the map has no mips).
+GpuShadow ShadowMaps::virtual_light_record(const MapState& map, const GpuShadow& shared, uint32_t k) const {
+  const LightView& v = map.virtual_views[k];
+  const LightState& light = lights_[map.light];
+  GpuShadow g = shared;
+  g.light_from_world = v.light_from_world;
+  g.depth_plane = v.depth_plane;
+  g.texel_camera = glm::vec4(v.texel_size_base, v.texel_size_per_depth, v.far_depth, shared.texel_camera.w);
+  g.resolution = v.resolution;
+  g.mip_count = 1;
+  g.filter_mode = std::min(g.filter_mode, shared::kFilterBilinear);
+  g.kernel = shared::kKernelNone;
+  const uint64_t texels = uint64_t(map.view.resolution) * map.view.resolution;
+  const uint64_t texel_bytes = light.technique->map_bytes(light.light.shadow, map.map_state) / texels;
+  g.map_offset += uint32_t(v.shared_first_texel * texel_bytes / sizeof(glm::vec4));
+  g.list_heads_offset += v.shared_first_texel;
+  g.reference = shared.reference == kNoReference ? kNoReference : record_count_ + map.first_virtual_record + k;
+  return g;
+}
+
 // Every record of the frame: each map's, each multi-map light's (its first map's with how
 // to find the others), then the exact references.
 std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
   std::vector<GpuShadow> records(uint64_t(record_count_) * (options_.keep_reference ? 2 : 1));
-  for (const MapState& map : maps_) records[map.record] = gpu_shadow(map, camera);
+  for (const MapState& map : maps_) {
+    records[map.record] = gpu_shadow(map, camera);
+    for (uint32_t k = 0; k < map.virtual_views.size(); ++k)
+      records[map.first_virtual_record + k] = virtual_light_record(map, records[map.record], k);
+  }
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     const LightState& light = lights_[i];
     if (light.views == shared::kViewsSingle) continue;
@@ -82,8 +108,8 @@ std::vector<GpuShadow> ShadowMaps::frame_records(const View& camera) const {
     GpuShadow& g = records[i];
     g = records[first.record];
     g.views = light.views;
-    g.first_view = first.record;
-    g.view_count = light.map_count;
+    g.first_view = light.views == shared::kViewsVirtualLights ? first.first_virtual_record : first.record;
+    g.view_count = light.views == shared::kViewsVirtualLights ? uint32_t(first.virtual_views.size()) : light.map_count;
     g.reference = has_reference(i) ? record_count_ + i : kNoReference;
     if (light.views == shared::kViewsCube) g.view_select = glm::vec4(light.light.position, 0.0f);
     if (light.views == shared::kViewsCascades) {

@@ -10,7 +10,7 @@ void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const gl
   LightState& light = lights_.at(index);
   light.light.position = position;
   light.light.direction = direction;
-  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) maps_[m].view = initial_view(maps_[m]);
+  for (uint32_t m = light.first_map; m < light.first_map + light.map_count; ++m) reset_view(maps_[m]);
   // Every page (every face's: they share the table) saw the light from where it was.
   if (maps_[light.first_map].pages) maps_[light.first_map].pages->invalidate_all();
   // Maps fitted to the camera are fitted again by the next frame (update_views).
@@ -22,13 +22,23 @@ LightView ShadowMaps::initial_view(const MapState& map) const {
   const LightState& light = lights_[map.light];
   const scene::ShadowSettings& s = light.light.shadow;
   const uint32_t resolution = uint32_t(is_paged(light) ? s.virtual_resolution : s.resolution);  // paged: the virtual map
-  if (map.virtual_light >= 0)
-    return make_virtual_light_view(light.light, uint32_t(map.virtual_light), light.map_count, map.fit_bounds,
-                                   resolution);
+  if (light.views == shared::kViewsVirtualLights) return make_virtual_light_maps(light.light, map.fit_bounds, resolution).shared;
   if (map.face >= 0)  // paged: the guard texels of its coarsest level, one page
     return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution,
                                 is_paged(light) ? uint32_t(s.page_size) : 0u);
   return make_light_view(light.light, map.fit_bounds, resolution);
+}
+
+void ShadowMaps::reset_view(MapState& map) const {
+  const LightState& light = lights_[map.light];
+  if (light.views != shared::kViewsVirtualLights) {
+    map.view = initial_view(map);
+    return;
+  }
+  VirtualLightMaps virtual_maps =
+      make_virtual_light_maps(light.light, map.fit_bounds, uint32_t(light.light.shadow.resolution));
+  map.view = virtual_maps.shared;
+  map.virtual_views = std::move(virtual_maps.views);
 }
 
 // Maps fitted to the camera follow it: a directional light's (fit view) and its cascades.
@@ -73,7 +83,10 @@ void ShadowMaps::move_page_windows(const View& camera) {
 std::vector<LightView> ShadowMaps::map_views(uint32_t light) const {
   std::vector<LightView> views;
   const LightState& l = lights_.at(light);
-  for (uint32_t m = l.first_map; m < l.first_map + l.map_count; ++m) views.push_back(maps_[m].view);
+  for (uint32_t m = l.first_map; m < l.first_map + l.map_count; ++m) {
+    if (!maps_[m].virtual_views.empty()) return maps_[m].virtual_views;
+    views.push_back(maps_[m].view);
+  }
   return views;
 }
 

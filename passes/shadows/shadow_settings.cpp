@@ -34,6 +34,7 @@ void check_light_settings(const scene::Light& light, size_t index) {
       (light.virtual_lights < 1 || light.virtual_lights > int(shared::kMaxViewsPerLight)))
     throw std::invalid_argument(who + ": " + std::to_string(light.virtual_lights) + " virtual lights; use 1 to " +
                                 std::to_string(shared::kMaxViewsPerLight));
+  if (scene::is_area_light(light.type)) check_virtual_light_settings(light, who);
   if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
     throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
   if (s.kernel_radius < 1 || s.kernel_radius > int(shared::kMaxKernelRadius))
@@ -43,6 +44,19 @@ void check_light_settings(const scene::Light& light, size_t index) {
     throw std::invalid_argument(who + ": shadow resolution " + std::to_string(s.resolution) + " is outside 1..16384");
   if (s.layout == scene::ShadowLayout::paged) check_paged_settings(light, who);
   check_shadow_settings(s, who);
+}
+
+// An area light's virtual lights' maps are built as one map from one set of capture
+// lists, each a range of its texels (make_virtual_light_maps).
+void check_virtual_light_settings(const scene::Light& light, const std::string& who) {
+  const scene::ShadowSettings& s = light.shadow;
+  if (s.build == scene::ShadowBuild::fixed)
+    throw std::invalid_argument(who + ": an area light's virtual lights' maps are built together from capture lists; "
+                                "set shadow.build to \"lists\"");
+  const ShadowTechnique* technique = find_shadow_technique(s.technique);  // unknown ones: check_shadow_settings()
+  if (technique && !technique->map_is_texel_ranges())
+    throw std::invalid_argument(who + ": an area light's virtual lights share one map, which technique '" + s.technique +
+                                "' cannot split; set shadow.technique to \"avsm\" (or another but \"dsm\")");
 }
 
 // What paged maps build today: AVSM from capture lists, one virtual map per light (six

@@ -47,6 +47,9 @@ void check_light_settings(const scene::Light& light, size_t index);
 
 // The part of check_light_settings() for shadow.layout "paged" (`who` names the light).
 void check_paged_settings(const scene::Light& light, const std::string& who);
+// Throws std::invalid_argument naming `who` and the setting when an area light's
+// virtual-light maps cannot be built from them.
+void check_virtual_light_settings(const scene::Light& light, const std::string& who);
 
 // Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose
 // lookups walk them) rather than AVSM curves.

@@ -31,13 +31,26 @@ layout(std430, binding = AVSM_CAPTURE_BINDING + 1) buffer CaptureNodes { Capture
 // count: nodes asked for this frame, including those that did not fit.
 layout(std430, binding = AVSM_CAPTURE_BINDING + 2) buffer CaptureCounter { uint capture_count; };
 
-// Appends a segment to the list of `texel`. When the node buffer is full the
-// segment is counted (so the next frame can grow the buffer) and dropped: no write
-// goes out of bounds and the list stays well formed, only lighter than it should be.
-void capture_append(ivec2 texel, float entry, float exit_depth, float exit_trans) {
+// The head of map texel `texel` of a view whose lists are `tile` of the head image
+// (x: its first texel, y: its texels per row; LightView::list_tile()): its texels
+// follow one another row by row from tile.x, laid on the image's rows. A view with
+// lists of its own (tile (0, image width)) keeps its texels where they are; an area
+// light's virtual lights share one image, each a range of its texels (and so of the
+// map built from it).
+ivec2 capture_head_texel(ivec2 texel, uvec2 tile) {
+  uint width = uint(imageSize(capture_heads).x);
+  uint index = tile.x + uint(texel.y) * tile.y + uint(texel.x);
+  return ivec2(index % width, index / width);
+}
+
+// Appends a segment to the list of `texel` of the view whose tile is `tile`. When the
+// node buffer is full the segment is counted (so the next frame can grow the buffer)
+// and dropped: no write goes out of bounds and the list stays well formed, only
+// lighter than it should be.
+void capture_append(ivec2 texel, uvec2 tile, float entry, float exit_depth, float exit_trans) {
   uint index = atomicAdd(capture_count, 1u);
   if (index >= uint(capture_nodes.length())) return;
-  uint previous = imageAtomicExchange(capture_heads, texel, index);
+  uint previous = imageAtomicExchange(capture_heads, capture_head_texel(texel, tile), index);
   capture_nodes[index] = CaptureSegment(entry, exit_depth, exit_trans, previous);
 }
 #endif

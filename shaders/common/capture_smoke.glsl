@@ -13,15 +13,14 @@
 #define AVSM_VOLUME_BINDING_PARAMETERS 2
 #define AVSM_CAPTURE_APPEND
 #include "common/capture_lists.glsl"
+#include "shared/passes/shadows/capture/capture_smoke.h"
 
 void smoke_light_segment(ivec2 texel, float entry_depth, float exit_depth, float transmittance) {
-  capture_append(texel, entry_depth, exit_depth, transmittance);
+  capture_append(texel, pc.list_tile, entry_depth, exit_depth, transmittance);
 }
 #include "common/smoke_light_march.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-
-#include "shared/passes/shadows/capture/capture_smoke.h"
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

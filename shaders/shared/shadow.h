@@ -32,7 +32,7 @@ GPU_CONST(uint, kViewsClusters, 3u)  // one map per caster cluster; transmittanc
 GPU_CONST(uint, kViewsVirtualLights, 4u)  // an area light: one map per virtual light; transmittances average
 // The most maps one light has (cube faces, cascades, clusters or virtual lights): the
 // lookup loops to it.
-GPU_CONST(uint, kMaxViewsPerLight, 64u)
+GPU_CONST(uint, kMaxViewsPerLight, 256u)
 GPU_CONST(uint, kMaxClustersPerLight, 8u)
 
 #define GPU_SHADOW(F, A)                                                                                        \

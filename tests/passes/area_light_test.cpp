@@ -17,6 +17,8 @@
 #include "gpu/transfer.h"
 #include "passes/camera/surfaces/pbr_brdf.h"
 #include "passes/frame/view.h"
+#include "passes/shadows/light_view.h"
+#include "passes/shadows/shadow_settings.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene.h"
 #include "shared/lights.h"
@@ -183,6 +185,9 @@ float crossing(const std::vector<float>& xs, const std::vector<float>& t, float 
 // over which the transmittance goes from 10% to 90%.
 float penumbra_width(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, float plank_height, int virtual_lights) {
   scene::Scene scene = floor_under_rect_light(3.0f, glm::vec2(1.0f), virtual_lights);
+  // The virtual lights share one map (1024 / 6 = 170 texels each at 32): its texels, 5 cm
+  // on the floor, blur each virtual light's edge much less than the penumbrae measured.
+  scene.lights[0].shadow.resolution = 1024;
   scene.meshes.push_back(box_mesh("plank", {-4.0f, plank_height, -1.0f}, {0.0f, plank_height + 0.05f, 1.0f}));
   scene.bounds.extend(scene.meshes.back().bounds);
   std::vector<glm::vec3> probes;
@@ -280,6 +285,59 @@ TEST_F(AreaLightTest, APenumbraWidensWithTheOccludersDistanceFromTheReceiver) {
   EXPECT_NEAR(low, 0.2f * 0.8f, 0.1f);   // 10-90% of a linear ramp: 80% of the penumbra
   EXPECT_NEAR(high, 1.0f * 0.8f, 0.25f);
   EXPECT_LT(hard, 0.1f);
+}
+
+// The K virtual lights' maps are ranges of one map about the light's shadow.resolution
+// wide: K tiles of resolution / ceil(sqrt K) texels, one after another, over one depth range.
+TEST(VirtualLightMaps, AreRangesOfOneMapOfTheLightsResolution) {
+  scene::Scene scene = floor_under_rect_light(3.0f, glm::vec2(1.0f), 64);
+  const scene::Light& light = scene.lights[0];
+  const passes::VirtualLightMaps maps = passes::make_virtual_light_maps(light, scene.bounds, 256);
+  ASSERT_EQ(maps.views.size(), 64u);
+  EXPECT_EQ(maps.tile, 32u);
+  EXPECT_EQ(maps.shared.resolution, 256u);
+  for (uint32_t k = 0; k < maps.views.size(); ++k) {
+    const passes::LightView& view = maps.views[k];
+    EXPECT_EQ(view.resolution, 32u);
+    EXPECT_EQ(view.shared_first_texel, k * 32u * 32u);
+    EXPECT_EQ(view.near_depth, maps.shared.near_depth);
+    EXPECT_EQ(view.far_depth, maps.shared.far_depth);
+    // Each from its own point on the light, looking down at the floor's centre.
+    const std::optional<glm::vec2> uv = view.uv(glm::vec3(0.0f));
+    ASSERT_TRUE(uv);
+    EXPECT_GT(uv->x, 0.0f);
+    EXPECT_LT(uv->x, 1.0f);
+    if (k > 0) EXPECT_NE(view.eye, maps.views[k - 1].eye);
+  }
+  // 10 virtual lights take 4 x 4 tiles' room; the smallest tile is kMinVirtualLightTexels.
+  EXPECT_EQ(passes::virtual_light_tile_resolution(256, 10), 64u);
+  EXPECT_EQ(passes::virtual_light_shared_resolution(256, 10), 256u);
+  EXPECT_EQ(passes::virtual_light_tile_resolution(64, 256), passes::kMinVirtualLightTexels);
+  EXPECT_EQ(passes::virtual_light_shared_resolution(64, 256), 16u * passes::kMinVirtualLightTexels);
+}
+
+// What the batched build cannot make is refused naming the light and the setting.
+TEST(VirtualLightMaps, SettingsTheBatchCannotBuildAreRefused) {
+  scene::Light light = floor_under_rect_light(3.0f, glm::vec2(1.0f), 16).lights[0];
+  auto error = [](const scene::Light& l) {
+    try {
+      passes::check_light_settings(l, 0);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(light), "");
+  scene::Light fixed = light;
+  fixed.shadow.build = scene::ShadowBuild::fixed;
+  EXPECT_NE(error(fixed).find("softbox"), std::string::npos) << error(fixed);
+  EXPECT_NE(error(fixed).find("set shadow.build to \"lists\""), std::string::npos) << error(fixed);
+  scene::Light deep = light;
+  deep.shadow.technique = "dsm";
+  EXPECT_NE(error(deep).find("set shadow.technique"), std::string::npos) << error(deep);
+  scene::Light many = light;
+  many.virtual_lights = 257;
+  EXPECT_NE(error(many).find("use 1 to 256"), std::string::npos) << error(many);
 }
 
 }  // namespace area_light_test

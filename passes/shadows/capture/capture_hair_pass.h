@@ -5,6 +5,8 @@
 // one minus the strand's opacity.
 #include <rendergraph/graph.h>
 
+#include <vector>
+
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadows/capture/capture_lists.h"
@@ -16,9 +18,11 @@ namespace avsm::passes {
 class CaptureHairPass {
  public:
   CaptureHairPass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds "<prefix> capture hair" when there are strands; returns the lists' new versions.
+  // Adds "<prefix> capture hair" when there are strands, drawing them into the lists of
+  // each of `views` (one; an area light's virtual lights: LightView::list_tile()); returns
+  // the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const StrandCasters& hair) const;
+                            const std::vector<LightView>& views, const StrandCasters& hair) const;
 
  private:
   gpu::Context& ctx_;

@@ -32,31 +32,33 @@ CaptureOpaquePass::CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary
 }
 
 CaptureLists CaptureOpaquePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                             const LightView& light, const MeshCasters& meshes) const {
+                                             const std::vector<LightView>& views, const MeshCasters& meshes) const {
   if (meshes.empty()) return lists;
   // The execute step copies the caster view: it runs when the executor records, after this returns.
   return graph.add_pass<CaptureLists>(prefix + " capture opaque", rg::QueueType::Graphics,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
-      [this, light, meshes](const CaptureLists& d, rg::PassContext& c) {
+      [this, views, meshes](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
-        begin_light_rendering(cmd, light);
-        pipeline_.bind(cmd);
-        vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
-        Push push{light.light_from_world, light.depth_plane, {light.texel_size_base, light.texel_size_per_depth},
-                  glm::ivec2(light.raster_origin)};
-        // Opaque draws first, under one binding; then each draw that tests alpha with its texture.
-        bind(cmd, c, d, meshes, MeshDraw{});
-        pipeline_.push_constants(cmd, push);
-        for (const MeshDraw& draw : meshes.draws)
-          if (!draw.tests_alpha()) draw_mesh(cmd, draw);
-        for (const MeshDraw& draw : meshes.draws) {
-          if (!draw.tests_alpha()) continue;
-          bind(cmd, c, d, meshes, draw);
-          CasterAlphaTextures::set_push(push, draw);
+        for (const LightView& light : views) {
+          begin_light_rendering(cmd, light);
+          pipeline_.bind(cmd);
+          vkCmdBindIndexBuffer(cmd, meshes.indices, 0, VK_INDEX_TYPE_UINT32);
+          Push push{light.light_from_world, light.depth_plane, {light.texel_size_base, light.texel_size_per_depth},
+                    glm::ivec2(light.raster_origin), light.list_tile()};
+          // Opaque draws first, under one binding; then each draw that tests alpha with its texture.
+          bind(cmd, c, d, meshes, MeshDraw{});
           pipeline_.push_constants(cmd, push);
-          draw_mesh(cmd, draw);
+          for (const MeshDraw& draw : meshes.draws)
+            if (!draw.tests_alpha()) draw_mesh(cmd, draw);
+          for (const MeshDraw& draw : meshes.draws) {
+            if (!draw.tests_alpha()) continue;
+            bind(cmd, c, d, meshes, draw);
+            CasterAlphaTextures::set_push(push, draw);
+            pipeline_.push_constants(cmd, push);
+            draw_mesh(cmd, draw);
+          }
+          vkCmdEndRendering(cmd);
         }
-        vkCmdEndRendering(cmd);
       });
 }
 

@@ -5,6 +5,8 @@
 // (passes/frame/caster_alpha.h). Rasterised at the map resolution with no attachments; both faces.
 #include <rendergraph/graph.h>
 
+#include <vector>
+
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/frame/caster_alpha.h"
@@ -17,9 +19,10 @@ namespace avsm::passes {
 class CaptureOpaquePass {
  public:
   CaptureOpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds "<prefix> capture opaque" when `meshes` has something to draw; returns the lists' new versions.
+  // Adds "<prefix> capture opaque" when `meshes` has something to draw, drawing them into the
+  // lists of each of `views` (as CaptureHairPass); returns the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const MeshCasters& meshes) const;
+                            const std::vector<LightView>& views, const MeshCasters& meshes) const;
 
  private:
   // Pushes the pass's bindings with `draw`'s alpha texture.

@@ -19,12 +19,12 @@ CaptureSmokePass::CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& 
                                            "capture smoke nanovdb")) {}
 
 CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                                            const LightView& light, const VolumeCasters& volumes,
+                                            const std::vector<LightView>& views, const VolumeCasters& volumes,
                                             uint32_t samples_per_segment) const {
   if (volumes.empty()) return lists;
   return graph.add_pass<CaptureLists>(prefix + " capture smoke", rg::QueueType::Compute,
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
-      [this, light, volumes, samples_per_segment](const CaptureLists& d, rg::PassContext& c) {
+      [this, views, volumes, samples_per_segment](const CaptureLists& d, rg::PassContext& c) {
         const bool atlas = volumes.has_atlas();
         const gpu::Pipeline& pipeline = atlas ? from_atlas_ : from_nanovdb_;
         pipeline.bind(c.cmd());
@@ -32,10 +32,12 @@ CaptureLists CaptureSmokePass::add_to_graph(rg::Graph& graph, const std::string&
         bind_volumes(bindings, volumes, atlas);
         bind_capture_lists(bindings, c, d);
         bindings.push(c.cmd());
-        pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
-                                               volumes.volume_count, samples_per_segment, volumes.volume_mask,
-                                               light.raster_origin, light.raster()});
-        pipeline.dispatch_threads(c.cmd(), light.resolution, light.resolution);
+        for (const LightView& light : views) {
+          pipeline.push_constants(c.cmd(), Push{light.world_from_light, light.depth_plane, light.resolution,
+                                                 volumes.volume_count, samples_per_segment, volumes.volume_mask,
+                                                 light.raster_origin, light.raster(), 0u, light.list_tile()});
+          pipeline.dispatch_threads(c.cmd(), light.resolution, light.resolution);
+        }
       });
 }
 

@@ -7,6 +7,8 @@
 // Shaders: shaders/passes/shadows/capture/capture_smoke.comp, capture_smoke_nanovdb.comp.
 #include <rendergraph/graph.h>
 
+#include <vector>
+
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "passes/shadows/capture/capture_lists.h"
@@ -22,9 +24,10 @@ class CaptureSmokePass {
   static constexpr uint32_t kDefaultSamplesPerSegment = 16;
 
   CaptureSmokePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
-  // Adds "<prefix> capture smoke" when there are volumes; returns the lists' new versions.
+  // Adds "<prefix> capture smoke" when there are volumes, marching them for each of `views`
+  // (as CaptureHairPass); returns the lists' new versions.
   CaptureLists add_to_graph(rg::Graph& graph, const std::string& prefix, const CaptureLists& lists,
-                            const LightView& light, const VolumeCasters& volumes,
+                            const std::vector<LightView>& views, const VolumeCasters& volumes,
                             uint32_t samples_per_segment = kDefaultSamplesPerSegment) const;
 
  private:

@@ -108,6 +108,10 @@ class ShadowTechnique {
   virtual bool reads_capture_lists() const { return false; }
   // Whether it can build its map straight from the casters (scene::ShadowBuild::fixed).
   virtual bool builds_fixed() const { return false; }
+  // Whether its map is its texels one after another, the same bytes each and nothing
+  // else (map_bytes() / resolution^2 each, without mips), so that one map can hold
+  // several views' maps as ranges of its texels (an area light's virtual lights').
+  virtual bool map_is_texel_ranges() const { return true; }
   // Whether its map stores AVSM node curves (texel plots show the nodes).
   virtual bool stores_avsm_nodes() const { return false; }
   // Map mip levels for these settings (1: none).

@@ -53,6 +53,7 @@ class Dsm final : public ShadowTechnique {
     state.pool_nodes = uint64_t(state.layout.resolution) * state.layout.resolution * 8;
     state.build_dispatches = 1;
   }
+  bool map_is_texel_ranges() const override { return false; }  // a header, then a node pool
   uint64_t map_bytes(const scene::ShadowSettings&, const TechniqueMapState& state) const override {
     return (uint64_t(shared::dsm_pool_base(state.layout.resolution)) + 2 * state.pool_nodes) * 4;
   }

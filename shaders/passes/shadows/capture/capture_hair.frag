@@ -16,5 +16,5 @@ layout(location = 2) flat in vec4 in_color_opacity;
 void main() {
   float depth = dot(pc.depth_plane.xyz, in_world) + pc.depth_plane.w;
   float thickness = pc.texel_size.x + pc.texel_size.y * depth;
-  capture_append(ivec2(gl_FragCoord.xy) - pc.raster_origin, depth, depth + thickness, 1.0 - clamp(in_color_opacity.a, 0.0, 1.0));
+  capture_append(ivec2(gl_FragCoord.xy) - pc.raster_origin, pc.list_tile, depth, depth + thickness, 1.0 - clamp(in_color_opacity.a, 0.0, 1.0));
 }

@@ -20,5 +20,5 @@ void main() {
   if (transmittance >= 1.0) return;  // a hole: nothing to append
   float depth = dot(pc.depth_plane.xyz, in_world) + pc.depth_plane.w;
   float thickness = pc.texel_size.x + pc.texel_size.y * depth;
-  capture_append(ivec2(gl_FragCoord.xy) - pc.raster_origin, depth, depth + thickness, transmittance);
+  capture_append(ivec2(gl_FragCoord.xy) - pc.raster_origin, pc.list_tile, depth, depth + thickness, transmittance);
 }

@@ -10,7 +10,8 @@ GPU_NAMESPACE_BEGIN
   F(vec2, viewport)                                                             \
   F(ivec2, raster_origin)    /* LightView::raster_origin: map texel = frag - it */ \
   F(vec4, depth_plane)       /* light depth(p) = dot(xyz, p) + w */             \
-  F(vec4, texel_size)        /* world size of a texel at depth d: x + y * d */
+  F(vec2, texel_size)        /* world size of a texel at depth d: x + y * d */  \
+  F(uvec2, list_tile)        /* LightView::list_tile() */
 GPU_PUSH_CONSTANTS(CaptureHairPush, GPU_CAPTURE_HAIR_PUSH)
 
 GPU_NAMESPACE_END

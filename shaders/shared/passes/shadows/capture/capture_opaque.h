@@ -10,6 +10,7 @@ GPU_NAMESPACE_BEGIN
   F(vec4, depth_plane)       /* light depth(p) = dot(xyz, p) + w */             \
   F(vec2, texel_size)        /* world size of a texel at depth d: x + y * d */  \
   F(ivec2, raster_origin)    /* LightView::raster_origin: map texel = frag - it */ \
+  F(uvec2, list_tile)        /* LightView::list_tile() */                       \
   GPU_CASTER_ALPHA_PUSH(F, A)
 GPU_PUSH_CONSTANTS(CaptureOpaquePush, GPU_CAPTURE_OPAQUE_PUSH)
 

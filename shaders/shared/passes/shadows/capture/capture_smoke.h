@@ -13,7 +13,8 @@ GPU_NAMESPACE_BEGIN
   F(uint, volume_mask)           /* VolumeCasters::volume_mask */        \
   F(uvec2, raster_origin)        /* LightView::raster_origin */          \
   F(uint, raster_resolution)     /* LightView::raster() */               \
-  F(uint, pad)
+  F(uint, pad)                                                           \
+  F(uvec2, list_tile)            /* LightView::list_tile() */
 GPU_PUSH_CONSTANTS(CaptureSmokePush, GPU_CAPTURE_SMOKE_PUSH)
 
 GPU_NAMESPACE_END
