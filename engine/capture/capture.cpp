@@ -421,6 +421,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   renderer::SceneRenderer& frame = *renderer_storage;
   frame.set_frames_in_flight(options.frames_in_flight);
   if (options.fog) frame.set_fog_enabled(*options.fog);
+  frame.set_area_shadows_filtered(options.area_shadows_filtered);
   if (options.compare_fog && !frame.fog_enabled())
     throw std::runtime_error(options.scene.string() + ": --compare-fog needs fog, and the scene has none (add a \"fog\" block)");
   report_lowered_resolutions(frame, scene);

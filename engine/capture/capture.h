@@ -60,6 +60,10 @@ struct CaptureOptions {
   std::optional<float> volume_sky_light;
   // --fog on|off: the scene's fog shown or not (unset: shown when the scene has one).
   std::optional<bool> fog;
+  // --area-shadows filtered|exact: area lights' soft shadows on surfaces from a subset of
+  // their virtual lights per pixel, filtered, or from all of them (SceneRenderer::
+  // set_area_shadows_filtered; unset: filtered but in the reference volume shading).
+  std::optional<bool> area_shadows_filtered;
   // --compare-fog: the last frame also rendered with the fog marched per pixel and
   // without fog: writes fog_quality.json and frame_fog_reference.exr (capture/fog_comparison.h).
   bool compare_fog = false;

@@ -47,6 +47,11 @@ const char* kUsage =
     "  --sky-light S    every volume's share of the sky's light, 0 (none) to 4 (default:\n"
     "                   the scene file's, 1)\n"
     "  --fog on|off     show the scene's fog or not (default: on when the scene has one)\n"
+    "  --area-shadows filtered|exact\n"
+    "                   area lights' soft shadows on surfaces from a few of their virtual\n"
+    "                   lights per pixel, filtered over neighbouring pixels, or from all of\n"
+    "                   them at every pixel (default: filtered; exact with --volume-shading\n"
+    "                   reference)\n"
     "  --compare-fog    also render the last frame with the fog marched per pixel (every\n"
     "                   light's map looked up per step) and without fog: fog_quality.json\n"
     "                   (relative L1 of the fog's effect, bound 5%), frame_fog_reference.exr\n"
@@ -228,6 +233,11 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const std::string text = value();
     if (text != "on" && text != "off") usage_error("--fog expects on or off, got '" + text + "'");
     options.fog = text == "on";
+  } else if (arg == "--area-shadows") {
+    const std::string text = value();
+    if (text != "filtered" && text != "exact")
+      usage_error("--area-shadows expects filtered or exact, got '" + text + "'");
+    options.area_shadows_filtered = text == "filtered";
   } else if (arg == "--compare-fog") {
     options.compare_fog = true;
   } else if (arg == "--technique") {
@@ -362,6 +372,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   if (o.volume_octaves) with_value(true, "--volume-octaves", std::to_string(*o.volume_octaves));
   if (o.volume_sky_light) with_value(true, "--sky-light", exact_text(*o.volume_sky_light));
   if (o.fog) with_value(true, "--fog", *o.fog ? "on" : "off");
+  if (o.area_shadows_filtered) with_value(true, "--area-shadows", *o.area_shadows_filtered ? "filtered" : "exact");
   flag(o.compare_fog, "--compare-fog");
 
   const scene::ShadowOverrides& shadow = o.shadow;

@@ -5,6 +5,7 @@
 
 #include "gpu/context.h"
 #include "passes/frame/lights.h"
+#include "shared/area_shadows.h"
 #include "passes/shadows/shadow_pass_list_builder.h"
 
 namespace avsm::renderer {
@@ -27,6 +28,7 @@ SceneRenderer::SceneRenderer(gpu::Context& ctx, const gpu::ShaderLibrary& shader
       width_(width),
       height_(height),
       opaque_(ctx, shaders),
+      area_shadow_filter_(ctx, shaders),
       hair_(ctx, shaders),
       volumes_(ctx, shaders),
       cache_(ctx, shaders),
@@ -181,8 +183,13 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   const passes::ShadowInputs& shadows = frame.shadows;
   frame.fog = fog_media_.write(slot, view);
 
-  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, frame);
-  rg::TextureHandle color = add_fog(graph, opaque.color, opaque.depth, frame);
+  // Area lights with many virtual lights: a subset per pixel, filtered.
+  const uint32_t area_tile = area_shadow_filter_tile();
+  passes::OpaquePass::Outputs opaque = opaque_.add_to_graph(graph, hdr, frame, area_tile > 0);
+  rg::TextureHandle color = opaque.color;
+  if (area_tile > 0)
+    color = area_shadow_filter_.add_to_graph(graph, color, opaque.area_light, opaque.depth, view, area_tile);
+  color = add_fog(graph, color, opaque.depth, frame);
   color = add_volumes(graph, color, opaque.depth, frame);
   // Hair after the smoke: each strand fragment brings the smoke in front of it (per vertex).
   // Per fragment is the reference's; hidden volumes keep the fast per-vertex lighting (per
@@ -205,6 +212,18 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (texel_curves_) texel_curves_->add_to_graph(graph, frame.shadows);
   if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
   return graph;
+}
+
+// The widest tile of the area lights whose surface lookups take subsets of their virtual
+// lights (shared/area_shadows.h), or 0 when none do (or they are looked up exactly).
+uint32_t SceneRenderer::area_shadow_filter_tile() const {
+  const bool filtered = area_shadows_filtered_.value_or(volume_shading_.mode != scene::VolumeShading::Mode::reference);
+  uint32_t tile = 0;
+  if (!filtered) return tile;
+  for (const scene::Light& light : lights_)
+    if (scene::is_area_light(light.type) && shared::area_shadow_takes_subsets(uint32_t(light.virtual_lights)))
+      tile = std::max(tile, shared::area_shadow_tile(uint32_t(light.virtual_lights)));
+  return tile;
 }
 
 rg::TextureHandle SceneRenderer::add_fog(rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth,

@@ -25,6 +25,7 @@
 #include "passes/camera/fog/fog_scattering_pass.h"
 #include "passes/camera/hair/hair_lighting_pass.h"
 #include "passes/camera/hair/hair_pass.h"
+#include "passes/camera/surfaces/area_shadow_filter_pass.h"
 #include "passes/camera/surfaces/opaque_pass.h"
 #include "passes/shadows/shadow_maps.h"
 #include "passes/shadows/shadow_pass_list.h"
@@ -95,6 +96,11 @@ class SceneRenderer {
   // grid (the fast path's); unset: per pixel in the reference volume shading only. Lets
   // the fog be measured against its reference alone.
   void set_fog_marched_per_pixel(std::optional<bool> per_pixel) { fog_per_pixel_ = per_pixel; }
+  // Area lights' soft shadows on surfaces from a subset of their virtual lights per pixel,
+  // filtered in screen space (passes/camera/surfaces/area_shadow_filter_pass.h), or from
+  // every virtual light at every pixel (exact); unset: filtered, except in the reference
+  // volume shading.
+  void set_area_shadows_filtered(std::optional<bool> filtered) { area_shadows_filtered_ = filtered; }
   uint64_t density_atlas_bytes() const { return volumes_.atlas().bytes(); }
   // Cells in the last frame's lighting cache (0 in the reference path).
   uint64_t lighting_cache_cells() const { return volume_shading_.mode == scene::VolumeShading::Mode::fast ? cache_.cell_count() : 0; }
@@ -188,6 +194,7 @@ class SceneRenderer {
   std::vector<passes::TexelSample> texel_samples_;
   std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
   void create_resolution_pass();  // sized and ringed as the renderer is
+  uint32_t area_shadow_filter_tile() const;
 
   std::vector<scene::Light> lights_;
   scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)
@@ -196,6 +203,7 @@ class SceneRenderer {
   uint32_t light_count_ = 0;
   uint32_t finished_slot_ = 0;  // of the last frame finished: where its results are
   passes::OpaquePass opaque_;
+  passes::AreaShadowFilterPass area_shadow_filter_;
   passes::HairPass hair_;
   passes::VolumePass volumes_;
   passes::VolumeLightingCachePass cache_;
@@ -209,6 +217,7 @@ class SceneRenderer {
   scene::VolumeShading volume_shading_;
   std::optional<bool> hair_per_fragment_;
   std::optional<bool> fog_per_pixel_;
+  std::optional<bool> area_shadows_filtered_;
   passes::ShadowMaps shadows_;
   std::unique_ptr<passes::ShadowProbePass> probes_;
   std::unique_ptr<passes::ShadowProbePass> texel_curves_;

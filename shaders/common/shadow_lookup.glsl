@@ -415,18 +415,24 @@ uint light_map_record_at(uint record, vec3 p) {
 // cube face p lies in, the cascade(s) at p's camera depth (blended across a split), the
 // product over its cluster maps, or the mean over an area light's virtual lights' maps
 // (the share of the light that reaches p: its soft shadow). A surface receiver (kReceiverSurface) is on a
-// surface with that normal and is moved off it in each map's own texels. The maps are
-// looked up in one loop so that
+// surface with that normal and is moved off it in each map's own texels. An area light's
+// mean may be over a subset: at most `max_views` of its virtual lights from `first_view`
+// (shared/area_shadows.h). The maps are looked up in one loop so that
 // shadow_transmittance() is compiled once (see above).
-float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light) {
+float light_record_views_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light,
+                                       uint first_view, uint max_views) {
   GpuShadow s = shadows[record];
   if (s.views == kViewsSingle && s.technique == kShadowNone) return 1.0;
   uint first = light_map_record_at(record, p), count = 1u;
   float blend = 0.0;  // cascades: weight of the second map
   if (s.views == kViewsCascades) {
     shadow_cascade_at(s, p, count, blend);
-  } else if (s.views == kViewsClusters || s.views == kViewsVirtualLights) {
+  } else if (s.views == kViewsClusters) {
     count = s.view_count;
+  } else if (s.views == kViewsVirtualLights) {
+    first_view = min(first_view, s.view_count - 1u);
+    first += first_view;
+    count = min(s.view_count - first_view, max_views);
   }
   bool product = s.views == kViewsClusters;
   bool mean = s.views == kViewsVirtualLights;
@@ -441,6 +447,10 @@ float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal
     result = product ? result * t : result + weight * t;
   }
   return result;
+}
+
+float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light) {
+  return light_record_views_transmittance(record, p, receiver, normal, to_light, 0u, kMaxViewsPerLight);
 }
 
 float light_transmittance(uint light_index, vec3 p) {
@@ -468,6 +478,12 @@ vec3 surface_lookup_point(uint light_index, vec3 p, vec3 normal, vec3 to_light) 
 
 float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light) {
   return light_record_transmittance(light_index, p, kReceiverSurface, normal, to_light);
+}
+
+// The same over at most `max_views` of an area light's virtual lights from `first_view`.
+float surface_light_views_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light, uint first_view,
+                                        uint max_views) {
+  return light_record_views_transmittance(light_index, p, kReceiverSurface, normal, to_light, first_view, max_views);
 }
 
 #endif

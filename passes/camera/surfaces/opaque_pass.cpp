@@ -63,15 +63,8 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
       sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}),
       ltc_sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
-  gpu::GraphicsPipelineDesc desc;
-  desc.name = "opaque";
-  desc.vertex = shaders.load("shaders/passes/camera/surfaces/opaque.vert");
-  desc.fragment = shaders.load("shaders/passes/camera/surfaces/opaque.frag");
-  desc.color_formats = {kColorFormat};
-  desc.depth_format = kDepthFormat;
-  desc.depth_test = desc.depth_write = true;
-  desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
-  pipeline_ = gpu::Pipeline::graphics(ctx, desc);
+  pipeline_ = create_pipeline(shaders, false);
+  area_subsets_pipeline_ = create_pipeline(shaders, true);
   const uint8_t white[4] = {255, 255, 255, 255};
   white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
   const lighting::LtcTable& table = lighting::builtin_ggx_table();
@@ -79,6 +72,21 @@ OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
                                 table.inverse_matrix.size() * sizeof(glm::vec4), "ltc inverse matrices");
   ltc_magnitude_ = ltc_table_image(ctx, table.size, VK_FORMAT_R32G32_SFLOAT, table.magnitude.data(),
                                    table.magnitude.size() * sizeof(glm::vec2), "ltc magnitudes");
+}
+
+gpu::Pipeline OpaquePass::create_pipeline(const gpu::ShaderLibrary& shaders, bool area_light_subsets) const {
+  gpu::GraphicsPipelineDesc desc;
+  desc.name = area_light_subsets ? "opaque (area-light subsets)" : "opaque";
+  desc.vertex = shaders.load("shaders/passes/camera/surfaces/opaque.vert");
+  desc.fragment = area_light_subsets ? shaders.load("shaders/passes/camera/surfaces/opaque.frag",
+                                                    {"AVSM_AREA_SHADOW_SUBSETS", "1"})
+                                     : shaders.load("shaders/passes/camera/surfaces/opaque.frag");
+  desc.color_formats = {kColorFormat};
+  if (area_light_subsets) desc.color_formats.push_back(kAreaLightFormat);
+  desc.depth_format = kDepthFormat;
+  desc.depth_test = desc.depth_write = true;
+  desc.cull_mode = VK_CULL_MODE_NONE;  // glTF double-sided flags vary; shading uses the facing normal
+  return gpu::Pipeline::graphics(ctx_, desc);
 }
 
 namespace {
@@ -159,7 +167,8 @@ VkImageView OpaquePass::texture_view(int texture) const {
   return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
 }
 
-OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame) {
+OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame,
+                                             bool area_light_subsets) {
   const View& view = frame.view;
   const gpu::Buffer& lights = *frame.lights;
   const uint32_t light_count = frame.light_count;
@@ -169,6 +178,10 @@ OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle
         d.color = b.write(color, rg::Usage::ColorAttachment);
         rg::TextureDesc depth_desc{view.width, view.height, 1, 1, 1, kDepthFormat, kCameraSizeSetting};
         d.depth = b.write(b.create_texture("depth", depth_desc), rg::Usage::DepthAttachmentWrite);
+        if (area_light_subsets) {
+          rg::TextureDesc area_desc{view.width, view.height, 1, 1, 1, kAreaLightFormat, kCameraSizeSetting};
+          d.area_light = b.write(b.create_texture("area light", area_desc), rg::Usage::ColorAttachment);
+        }
         shadows.declare_reads(b);
         d.page_requests = frame.ask_for_pages(b);
       },
@@ -184,14 +197,19 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
   gpu::ColorTarget color{c.view(targets.color), c.layout(targets.color),
                          {{kSkyColor.r, kSkyColor.g, kSkyColor.b, kSkyColor.a}}};
   gpu::DepthTarget depth{c.view(targets.depth), c.layout(targets.depth), 1.0f, /*store=*/true};
-  gpu::begin_rendering(cmd, {view.width, view.height}, {&color, 1}, &depth, /*flip_y=*/true);
-  pipeline_.bind(cmd);
+  std::vector<gpu::ColorTarget> colors{color};
+  const bool area_light_subsets = targets.area_light.valid();
+  if (area_light_subsets)  // no area light: none of its light, nothing in its shadow
+    colors.push_back({c.view(targets.area_light), c.layout(targets.area_light), {{0.0f, 0.0f, 0.0f, 1.0f}}});
+  gpu::begin_rendering(cmd, {view.width, view.height}, colors, &depth, /*flip_y=*/true);
+  const gpu::Pipeline& pipeline = area_light_subsets ? area_subsets_pipeline_ : pipeline_;
+  pipeline.bind(cmd);
   vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
   static constexpr const char* kTextureBindings[] = {"base_color_texture", "metallic_roughness_texture", "normal_texture",
                                                      "occlusion_texture", "emissive_texture"};  // Material::textures() order
   for (const Draw& draw : draws_) {
     const scene::Material* material = draw.material < scene_materials_.size() ? &scene_materials_[draw.material] : nullptr;
-    gpu::Bindings bindings(ctx_, pipeline_);
+    gpu::Bindings bindings(ctx_, pipeline);
     bindings.buffer("Vertices", vertices_).buffer("Tangents", tangents_).buffer("Materials", materials_).buffer("Lights", lights);
     for (size_t i = 0; i < std::size(kTextureBindings); ++i) {
       const int texture = material ? *material->textures()[i] : -1;  // -1: the white texture
@@ -203,7 +221,7 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
     shadows.bind(bindings, c);
     shadows.bind_page_requests(bindings, c, targets.page_requests);
     bindings.push(cmd);
-    pipeline_.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
+    pipeline.push_constants(cmd, OpaquePush{view.view_projection, glm::vec4(view.camera_position, 1.0f),
                                              draw.material, light_count});
     vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
   }

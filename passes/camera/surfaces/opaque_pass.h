@@ -26,6 +26,9 @@ class OpaquePass {
  public:
   static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+  // Area lights that look up subsets of their virtual lights (shared/area_shadows.h):
+  // their unshadowed light and subsets' transmittance, for AreaShadowFilterPass.
+  static constexpr VkFormat kAreaLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
   OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
   void set_scene(const scene::Scene& scene);
@@ -38,13 +41,16 @@ class OpaquePass {
     rg::TextureHandle color;  // written as ColorAttachment
     rg::TextureHandle depth;  // written as DepthAttachmentWrite
     rg::BufferHandle page_requests;  // the paged maps' request bits, marked (invalid without paged maps)
+    rg::TextureHandle area_light;    // with area-light subsets: kAreaLightFormat, written as ColorAttachment
   };
   // The geometry as shadow casters (vertices are CasterVertex; passes/shadows/capture/capture_opaque_pass.h).
   MeshCasters casters() const;
 
   // Clears `color` to the sky colour and a new transient depth buffer to far,
-  // then draws every mesh.
-  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame);
+  // then draws every mesh. With `area_light_subsets`, area lights with more virtual lights
+  // than kAreaShadowLookups look up a subset per pixel and go to Outputs::area_light
+  // instead of `color` (AreaShadowFilterPass adds them).
+  Outputs add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame, bool area_light_subsets = false);
 
  private:
   struct Draw {
@@ -54,10 +60,11 @@ class OpaquePass {
   };
   void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
               uint32_t light_count, const ShadowInputs& shadows) const;
+  gpu::Pipeline create_pipeline(const gpu::ShaderLibrary& shaders, bool area_light_subsets) const;
   VkImageView texture_view(int texture) const;
 
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_;
+  gpu::Pipeline pipeline_, area_subsets_pipeline_;
   gpu::Sampler sampler_;
   // The LTC table of rect lights (engine/lighting/ltc.h, common/area_light.glsl): M^-1's
   // coefficients and the lobe's magnitudes, filtered bilinearly.

@@ -2,6 +2,9 @@
 // glTF metallic-roughness shading (common/pbr_brdf.glsl): every light times its
 // transmittance map (area lights integrated over their shape, common/area_light.glsl,
 // times the mean of their virtual lights' maps), the sky, emission.
+// Compiled with AVSM_AREA_SHADOW_SUBSETS 1, area lights with many virtual lights look up a
+// subset of them per pixel and go to out_area_light unshadowed, for the area-shadow filter
+// (shared/area_shadows.h) to multiply by their filtered transmittance.
 #extension GL_GOOGLE_include_directive : require
 #include "common/lights.glsl"
 #include "common/pbr_brdf.glsl"
@@ -13,6 +16,10 @@
 #define AVSM_LTC_BINDING 14
 #include "common/area_light.glsl"
 
+#ifndef AVSM_AREA_SHADOW_SUBSETS
+#define AVSM_AREA_SHADOW_SUBSETS 0
+#endif
+#include "shared/area_shadows.h"
 #include "shared/mesh.h"
 
 layout(std430, binding = 1) readonly buffer Materials { GpuMaterial materials[]; };
@@ -29,6 +36,11 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
 layout(location = 0) out vec4 out_color;
+#if AVSM_AREA_SHADOW_SUBSETS
+// rgb: the reflected light of the area lights that take subsets, unshadowed; a: their
+// subsets' transmittance, weighted by their luminance there (1 without any).
+layout(location = 1) out vec4 out_area_light;
+#endif
 
 // The normal texture's normal in world space, through the interpolated tangent frame
 // (bitangent = cross(normal, tangent) x handedness); the vertex normal where the
@@ -65,13 +77,34 @@ void main() {
 
   vec3 lit = pbr_sky(surface, dot(n, to_camera), kSkyAmbient, occlusion);
   lit += m.emissive.rgb * texture(emissive_texture, in_uv).rgb;
+  vec3 area_unshadowed = vec3(0.0);
+  float area_luminance = 0.0, area_shadowed_luminance = 0.0;
   for (uint i = 0u; i < pc.light_count; ++i) {
     uint type = uint(lights[i].position_type.w + 0.5);
     if (is_area_light(type)) {
       vec3 to_centre = normalize(lights[i].position_type.xyz - in_world);
       vec3 reflected = area_light_reflected(lights[i], type, surface, in_world, n, to_camera);
       if (all(equal(reflected, vec3(0.0)))) continue;
-      lit += reflected * surface_light_transmittance(i, in_world, geometric_n, to_centre);
+      uint first_view = 0u, views = kMaxViewsPerLight;
+#if AVSM_AREA_SHADOW_SUBSETS
+      uint virtual_lights = shadows[i].views == kViewsVirtualLights ? shadows[i].view_count : 1u;
+      bool subset = area_shadow_takes_subsets(virtual_lights);
+      if (subset) {
+        first_view = area_shadow_first_view(uint(gl_FragCoord.x), uint(gl_FragCoord.y), virtual_lights);
+        views = kAreaShadowLookups;
+      }
+#endif
+      float t = surface_light_views_transmittance(i, in_world, geometric_n, to_centre, first_view, views);
+#if AVSM_AREA_SHADOW_SUBSETS
+      if (subset) {
+        float luminance = dot(reflected, vec3(0.2126, 0.7152, 0.0722));
+        area_unshadowed += reflected;
+        area_luminance += luminance;
+        area_shadowed_luminance += luminance * t;
+        continue;
+      }
+#endif
+      lit += reflected * t;
       continue;
     }
     vec3 to_light;
@@ -82,4 +115,7 @@ void main() {
            surface_light_transmittance(i, in_world, geometric_n, to_light);
   }
   out_color = vec4(lit, 1.0);
+#if AVSM_AREA_SHADOW_SUBSETS
+  out_area_light = vec4(area_unshadowed, area_luminance > 0.0 ? area_shadowed_luminance / area_luminance : 1.0);
+#endif
 }
