@@ -29,6 +29,9 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.point_count) return;
   vec3 p = points[i].xyz;
+  // Each ribbon blends two vertices' subsets. (The reference shades hair per fragment,
+  // hair_reference.frag, with every virtual light.)
+  look_up_media_subset(i);
   vec3 lit = fibre_light(p, tangents[i].xyz, pc.light_count);
 
   vec3 origin = pc.camera_position.xyz;

@@ -27,6 +27,7 @@
 
 #include "shared/capture.h"
 #include "shared/map_layouts.h"
+#include "shared/area_shadows.h"
 #include "shared/shadow.h"
 
 #ifndef AVSM_SHADOW_SET
@@ -399,6 +400,31 @@ uint shadow_cascade_at(GpuShadow s, vec3 p, out uint count, out float blend) {
   return split;
 }
 
+// ---- Subsets of an area light's virtual lights (shared/area_shadows.h) ----
+
+// Virtual lights in subset `subset` of `virtual_lights` in subsets of `size`.
+uint area_light_subset_count(uint subset, uint virtual_lights, uint size) {
+  if (size >= virtual_lights) return virtual_lights;
+  uint subsets = area_light_subsets(virtual_lights, size);
+  return min(size, (virtual_lights - subset % subsets + subsets - 1u) / subsets);
+}
+
+// Member `member` of that subset. The virtual lights are a Hammersley set (index k at x
+// = k / K, y = k's bits reversed: passes/shadows/light_view.h); where K and the size are
+// powers of two, a subset fixes k's middle bits and takes all high and low ones, so its
+// lights spread over the whole light in both directions (a stratum per combination);
+// otherwise it takes every subsets-th light from its own.
+uint area_light_subset_member(uint subset, uint member, uint virtual_lights, uint size) {
+  if (size >= virtual_lights) return member;
+  uint subsets = area_light_subsets(virtual_lights, size);
+  subset %= subsets;
+  bool powers_of_two = (virtual_lights & (virtual_lights - 1u)) == 0u && (size & (size - 1u)) == 0u;
+  if (!powers_of_two) return subset + member * subsets;
+  uint n = uint(findMSB(virtual_lights)), m = uint(findMSB(size));
+  uint high = m / 2u, low = m - high;  // bits of the member along x and along y
+  return ((member >> low) << (n - high)) | (subset << low) | (member & ((1u << low) - 1u));
+}
+
 // The map record a lookup in light record `record` at p reads first: the light's own
 // (one map), the cube face p lies in, its cascade, or its first cluster map.
 uint light_map_record_at(uint record, vec3 p) {
@@ -416,11 +442,11 @@ uint light_map_record_at(uint record, vec3 p) {
 // product over its cluster maps, or the mean over an area light's virtual lights' maps
 // (the share of the light that reaches p: its soft shadow). A surface receiver (kReceiverSurface) is on a
 // surface with that normal and is moved off it in each map's own texels. An area light's
-// mean may be over a subset: at most `max_views` of its virtual lights from `first_view`
-// (shared/area_shadows.h). The maps are looked up in one loop so that
-// shadow_transmittance() is compiled once (see above).
-float light_record_views_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light,
-                                       uint first_view, uint max_views) {
+// mean may be over subset `subset` of its virtual lights, in subsets of `subset_size`
+// (shared/area_shadows.h; one subset of kMaxViewsPerLight: all of them). The maps are
+// looked up in one loop so that shadow_transmittance() is compiled once (see above).
+float light_record_views_transmittance(uint record, vec3 p, uint receiver, vec3 normal, vec3 to_light, uint subset,
+                                       uint subset_size) {
   GpuShadow s = shadows[record];
   if (s.views == kViewsSingle && s.technique == kShadowNone) return 1.0;
   uint first = light_map_record_at(record, p), count = 1u;
@@ -430,9 +456,7 @@ float light_record_views_transmittance(uint record, vec3 p, uint receiver, vec3 
   } else if (s.views == kViewsClusters) {
     count = s.view_count;
   } else if (s.views == kViewsVirtualLights) {
-    first_view = min(first_view, s.view_count - 1u);
-    first += first_view;
-    count = min(s.view_count - first_view, max_views);
+    count = area_light_subset_count(subset, s.view_count, subset_size);
   }
   bool product = s.views == kViewsClusters;
   bool mean = s.views == kViewsVirtualLights;
@@ -440,7 +464,8 @@ float light_record_views_transmittance(uint record, vec3 p, uint receiver, vec3 
   for (uint k = 0u; k < kMaxViewsPerLight; ++k) {
     if (k >= count) break;
     GpuShadow v = s;  // a light with one map: its record is the map's
-    if (s.views != kViewsSingle) v = shadows[first + k];
+    if (s.views == kViewsVirtualLights) v = shadows[first + area_light_subset_member(subset, k, s.view_count, subset_size)];
+    else if (s.views != kViewsSingle) v = shadows[first + k];
     vec3 q = receiver == kReceiverSurface ? shadow_surface_point(v, p, normal, to_light) : p;
     float t = v.technique == kShadowNone ? 1.0 : shadow_transmittance_filtered(v, q, receiver);
     float weight = mean ? 1.0 / float(count) : (count == 1u ? 1.0 : (k == 0u ? 1.0 - blend : blend));
@@ -453,13 +478,29 @@ float light_record_transmittance(uint record, vec3 p, uint receiver, vec3 normal
   return light_record_views_transmittance(record, p, receiver, normal, to_light, 0u, kMaxViewsPerLight);
 }
 
+
+// The subset of an area light's virtual lights that light_transmittance() and
+// volume_light_transmittance() look up: all of them, unless the pass's main() took a subset
+// for its receiver (look_up_media_subset()). Private to each invocation.
+uint shadow_area_subset = 0u;
+uint shadow_area_subset_size = kMaxViewsPerLight;
+
+// Media receivers (hair vertices, fog froxels, smoke cache cells) look up kMediaAreaLookups
+// of an area light's virtual lights: subset `receiver_index` (neighbours take the next ones).
+void look_up_media_subset(uint receiver_index) {
+  shadow_area_subset = receiver_index;
+  shadow_area_subset_size = kMediaAreaLookups;
+}
+
 float light_transmittance(uint light_index, vec3 p) {
-  return light_record_transmittance(light_index, p, kReceiverPoint, vec3(0.0), vec3(0.0));
+  return light_record_views_transmittance(light_index, p, kReceiverPoint, vec3(0.0), vec3(0.0), shadow_area_subset,
+                                          shadow_area_subset_size);
 }
 
 // For smoke: its receivers may read coarser levels of paged maps (page_volume_lod_bias).
 float volume_light_transmittance(uint light_index, vec3 p) {
-  return light_record_transmittance(light_index, p, kReceiverVolume, vec3(0.0), vec3(0.0));
+  return light_record_views_transmittance(light_index, p, kReceiverVolume, vec3(0.0), vec3(0.0), shadow_area_subset,
+                                          shadow_area_subset_size);
 }
 
 // The exact transmittance (the light's capture lists, all nodes) when the frame
@@ -480,10 +521,10 @@ float surface_light_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to
   return light_record_transmittance(light_index, p, kReceiverSurface, normal, to_light);
 }
 
-// The same over at most `max_views` of an area light's virtual lights from `first_view`.
-float surface_light_views_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light, uint first_view,
-                                        uint max_views) {
-  return light_record_views_transmittance(light_index, p, kReceiverSurface, normal, to_light, first_view, max_views);
+// The same over subset `subset` of an area light's virtual lights, in subsets of `subset_size`.
+float surface_light_subset_transmittance(uint light_index, vec3 p, vec3 normal, vec3 to_light, uint subset,
+                                         uint subset_size) {
+  return light_record_views_transmittance(light_index, p, kReceiverSurface, normal, to_light, subset, subset_size);
 }
 
 #endif

@@ -30,6 +30,7 @@ void main() {
   float distance = 0.5 * (fog_boundary_distance(float(froxel.z)) + fog_boundary_distance(float(froxel.z + 1u)));
   vec3 p = fog_grid.camera_sky.xyz + distance * direction;
   FogMediumSample medium = fog_medium_at(p);
+  look_up_media_subset(froxel.x + froxel.y + froxel.z);  // the integration and the lookups' blend mix neighbours
   vec3 radiance = fog_in_scattering(p, direction, medium, pc.light_count);
   imageStore(scattering_image, ivec3(froxel), vec4(radiance, medium.extinction));
 }

@@ -85,16 +85,16 @@ void main() {
       vec3 to_centre = normalize(lights[i].position_type.xyz - in_world);
       vec3 reflected = area_light_reflected(lights[i], type, surface, in_world, n, to_camera);
       if (all(equal(reflected, vec3(0.0)))) continue;
-      uint first_view = 0u, views = kMaxViewsPerLight;
+      uint subset_index = 0u, subset_size = kMaxViewsPerLight;
 #if AVSM_AREA_SHADOW_SUBSETS
       uint virtual_lights = shadows[i].views == kViewsVirtualLights ? shadows[i].view_count : 1u;
       bool subset = area_shadow_takes_subsets(virtual_lights);
       if (subset) {
-        first_view = area_shadow_first_view(uint(gl_FragCoord.x), uint(gl_FragCoord.y), virtual_lights);
-        views = kAreaShadowLookups;
+        subset_index = area_shadow_subset(uint(gl_FragCoord.x), uint(gl_FragCoord.y), virtual_lights);
+        subset_size = kAreaShadowLookups;
       }
 #endif
-      float t = surface_light_views_transmittance(i, in_world, geometric_n, to_centre, first_view, views);
+      float t = surface_light_subset_transmittance(i, in_world, geometric_n, to_centre, subset_index, subset_size);
 #if AVSM_AREA_SHADOW_SUBSETS
       if (subset) {
         float luminance = dot(reflected, vec3(0.2126, 0.7152, 0.0722));

@@ -48,6 +48,7 @@ bool near_density(GpuVolume volume, vec3 index_position, vec3 reach) {
 void main() {
   ivec3 cell = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(uvec3(cell), pc.image_size))) return;
+  look_up_media_subset(uint(cell.x + cell.y + cell.z));  // the march blends eight cells
   for (uint v = 0u; v < pc.volume_count; ++v) {
     GpuCacheLayout cache = cache_layouts[v];
     ivec3 local = cell - ivec3(0, 0, cache.first_slice);
