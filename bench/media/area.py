@@ -46,7 +46,7 @@ def frame_ms(capture, scene, width, height, frames):
 
 def main():
     parser = capture_report.scene_arguments(__doc__, 640, 360)
-    parser.add_argument("--virtual-lights", default="1,16,64", help="K values, comma separated (1 to 64)")
+    parser.add_argument("--virtual-lights", default="1,16,64,256", help="K values, comma separated (1 to 256)")
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--frames", type=int, default=3)
     args = parser.parse_args()
@@ -78,7 +78,7 @@ def main():
             ratio = (median[name] - base) / spot_cost
             print(f"target: K = {k} within {bound}x the hard spot: {ratio:.2f}x, {'met' if ratio <= bound else 'MISSED'}")
         else:
-            print(f"target: K = {k} within {bound}x the hard spot: not measured (at most 64 virtual lights today)")
+            print(f"target: K = {k} within {bound}x the hard spot: not measured (not in --virtual-lights)")
 
 
 if __name__ == "__main__":

@@ -70,8 +70,16 @@ void check_bounds(const Precondition& check, const Bounds& bounds, const std::st
 // The light's own numbers; its shadow settings are ShadowMaps' (check_light_settings).
 void check_light(const Precondition& check, const Light& light, size_t index) {
   const std::string who = light_name(light, index);
-  check.require(light.type == LightType::directional || light.type == LightType::spot || light.type == LightType::point,
+  const bool area = light.type == LightType::rect || light.type == LightType::disk || light.type == LightType::sphere;
+  check.require(area || light.type == LightType::directional || light.type == LightType::spot ||
+                    light.type == LightType::point,
                 who + ": type " + std::to_string(int(light.type)) + " is not a LightType");
+  if (light.type == LightType::rect)
+    check.require(finite(glm::vec3(light.size, 0.0f)) && light.size.x > 0.0f && light.size.y > 0.0f,
+                  who + ": size " + text(glm::vec3(light.size, 0.0f)) + " must be finite and > 0 both ways");
+  if (light.type == LightType::disk || light.type == LightType::sphere)
+    check.require(std::isfinite(light.radius) && light.radius > 0.0f,
+                  who + ": radius " + text(light.radius) + " must be finite and > 0");
   if (light.type != LightType::point) {
     const float length = glm::length(light.direction);
     check.require(finite(light.direction) && length >= 1e-6f,
@@ -140,9 +148,18 @@ int to_int(uint32_t count) { return int(std::min<uint32_t>(count, uint32_t(std::
 scene::Light to_scene(const Light& light) {
   scene::Light out;
   out.name = light.name;
-  out.type = light.type == LightType::spot    ? scene::LightType::spot
-             : light.type == LightType::point ? scene::LightType::point
-                                              : scene::LightType::directional;
+  switch (light.type) {
+    case LightType::directional: out.type = scene::LightType::directional; break;
+    case LightType::spot: out.type = scene::LightType::spot; break;
+    case LightType::point: out.type = scene::LightType::point; break;
+    case LightType::rect: out.type = scene::LightType::rect; break;
+    case LightType::disk: out.type = scene::LightType::disk; break;
+    case LightType::sphere: out.type = scene::LightType::sphere; break;
+  }
+  out.size = light.size;
+  out.radius = light.radius;
+  out.two_sided = light.two_sided;
+  out.virtual_lights = to_int(light.virtual_lights);
   out.direction = light.type == LightType::point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(light.direction);
   out.position = light.position;
   out.range = light.range;

@@ -8,6 +8,7 @@
 
 #include "capture/frame_outputs.h"
 #include "capture/frame_report.h"
+#include "passes/shadows/light_view.h"
 #include "passes/shadows/shadow_settings.h"
 #include "passes/shadows/techniques/techniques.h"
 
@@ -155,12 +156,22 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
   const scene::ShadowSettings& shadow = light.shadow;
   bool paged = shadow.layout == scene::ShadowLayout::paged;
   const bool can_page = passes::pages_technique(shadow) && shadow.build == scene::ShadowBuild::lists;
-  if (scene::is_area_light(light.type)) {  // small dense maps, one per virtual light
-    if (light.type == scene::LightType::rect)
-      ImGui::Text("%d virtual lights, %gx%g%s", light.virtual_lights, light.size.x, light.size.y,
-                  light.two_sided ? ", two-sided" : "");
-    else
-      ImGui::Text("%d virtual lights, radius %g%s", light.virtual_lights, light.radius, light.two_sided ? ", two-sided" : "");
+  if (scene::is_area_light(light.type)) {  // one shared map of small maps, one per virtual light
+    if (light.type == scene::LightType::rect) {
+      glm::vec2 size = light.size;
+      if (ImGui::DragFloat2("size", &size.x, 0.01f, kMinAreaLightExtent, 100.0f))
+        o.size = size, requests.scene_edited = true;
+    } else {
+      float radius = light.radius;
+      if (ImGui::DragFloat("radius", &radius, 0.01f, kMinAreaLightExtent, 100.0f))
+        o.radius = radius, requests.scene_edited = true;
+    }
+    int virtual_lights = light.virtual_lights;
+    if (ImGui::SliderInt("virtual lights", &virtual_lights, 1, scene::kMaxVirtualLights))
+      o.virtual_lights = virtual_lights, requests.scene_edited = true;
+    ImGui::Text("each %u texels of the shared map%s",
+                passes::virtual_light_tile_resolution(uint32_t(shadow.resolution), uint32_t(light.virtual_lights)),
+                light.two_sided ? "; two-sided" : "");
     return;
   }
   ImGui::BeginDisabled(!paged && !can_page);

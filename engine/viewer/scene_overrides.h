@@ -19,7 +19,15 @@ struct LightOverride : scene::ShadowOverrides {
   std::optional<bool> enabled;
   std::optional<glm::vec3> position;   // spot lights
   std::optional<glm::vec3> direction;  // normalised when applied
+  // Area lights: a rect's size, a disk's or sphere's radius (at least kMinAreaLightExtent),
+  // the virtual lights (clamped to 1..256).
+  std::optional<glm::vec2> size;
+  std::optional<float> radius;
+  std::optional<int> virtual_lights;
 };
+
+// The smallest area-light extent an edit gives, in metres.
+inline constexpr float kMinAreaLightExtent = 0.01f;
 
 struct VolumeOverride {
   std::optional<float> extinction_scale;

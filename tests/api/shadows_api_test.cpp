@@ -268,6 +268,31 @@ TEST_F(ShadowsApiTest, PassListRunsThroughOurGraphAndAHostsOwn) {
   }
 }
 
+// An area light through the API: its virtual lights' maps are one batch (one capture per
+// caster kind), and the frame reports them all.
+TEST_F(ShadowsApiTest, AnAreaLightsVirtualLightsAreOneBatch) {
+  Shadows shadows(ctx(), ShaderLocation::of_package());
+  Light softbox;
+  softbox.name = "softbox";
+  softbox.type = LightType::rect;
+  softbox.position = {0.0f, 3.0f, 0.0f};
+  softbox.size = {1.0f, 1.0f};
+  softbox.virtual_lights = 16;
+  softbox.resolution = 64;
+  shadows.set_light(softbox, unit_box());
+  const QuadCaster quad = quad_caster(ctx());
+  const ShadowPassList list = shadows.pass_list(Camera(), quad.casters);
+  expect_whole_and_in_usage_table_terms(list);
+  const auto captures = std::count_if(list.passes.begin(), list.passes.end(), [](const ShadowPass& pass) {
+    return pass.name.find("capture opaque") != std::string::npos;
+  });
+  EXPECT_EQ(captures, 1);
+  run_as_foreign_host(ctx(), list);
+  const LightStats stats = shadows.finish_frame().at(0);
+  EXPECT_EQ(stats.maps, 16u);
+  EXPECT_GT(stats.segments_captured, 0u);
+}
+
 // record(): the same checks, naming record() and the field of its frame, before anything
 // is recorded; then a frame recorded into a command buffer of the test's own.
 TEST_F(ShadowsApiTest, RecordChecksItsFrameThenRecordsIntoTheHostsCommandBuffer) {

@@ -70,7 +70,14 @@ LightsCase valid_lights() {
   cascaded.cascades = 4;
   cascaded.shadow_distance = 30.0f;
   cascaded.filter = ShadowFilter::trilinear;
-  c.lights = {sun, spot, lamp, cascaded};
+  Light softbox;
+  softbox.name = "softbox";
+  softbox.type = LightType::rect;
+  softbox.position = {0.0f, 2.5f, 0.0f};
+  softbox.size = {1.0f, 0.5f};
+  softbox.virtual_lights = 64;
+  softbox.resolution = 256;
+  c.lights = {sun, spot, lamp, cascaded, softbox};
   c.bounds.extend(glm::vec3(-5.0f, 0.0f, -5.0f));
   c.bounds.extend(glm::vec3(5.0f, 3.0f, 5.0f));
   CasterObject box;
@@ -128,6 +135,23 @@ TEST(ShadowsPreconditions, ShadowSettingsMustBeInRange) {
   expect_lights_rejected([](LightsCase& c) { c.lights[1].cascades = 2; }, {"light 1 'key'", "cascades split a directional"});
   expect_lights_rejected([](LightsCase& c) { c.lights[1].clusters = 1000; }, {"light 1 'key'", "1000 clusters"});
   expect_lights_rejected([](LightsCase& c) { c.lights[2].clusters = 2; }, {"light 2 'lamp'", "clustered maps"});
+}
+
+// Area lights: their extent, their virtual lights, and what their batched build cannot do.
+TEST(ShadowsPreconditions, AreaLightsMustBeMadeRight) {
+  for (glm::vec2 size : {glm::vec2(0.0f, 1.0f), glm::vec2(1.0f, -1.0f), glm::vec2(kNaN, 1.0f)})
+    expect_lights_rejected([=](LightsCase& c) { c.lights[4].size = size; }, {"light 4 'softbox'", "size", "> 0 both ways"});
+  for (float radius : {0.0f, kInf})
+    expect_lights_rejected([=](LightsCase& c) {
+      c.lights[4].type = LightType::disk;
+      c.lights[4].radius = radius;
+    }, {"light 4 'softbox'", "radius", "> 0"});
+  for (uint32_t count : {0u, 257u})
+    expect_lights_rejected([=](LightsCase& c) { c.lights[4].virtual_lights = count; },
+                           {"light 4 'softbox'", std::to_string(count) + " virtual lights; use 1 to 256"});
+  expect_lights_rejected([](LightsCase& c) { c.lights[4].fixed_memory_build = true; },
+                         {"light 4 'softbox'", "set shadow.build to \"lists\""});
+  expect_lights_rejected([](LightsCase& c) { c.lights[4].paged = true; }, {"light 4 'softbox'", "paged"});
 }
 
 TEST(ShadowsPreconditions, BoundsMustBeFiniteOrUnset) {

@@ -201,6 +201,29 @@ TEST(SceneOverrides, FogSwitchAndEdits) {
   EXPECT_FALSE(fogged.fog.enabled()) << "switched off";
 }
 
+// An area light's size, radius and virtual lights, clamped; other lights ignore them.
+TEST(SceneOverrides, AreaLightEditsAreClamped) {
+  scene::Scene scene;
+  scene.lights.resize(2);
+  scene.lights[0].type = scene::LightType::rect;
+  scene.lights[1].type = scene::LightType::spot;
+  SceneOverrides overrides;
+  overrides.light(0).size = glm::vec2(2.0f, -1.0f);
+  overrides.light(0).virtual_lights = 1000;
+  overrides.light(1).size = glm::vec2(3.0f);
+  overrides.apply(scene);
+  EXPECT_EQ(scene.lights[0].size, glm::vec2(2.0f, kMinAreaLightExtent));
+  EXPECT_EQ(scene.lights[0].virtual_lights, scene::kMaxVirtualLights);
+  EXPECT_EQ(scene.lights[1].size, glm::vec2(1.0f)) << "not an area light";
+  scene.lights[0].type = scene::LightType::disk;
+  overrides.light(0) = {};
+  overrides.light(0).radius = 0.0f;
+  overrides.light(0).virtual_lights = 0;
+  overrides.apply(scene);
+  EXPECT_FLOAT_EQ(scene.lights[0].radius, kMinAreaLightExtent);
+  EXPECT_EQ(scene.lights[0].virtual_lights, 1);
+}
+
 TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(parse_control_command("frame").kind, ControlCommand::Kind::frame);
   const ControlCommand inspect = parse_control_command("inspect 12,34");

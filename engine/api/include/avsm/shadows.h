@@ -114,7 +114,9 @@ struct ShaderLocation {
   static ShaderLocation of_package();
 };
 
-enum class LightType { directional, spot, point };
+// rect, disk, sphere: area lights, their soft shadows the mean over `virtual_lights` maps
+// (docs/embedding.md, "Area lights").
+enum class LightType { directional, spot, point, rect, disk, sphere };
 enum class ShadowFilter { point, bilinear, trilinear };
 
 // A shadowed light. Directional lights fit an orthographic map to what the camera sees
@@ -125,9 +127,19 @@ struct Light {
   std::string name;
   LightType type = LightType::directional;
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (normalised here; not zero); not for point
-  glm::vec3 position{0.0f};                // spot and point
+  glm::vec3 position{0.0f};                // spot, point and area lights (their centre)
   float outer_cone_radians = 0.5f;         // spot only: half angle of the cone, in (0, 1.55)
   float range = 0.0f;                      // spot and point: shadows (and light) end there, >= 0; 0: no limit
+  // Area lights: a rect `size` wide and high, facing `direction`; a disk or sphere of
+  // `radius`; a rect or disk emits both ways when two_sided. Their soft shadows are the
+  // mean transmittance over `virtual_lights` (1 to 256) points spread over the light, each
+  // with a small map: together they share one map of about `resolution` texels per side
+  // (each resolution / ceil(sqrt(virtual_lights)) wide), built as one batch from capture
+  // lists (not fixed_memory_build, paged, cascades or clusters).
+  glm::vec2 size{1.0f};
+  float radius = 0.5f;
+  bool two_sided = false;
+  uint32_t virtual_lights = 16;
   bool fit_to_view = false;                // directional: fit the map to the Camera's view (fill its forward, up, planes)
   float shadow_distance = 0.0f;            // directional, fit_to_view: how far shadows reach, >= 0 (0: camera far)
   uint32_t cascades = 1;                   // directional with fit_to_view: 1 to 4 maps split along the view; else 1
