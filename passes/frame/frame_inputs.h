@@ -36,6 +36,10 @@ struct FrameInputs {
   VolumeShading shading;
   const gpu::Buffer* lights = nullptr;  // one GpuLight per light (passes/frame/lights.h)
   uint32_t light_count = 0;
+  // Map lookups a point's transmittance takes over every light: one per light, an area
+  // light's virtual lights each (what per-pixel marches split their steps by: lavapipe's
+  // loop budget).
+  uint32_t lookups_per_point = 1;
   ShadowInputs shadows;
   const std::vector<LightView>* light_views = nullptr;  // the shadowed lights' maps
   std::optional<VolumeLightingCache> cache;  // set by VolumeLightingCachePass in the fast path

@@ -10,7 +10,9 @@ GPU_NAMESPACE_BEGIN
   F(mat4, inverse_view_projection)                                                         \
   F(uvec2, output_size)   /* the camera image in pixels */                                 \
   F(uint, light_count)                                                                     \
-  F(uint, reference_steps) /* the reference composite's steps per pixel ray; else unused */
+  F(uint, reference_steps) /* the reference composite's steps per pixel ray; else unused */   \
+  F(uint, first_step)      /* the reference: this dispatch's first step, */                 \
+  F(uint, dispatch_steps)  /* and how many it takes (lavapipe's loop budget) */
 GPU_PUSH_CONSTANTS(FogPixelsPush, GPU_FOG_PIXELS_PUSH)
 
 GPU_NAMESPACE_END
