@@ -71,6 +71,8 @@ const char* kUsage =
     "  --virtual-res R  paged: the virtual map's texels per side, a power of two, 256 to 16384\n"
     "                   (to 262144 for directional lights, whose finest levels follow the camera)\n"
     "  --page-size P    paged: texels per page side, 32, 64 or 128\n"
+    "  --virtual-lights K\n"
+    "                   every area light's virtual lights (1 to 256; their soft shadows)\n"
     "  --page-pool-mib M  paged: each light's page pool\n"
     "  --page-builds N  paged: build at most N pages a frame, as the viewer does (default: a\n"
     "                   capture builds every page asked for at once); frames are rendered\n"
@@ -267,6 +269,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const uint32_t r = parse_count(arg, value());
     if (r < 256 || r > 262144 || (r & (r - 1)) != 0) usage_error("--virtual-res expects a power of two, 256 to 262144");
     options.shadow.virtual_resolution = int(r);
+  } else if (arg == "--virtual-lights") {
+    options.shadow.virtual_lights = parse_in_range(arg, value(), 1, scene::kMaxVirtualLights);
   } else if (arg == "--page-size") {
     const uint32_t p = parse_count(arg, value());
     if (p != 32 && p != 64 && p != 128) usage_error("--page-size expects 32, 64 or 128");
@@ -388,6 +392,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   if (shadow.layout) with_value(true, "--shadow-layout", std::string(scene::to_string(*shadow.layout)));
   if (shadow.virtual_resolution) with_value(true, "--virtual-res", std::to_string(*shadow.virtual_resolution));
   if (shadow.page_size) with_value(true, "--page-size", std::to_string(*shadow.page_size));
+  if (shadow.virtual_lights) with_value(true, "--virtual-lights", std::to_string(*shadow.virtual_lights));
   if (shadow.page_pool_mib) with_value(true, "--page-pool-mib", std::to_string(int(*shadow.page_pool_mib)));
   if (shadow.page_builds_per_frame) with_value(true, "--page-builds", std::to_string(*shadow.page_builds_per_frame));
   if (shadow.cascades) with_value(true, "--cascades", std::to_string(*shadow.cascades));

@@ -402,7 +402,7 @@ std::vector<Entry> read_list(ObjectReader& top, const std::string& key, ReadEntr
 
 }  // namespace
 
-ShadowOverrides read_shadow_overrides(ObjectReader& object) {
+ShadowOverrides read_shadow_overrides(ObjectReader& object, bool with_light_keys) {
   ShadowOverrides shadow;
   // A name; which names exist is the renderer's registry's to say (passes/shadows/techniques/).
   shadow.technique = object.optional("technique") ? std::optional(object.string("technique")) : std::nullopt;
@@ -445,6 +445,9 @@ ShadowOverrides read_shadow_overrides(ObjectReader& object) {
   }
   shadow.page_builds_per_frame =
       whole_number("page_builds_per_frame", [](int n) { return n >= 0 && n <= 65536; }, "0 (no limit) to 65536 pages");
+  if (with_light_keys)
+    shadow.virtual_lights = whole_number("virtual_lights", [](int n) { return n >= 1 && n <= kMaxVirtualLights; },
+                                         "1 to " + std::to_string(kMaxVirtualLights) + " (area lights' maps)");
   if (const json* parameters = object.optional("parameters")) {
     const std::string parameters_path = object.path_of("parameters");
     object.reader().expect(parameters->is_object(), parameters_path,

@@ -68,8 +68,9 @@ struct SceneDescription {
 class ObjectReader;  // scene/json_reader.h
 // The shadow keys a light's "shadow" block shares with a sweep manifest's shadow
 // overrides (technique, nodes, resolution, filter, kernel, kernel_radius, sort, build,
-// fit, cascades, clusters, parameters), each checked; only those present are set.
-ShadowOverrides read_shadow_overrides(ObjectReader& object);
+// fit, cascades, clusters, parameters), each checked; only those present are set. With
+// `with_light_keys` (a manifest's), also the light's own keys a sweep varies (virtual_lights).
+ShadowOverrides read_shadow_overrides(ObjectReader& object, bool with_light_keys = false);
 
 // Reads and checks a scene file; asset paths come back resolved against its folder.
 SceneDescription read_scene_description(const std::filesystem::path& file);

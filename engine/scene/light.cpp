@@ -100,6 +100,7 @@ void ShadowOverrides::apply(Light& light) const {
   if (light.type != LightType::directional) fitting.cascades.reset();
   if (light.type == LightType::point || is_area_light(light.type)) fitting.clusters.reset();
   fitting.apply(light.shadow);
+  if (virtual_lights && is_area_light(light.type)) light.virtual_lights = *virtual_lights;
 }
 
 }  // namespace avsm::scene

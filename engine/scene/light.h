@@ -98,6 +98,9 @@ struct ShadowOverrides {
   std::optional<float> page_lod_bias;
   std::optional<float> page_volume_lod_bias;
   std::optional<int> page_builds_per_frame;
+  // Area lights' virtual lights (Light::virtual_lights; apply(Light&) only): what sweeps and
+  // --virtual-lights vary. A light's own "shadow" block may not hold it.
+  std::optional<int> virtual_lights;
   std::map<std::string, double> parameters;  // set on top of the light's own
 
   bool operator==(const ShadowOverrides&) const = default;

@@ -62,6 +62,7 @@ struct SettingsPart {
     take(top.page_lod_bias, base.page_lod_bias);
     take(top.page_volume_lod_bias, base.page_volume_lod_bias);
     take(top.page_builds_per_frame, base.page_builds_per_frame);
+    take(top.virtual_lights, base.virtual_lights);
     for (const auto& [name, value] : top.parameters) base.parameters[name] = value;
   }
 };
@@ -153,7 +154,7 @@ class ManifestReader {
   }
 
   scene::ShadowOverrides read_shadow(ObjectReader& object) {
-    scene::ShadowOverrides shadow = scene::read_shadow_overrides(object);
+    scene::ShadowOverrides shadow = scene::read_shadow_overrides(object, /*with_light_keys=*/true);
     if (shadow.technique)
       object.check(passes::find_shadow_technique(*shadow.technique) != nullptr, "technique",
                    "'" + *shadow.technique + "' is not one of " + passes::shadow_technique_names());

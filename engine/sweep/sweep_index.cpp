@@ -84,6 +84,7 @@ json to_json(const scene::ShadowOverrides& shadow) {
   if (shadow.layout) out["layout"] = scene::to_string(*shadow.layout);
   if (shadow.virtual_resolution) out["virtual_resolution"] = *shadow.virtual_resolution;
   if (shadow.page_size) out["page_size"] = *shadow.page_size;
+  if (shadow.virtual_lights) out["virtual_lights"] = *shadow.virtual_lights;
   if (shadow.page_pool_mib) out["page_pool_mib"] = *shadow.page_pool_mib;
   if (shadow.page_lod_bias) out["page_lod_bias"] = *shadow.page_lod_bias;
   if (shadow.page_volume_lod_bias) out["page_volume_lod_bias"] = *shadow.page_volume_lod_bias;
@@ -109,6 +110,7 @@ scene::ShadowOverrides shadow_overrides_from_json(const json& in) {
   if (in.contains("layout")) shadow.layout = choice_of(in, "layout", scene::shadow_layout_from_string);
   if (in.contains("virtual_resolution")) shadow.virtual_resolution = value_of<int>(in, "virtual_resolution");
   if (in.contains("page_size")) shadow.page_size = value_of<int>(in, "page_size");
+  if (in.contains("virtual_lights")) shadow.virtual_lights = value_of<int>(in, "virtual_lights");
   if (in.contains("page_pool_mib")) shadow.page_pool_mib = value_of<double>(in, "page_pool_mib");
   if (in.contains("page_lod_bias")) shadow.page_lod_bias = value_of<float>(in, "page_lod_bias");
   if (in.contains("page_volume_lod_bias")) shadow.page_volume_lod_bias = value_of<float>(in, "page_volume_lod_bias");

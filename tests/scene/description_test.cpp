@@ -299,6 +299,8 @@ TEST(SceneDescriptionErrors, RectLight) {
               HasSubstr("lights[0].direction: give exactly one of 'direction' and 'target'"));
   EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1], "virtual_lights": 0)")),
               HasSubstr("lights[0].virtual_lights: must be 1 to 256"));
+  EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1], "shadow": {"virtual_lights": 4})")),
+              HasSubstr("lights[0].shadow.virtual_lights: unknown key"));
   EXPECT_THAT(error_of(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1], "outer_cone_deg": 30)")),
               HasSubstr("lights[0].outer_cone_deg: only spot lights have this"));
   EXPECT_THAT(error_of(full_scene(R"("intensity": 2,)", R"("intensity": 2, "size": [1, 1],)")),

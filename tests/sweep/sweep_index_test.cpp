@@ -27,6 +27,7 @@ JobRecord sample_job(const std::string& id) {
   job.settings.shadow.filter = scene::ShadowFilter::point;
   job.settings.shadow.build = scene::ShadowBuild::fixed;
   job.settings.shadow.sort = false;
+  job.settings.shadow.virtual_lights = 64;
   job.settings.shadow.parameters["depth_bias"] = 0.25;
   job.settings.compare_to = "uncompressed";
   job.settings.reference_job = "a-exact";
