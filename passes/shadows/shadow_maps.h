@@ -253,8 +253,8 @@ class ShadowMaps {
   void create_list_buffers();
   std::string list_readers() const;
   // shadow_maps_views.cpp: the light views.
-  LightView initial_view(const MapState& map) const;
-  void reset_view(MapState& map) const;  // initial_view() and (area lights) the virtual lights' views
+  void reset_view(MapState& map) const;
+  LightView initial_view(const MapState& map) const;  // reset_view()'s for maps of one view
   void update_views(const View& camera);
   void move_page_windows(const View& camera);
   // shadow_maps_records.cpp: the frame's GpuShadow records.

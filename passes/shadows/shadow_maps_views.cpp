@@ -17,18 +17,8 @@ void ShadowMaps::place_light(uint32_t index, const glm::vec3& position, const gl
   views_[index] = maps_[light.first_map].view;
 }
 
-// A map's view before any camera is known (update_views() fits the camera's).
-LightView ShadowMaps::initial_view(const MapState& map) const {
-  const LightState& light = lights_[map.light];
-  const scene::ShadowSettings& s = light.light.shadow;
-  const uint32_t resolution = uint32_t(is_paged(light) ? s.virtual_resolution : s.resolution);  // paged: the virtual map
-  if (light.views == shared::kViewsVirtualLights) return make_virtual_light_maps(light.light, map.fit_bounds, resolution).shared;
-  if (map.face >= 0)  // paged: the guard texels of its coarsest level, one page
-    return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution,
-                                is_paged(light) ? uint32_t(s.page_size) : 0u);
-  return make_light_view(light.light, map.fit_bounds, resolution);
-}
-
+// A map's view before any camera is known (update_views() fits the camera's); an area
+// light's map: the shared map's, and its virtual lights' views.
 void ShadowMaps::reset_view(MapState& map) const {
   const LightState& light = lights_[map.light];
   if (light.views != shared::kViewsVirtualLights) {
@@ -39,6 +29,16 @@ void ShadowMaps::reset_view(MapState& map) const {
       make_virtual_light_maps(light.light, map.fit_bounds, uint32_t(light.light.shadow.resolution));
   map.view = virtual_maps.shared;
   map.virtual_views = std::move(virtual_maps.views);
+}
+
+LightView ShadowMaps::initial_view(const MapState& map) const {
+  const LightState& light = lights_[map.light];
+  const scene::ShadowSettings& s = light.light.shadow;
+  const uint32_t resolution = uint32_t(is_paged(light) ? s.virtual_resolution : s.resolution);  // paged: the virtual map
+  if (map.face >= 0)  // paged: the guard texels of its coarsest level, one page
+    return make_point_face_view(light.light, uint32_t(map.face), casters_, resolution,
+                                is_paged(light) ? uint32_t(s.page_size) : 0u);
+  return make_light_view(light.light, map.fit_bounds, resolution);
 }
 
 // Maps fitted to the camera follow it: a directional light's (fit view) and its cascades.

@@ -273,7 +273,7 @@ TEST(SceneDescription, RectLight) {
   EXPECT_EQ(light.shadow.resolution, 128);
   const Light defaults = parse(with_rect(R"("position": [0, 3, 0], "direction": [0, -1, 0], "size": [1, 1])")).lights[0];
   EXPECT_FALSE(defaults.two_sided);
-  EXPECT_EQ(defaults.virtual_lights, 16);
+  EXPECT_EQ(defaults.virtual_lights, 64);
 }
 
 TEST(SceneDescription, DiskAndSphereLights) {

@@ -139,7 +139,7 @@ struct Light {
   glm::vec2 size{1.0f};
   float radius = 0.5f;
   bool two_sided = false;
-  uint32_t virtual_lights = 16;
+  uint32_t virtual_lights = 64;  // the scene files' default (scene/light.h says why)
   bool fit_to_view = false;                // directional: fit the map to the Camera's view (fill its forward, up, planes)
   float shadow_distance = 0.0f;            // directional, fit_to_view: how far shadows reach, >= 0 (0: camera far)
   uint32_t cascades = 1;                   // directional with fit_to_view: 1 to 4 maps split along the view; else 1

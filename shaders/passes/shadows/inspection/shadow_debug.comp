@@ -56,9 +56,28 @@ void paged_picture(GpuShadow s, ivec2 pixel, int size) {
   imageStore(debug_image, ivec2(pixel.x, size - 1 - pixel.y), vec4(color, 1.0));
 }
 
+// An area light's shared map as a grid of its virtual lights' maps, row by row from the
+// bottom left (each a range of the map's texels: passes/shadows/light_view.h).
+void virtual_lights_picture(GpuShadow s, ivec2 pixel) {
+  uint tile = shadows[s.first_view].resolution, per_side = s.resolution / tile;
+  uvec2 place = uvec2(pixel) / tile;
+  uint k = place.y * per_side + place.x;
+  vec3 color = vec3(0.0);
+  if (place.x < per_side && k < s.view_count) {
+    GpuShadow v = shadows[s.first_view + k];
+    ivec2 texel = ivec2(uvec2(pixel) % tile);
+    color = vec3(shadow_texel_transmittance(v, 0u, texel, shadow_first_opaque_depth(v, texel)));
+  }
+  imageStore(debug_image, ivec2(pixel.x, int(s.resolution) - 1 - pixel.y), vec4(color, 1.0));
+}
+
 void main() {
   GpuShadow s = shadows[pc.light];
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (s.views == kViewsVirtualLights) {
+    if (all(lessThan(uvec2(texel), uvec2(s.resolution)))) virtual_lights_picture(s, texel);
+    return;
+  }
   if (shadow_is_paged(s)) {
     int size = imageSize(debug_image).x;
     if (all(lessThan(texel, ivec2(size)))) paged_picture(s, texel, size);
