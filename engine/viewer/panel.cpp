@@ -157,6 +157,10 @@ void draw_light_layout(const scene::Light& light, LightOverride& o, PanelRequest
   bool paged = shadow.layout == scene::ShadowLayout::paged;
   const bool can_page = passes::pages_technique(shadow) && shadow.build == scene::ShadowBuild::lists;
   if (scene::is_area_light(light.type)) {  // one shared map of small maps, one per virtual light
+    static constexpr std::array<scene::LightType, 3> kShapes = {scene::LightType::rect, scene::LightType::disk,
+                                                                scene::LightType::sphere};
+    if (auto shape = choose("shape", light.type, kShapes, [](scene::LightType t) { return std::string(scene::to_string(t)); }))
+      o.area_shape = *shape, requests.scene_edited = true;
     if (light.type == scene::LightType::rect) {
       glm::vec2 size = light.size;
       if (ImGui::DragFloat2("size", &size.x, 0.01f, kMinAreaLightExtent, 100.0f))

@@ -12,6 +12,7 @@ void apply_light(const LightOverride& o, scene::Light& light) {
   if (o.position) light.position = *o.position;
   if (o.direction && glm::length(*o.direction) > 0.0f) light.direction = glm::normalize(*o.direction);
   if (!scene::is_area_light(light.type)) return;
+  if (o.area_shape && scene::is_area_light(*o.area_shape)) light.type = *o.area_shape;
   if (o.size) light.size = glm::max(*o.size, glm::vec2(kMinAreaLightExtent));
   if (o.radius) light.radius = std::max(*o.radius, kMinAreaLightExtent);
   if (o.virtual_lights) light.virtual_lights = std::clamp(*o.virtual_lights, 1, scene::kMaxVirtualLights);

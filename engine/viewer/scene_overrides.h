@@ -19,8 +19,10 @@ struct LightOverride : scene::ShadowOverrides {
   std::optional<bool> enabled;
   std::optional<glm::vec3> position;   // spot lights
   std::optional<glm::vec3> direction;  // normalised when applied
-  // Area lights: a rect's size, a disk's or sphere's radius (at least kMinAreaLightExtent),
-  // the virtual lights (clamped to 1..256).
+  // Area lights: their shape (another area light type; others are ignored), a rect's size, a
+  // disk's or sphere's radius (at least kMinAreaLightExtent), the virtual lights (clamped
+  // to 1..256).
+  std::optional<scene::LightType> area_shape;
   std::optional<glm::vec2> size;
   std::optional<float> radius;
   std::optional<int> virtual_lights;

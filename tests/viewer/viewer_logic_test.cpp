@@ -222,6 +222,11 @@ TEST(SceneOverrides, AreaLightEditsAreClamped) {
   overrides.apply(scene);
   EXPECT_FLOAT_EQ(scene.lights[0].radius, kMinAreaLightExtent);
   EXPECT_EQ(scene.lights[0].virtual_lights, 1);
+  overrides.light(0).area_shape = scene::LightType::sphere;
+  overrides.light(1).area_shape = scene::LightType::rect;
+  overrides.apply(scene);
+  EXPECT_EQ(scene.lights[0].type, scene::LightType::sphere);
+  EXPECT_EQ(scene.lights[1].type, scene::LightType::spot) << "a spot light does not become an area light";
 }
 
 TEST(ControlCommands, ParsesEveryCommand) {
