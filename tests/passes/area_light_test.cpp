@@ -252,19 +252,14 @@ float penumbra_error(const PlankScene& plank, const std::vector<float>& t) {
 // covers x < 0 at `plank_height`; probes just above the floor along x. Returns the width
 // over which the transmittance goes from 10% to 90%.
 float penumbra_width(gpu::Context& ctx, const gpu::ShaderLibrary& shaders, float plank_height, int virtual_lights) {
-  scene::Scene scene = floor_under_rect_light(3.0f, glm::vec2(1.0f), virtual_lights);
-  // The virtual lights share one map (1024 / 6 = 170 texels each at 32): its texels, 5 cm
-  // on the floor, blur each virtual light's edge much less than the penumbrae measured.
-  scene.lights[0].shadow.resolution = 1024;
-  scene.meshes.push_back(box_mesh("plank", {-4.0f, plank_height, -1.0f}, {0.0f, plank_height + 0.05f, 1.0f}));
-  scene.bounds.extend(scene.meshes.back().bounds);
-  std::vector<glm::vec3> probes;
+  // The virtual lights share one map (512 / 6 = 85 texels each at 32) over the plank scene's
+  // small floor: its texels, 4 cm there, blur each virtual light's edge much less than the
+  // penumbrae measured.
+  const PlankScene plank =
+      plank_scene({-2.0f, plank_height, -1.0f}, {0.0f, plank_height + 0.05f, 1.0f}, virtual_lights, 512, 0.02f);
   std::vector<float> xs;
-  for (float x = -1.2f; x <= 1.2f; x += 0.02f) {
-    probes.emplace_back(x, 0.01f, 0.0f);
-    xs.push_back(x);
-  }
-  const Rendered rendered = render(ctx, shaders, scene, probes);
+  for (const glm::vec3& probe : plank.probes) xs.push_back(probe.x);
+  const Rendered rendered = render(ctx, shaders, plank.scene, plank.probes);
   const std::vector<float>& t = rendered.probes.at(0);
   EXPECT_LT(t.front(), 0.02f) << "under the plank: shadowed";
   EXPECT_GT(t.back(), 0.98f) << "beyond the penumbra: lit";

@@ -61,10 +61,10 @@ scene::Material fallback_material() {
 
 OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
+      shaders_(shaders),
       sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}),
       ltc_sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
   pipeline_ = create_pipeline(shaders, false);
-  area_subsets_pipeline_ = create_pipeline(shaders, true);
   const uint8_t white[4] = {255, 255, 255, 255};
   white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
   const lighting::LtcTable& table = lighting::builtin_ggx_table();
@@ -169,6 +169,7 @@ VkImageView OpaquePass::texture_view(int texture) const {
 
 OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame,
                                              bool area_light_subsets) {
+  if (area_light_subsets && !area_subsets_pipeline_) area_subsets_pipeline_ = create_pipeline(shaders_, true);
   const View& view = frame.view;
   const gpu::Buffer& lights = *frame.lights;
   const uint32_t light_count = frame.light_count;

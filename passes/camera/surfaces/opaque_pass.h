@@ -64,7 +64,11 @@ class OpaquePass {
   VkImageView texture_view(int texture) const;
 
   gpu::Context& ctx_;
-  gpu::Pipeline pipeline_, area_subsets_pipeline_;
+  const gpu::ShaderLibrary& shaders_;
+  gpu::Pipeline pipeline_;
+  // Made on the first frame that needs it: lavapipe compiles a pipeline as it is made, and
+  // most renderers never light with an area light.
+  gpu::Pipeline area_subsets_pipeline_;
   gpu::Sampler sampler_;
   // The LTC table of rect lights (engine/lighting/ltc.h, common/area_light.glsl): M^-1's
   // coefficients and the lobe's magnitudes, filtered bilinearly.
