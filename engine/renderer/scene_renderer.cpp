@@ -178,7 +178,7 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   frame.shading = volume_shading_;
   frame.lights = &light_buffers_[slot];
   frame.light_count = light_count_;
-  frame.lookups_per_point = lookups_per_point();
+  frame.lookups_per_point = shadows_.lookups_per_point();
   frame.shadows = shadows_.add_to_graph(graph, view, shadow_casters(), slot);
   frame.light_views = &shadows_.light_views();
   const passes::ShadowInputs& shadows = frame.shadows;
@@ -213,17 +213,6 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
   if (texel_curves_) texel_curves_->add_to_graph(graph, frame.shadows);
   if (light_images_) light_images_->add_to_graph(graph, shadows, shadows_);
   return graph;
-}
-
-// Map lookups a point's transmittance takes over every light (passes::FrameInputs).
-uint32_t SceneRenderer::lookups_per_point() const {
-  uint32_t lookups = 0;
-  for (const scene::Light& light : lights_) {
-    if (scene::is_area_light(light.type)) lookups += uint32_t(light.virtual_lights);
-    else if (light.shadow.clusters > 1) lookups += uint32_t(light.shadow.clusters);
-    else lookups += light.shadow.cascades > 1 ? 2u : 1u;  // a cascade split blends two
-  }
-  return std::max(lookups, 1u);
 }
 
 // The widest tile of the area lights whose surface lookups take subsets of their virtual

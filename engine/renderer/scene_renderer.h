@@ -195,7 +195,6 @@ class SceneRenderer {
   std::unique_ptr<passes::ShadowProbePass> new_probe_pass() const;
   void create_resolution_pass();  // sized and ringed as the renderer is
   uint32_t area_shadow_filter_tile() const;
-  uint32_t lookups_per_point() const;
 
   std::vector<scene::Light> lights_;
   scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)

@@ -119,6 +119,9 @@ class ShadowMaps {
   void follow_camera(const View& camera) { update_views(camera); }
   // Each light's first map's view (its only one but for point, cascaded and clustered lights).
   const std::vector<LightView>& light_views() const { return views_; }
+  // Map lookups a point's transmittance takes over every light (at least 1): one per light,
+  // two across a cascade split, a cluster map each, an area light's virtual lights each.
+  uint32_t lookups_per_point() const;
   // Every map of light `light`, as the last frame declared them.
   std::vector<LightView> map_views(uint32_t light) const;
   uint32_t map_count(uint32_t light) const { return lights_.at(light).map_count; }

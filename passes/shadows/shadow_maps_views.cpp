@@ -80,6 +80,16 @@ void ShadowMaps::move_page_windows(const View& camera) {
   }
 }
 
+uint32_t ShadowMaps::lookups_per_point() const {
+  uint32_t lookups = 0;
+  for (const LightState& light : lights_) {
+    if (light.views == shared::kViewsVirtualLights) lookups += uint32_t(maps_[light.first_map].virtual_views.size());
+    else if (light.views == shared::kViewsClusters) lookups += light.map_count;
+    else lookups += light.views == shared::kViewsCascades ? 2u : 1u;  // a split blends two cascades
+  }
+  return std::max(lookups, 1u);
+}
+
 std::vector<LightView> ShadowMaps::map_views(uint32_t light) const {
   std::vector<LightView> views;
   const LightState& l = lights_.at(light);

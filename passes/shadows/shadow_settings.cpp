@@ -30,10 +30,6 @@ void check_light_settings(const scene::Light& light, size_t index) {
   if (s.clusters > 1 && (light.type == scene::LightType::point || scene::is_area_light(light.type) || s.cascades > 1))
     throw std::invalid_argument(who + ": clustered maps are for directional and spot lights without cascades; "
                                 "set shadow.clusters to 0");
-  if (scene::is_area_light(light.type) &&
-      (light.virtual_lights < 1 || light.virtual_lights > int(shared::kMaxViewsPerLight)))
-    throw std::invalid_argument(who + ": " + std::to_string(light.virtual_lights) + " virtual lights; use 1 to " +
-                                std::to_string(shared::kMaxViewsPerLight));
   if (scene::is_area_light(light.type)) check_virtual_light_settings(light, who);
   if (s.nodes < 4 || s.nodes > 16 || s.nodes % 4 != 0)
     throw std::invalid_argument(who + ": " + std::to_string(s.nodes) + " AVSM nodes; use 4, 8, 12 or 16");
@@ -50,6 +46,9 @@ void check_light_settings(const scene::Light& light, size_t index) {
 // lists, each a range of its texels (make_virtual_light_maps).
 void check_virtual_light_settings(const scene::Light& light, const std::string& who) {
   const scene::ShadowSettings& s = light.shadow;
+  if (light.virtual_lights < 1 || light.virtual_lights > int(shared::kMaxViewsPerLight))
+    throw std::invalid_argument(who + ": " + std::to_string(light.virtual_lights) + " virtual lights; use 1 to " +
+                                std::to_string(shared::kMaxViewsPerLight));
   if (s.build == scene::ShadowBuild::fixed)
     throw std::invalid_argument(who + ": an area light's virtual lights' maps are built together from capture lists; "
                                 "set shadow.build to \"lists\"");

@@ -28,13 +28,14 @@ CaptureLists CaptureHairPass::add_to_graph(rg::Graph& graph, const std::string& 
       [&](rg::PassBuilder& b, CaptureLists& d) { d = append_to_lists(b, lists); },
       [this, views, hair](const CaptureLists& d, rg::PassContext& c) {
         VkCommandBuffer cmd = c.cmd();
+        // The same pipeline and buffers for every view (they outlast its rendering).
+        pipeline_.bind(cmd);
+        gpu::Bindings bindings(ctx_, pipeline_);
+        bindings.buffer("Points", hair.points).buffer("Segments", hair.segments).buffer("Strands", hair.strands);
+        bind_capture_lists(bindings, c, d);
+        bindings.push(cmd);
         for (const LightView& light : views) {
           begin_light_rendering(cmd, light);
-          pipeline_.bind(cmd);
-          gpu::Bindings bindings(ctx_, pipeline_);
-          bindings.buffer("Points", hair.points).buffer("Segments", hair.segments).buffer("Strands", hair.strands);
-          bind_capture_lists(bindings, c, d);
-          bindings.push(cmd);
           const float resolution = float(light.raster());  // ribbon widths are in raster pixels
           pipeline_.push_constants(cmd, Push{light.light_from_world, glm::vec4(hair_ribbon_facing_point(light), 1.0f),
                                              {resolution, resolution}, glm::ivec2(light.raster_origin),

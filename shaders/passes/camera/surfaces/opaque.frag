@@ -79,40 +79,39 @@ void main() {
   lit += m.emissive.rgb * texture(emissive_texture, in_uv).rgb;
   vec3 area_unshadowed = vec3(0.0);
   float area_luminance = 0.0, area_shadowed_luminance = 0.0;
+  // One lookup call for every light type, so that the shadow lookup is compiled once.
   for (uint i = 0u; i < pc.light_count; ++i) {
     uint type = uint(lights[i].position_type.w + 0.5);
+    vec3 to_light, reflected;
+    uint subset_index = 0u, subset_size = kMaxViewsPerLight;
+    bool subset = false;
     if (is_area_light(type)) {
-      vec3 to_centre = normalize(lights[i].position_type.xyz - in_world);
-      vec3 reflected = area_light_reflected(lights[i], type, surface, in_world, n, to_camera);
+      to_light = normalize(lights[i].position_type.xyz - in_world);  // to its centre
+      reflected = area_light_reflected(lights[i], type, surface, in_world, n, to_camera);
       if (all(equal(reflected, vec3(0.0)))) continue;
-      uint subset_index = 0u, subset_size = kMaxViewsPerLight;
 #if AVSM_AREA_SHADOW_SUBSETS
       uint virtual_lights = shadows[i].views == kViewsVirtualLights ? shadows[i].view_count : 1u;
-      bool subset = area_shadow_takes_subsets(virtual_lights);
+      subset = area_shadow_takes_subsets(virtual_lights);
       if (subset) {
         subset_index = area_shadow_subset(uint(gl_FragCoord.x), uint(gl_FragCoord.y), virtual_lights);
         subset_size = kAreaShadowLookups;
       }
 #endif
-      float t = surface_light_subset_transmittance(i, in_world, geometric_n, to_centre, subset_index, subset_size);
-#if AVSM_AREA_SHADOW_SUBSETS
-      if (subset) {
-        float luminance = dot(reflected, vec3(0.2126, 0.7152, 0.0722));
-        area_unshadowed += reflected;
-        area_luminance += luminance;
-        area_shadowed_luminance += luminance * t;
-        continue;
-      }
-#endif
-      lit += reflected * t;
+    } else {
+      vec3 radiance = light_radiance(lights[i], in_world, to_light);
+      // A light behind the surface itself does not reach it, whatever the normal texture says.
+      if (dot(geometric_n, to_light) <= 0.0 || dot(n, to_light) <= 0.0) continue;
+      reflected = pbr_direct(surface, n, to_camera, to_light, radiance);
+    }
+    float t = surface_light_subset_transmittance(i, in_world, geometric_n, to_light, subset_index, subset_size);
+    if (subset) {  // to the area-shadow filter, unshadowed
+      float luminance = dot(reflected, vec3(0.2126, 0.7152, 0.0722));
+      area_unshadowed += reflected;
+      area_luminance += luminance;
+      area_shadowed_luminance += luminance * t;
       continue;
     }
-    vec3 to_light;
-    vec3 radiance = light_radiance(lights[i], in_world, to_light);
-    // A light behind the surface itself does not reach it, whatever the normal texture says.
-    if (dot(geometric_n, to_light) <= 0.0 || dot(n, to_light) <= 0.0) continue;
-    lit += pbr_direct(surface, n, to_camera, to_light, radiance) *
-           surface_light_transmittance(i, in_world, geometric_n, to_light);
+    lit += reflected * t;
   }
   out_color = vec4(lit, 1.0);
 #if AVSM_AREA_SHADOW_SUBSETS
