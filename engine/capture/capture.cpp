@@ -42,6 +42,16 @@ const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& w
   if (wanted.empty()) return scene.cameras.front();
   for (size_t i = 0; i < scene.cameras.size(); ++i)
     if (scene.cameras[i].name == wanted || std::to_string(i) == wanted) return scene.cameras[i];
+  // A glTF file's camera by its own name, without the "<model>/" its scene name starts with.
+  const scene::Camera* only = nullptr;
+  for (const scene::Camera& c : scene.cameras) {
+    const size_t slash = c.name.rfind('/');
+    if (slash != std::string::npos && c.name.substr(slash + 1) == wanted) {
+      if (only) throw std::runtime_error("camera '" + wanted + "' is ambiguous: name it with its model, as '" + c.name + "'");
+      only = &c;
+    }
+  }
+  if (only) return *only;
   std::string names;
   for (const scene::Camera& c : scene.cameras) names += " '" + c.name + "'";
   throw std::runtime_error("scene has no camera '" + wanted + "'; cameras:" + names);

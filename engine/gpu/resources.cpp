@@ -383,12 +383,13 @@ void Image::release() {
 Sampler::Sampler(const Context& ctx, const SamplerDesc& desc) : ctx_(&ctx) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = desc.filter;
-  info.minFilter = desc.filter;
+  info.minFilter = desc.min_filter.value_or(desc.filter);
   info.mipmapMode = desc.mip_mode;
-  info.addressModeU = info.addressModeV = info.addressModeW = desc.address;
+  info.addressModeU = info.addressModeW = desc.address;
+  info.addressModeV = desc.address_v.value_or(desc.address);
   info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
   info.compareOp = desc.compare_op;
-  info.maxLod = VK_LOD_CLAMP_NONE;
+  info.maxLod = desc.max_lod;
   info.borderColor = desc.border;
   VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler_));
   ctx.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, desc.name.empty() ? "sampler" : desc.name);

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <span>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -179,6 +180,10 @@ struct SamplerDesc {
   VkCompareOp compare_op = VK_COMPARE_OP_LESS_OR_EQUAL;
   VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
   std::string name;
+  // Where minification or V differ from the above (glTF samplers set each on its own).
+  std::optional<VkFilter> min_filter;
+  std::optional<VkSamplerAddressMode> address_v;
+  float max_lod = VK_LOD_CLAMP_NONE;  // 0.25 with MIPMAP_MODE_NEAREST: level 0 only (the spec's way)
 };
 
 // A sampler that reads texels as they are (nearest, no mips, clamped): a depth buffer

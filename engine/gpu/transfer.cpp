@@ -113,16 +113,32 @@ ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout la
 }
 
 void upload_image(const Context& ctx, const Image& image, const void* texels, VkDeviceSize bytes, VkImageLayout final_layout) {
-  Buffer stage = staging(ctx, bytes, MemoryLocation::HostUpload);
-  stage.upload(texels, bytes);
+  upload_image_levels(ctx, image, {std::span(static_cast<const std::uint8_t*>(texels), bytes)}, final_layout);
+}
+
+void upload_image_levels(const Context& ctx, const Image& image, const std::vector<std::span<const std::uint8_t>>& levels,
+                         VkImageLayout final_layout) {
+  VkDeviceSize total = 0;
+  for (const auto& level : levels) total += level.size();
+  Buffer stage = staging(ctx, total, MemoryLocation::HostUpload);
+  std::vector<VkBufferImageCopy> regions;
+  VkDeviceSize offset = 0;
+  const ImageDesc& desc = image.desc();
+  for (uint32_t mip = 0; mip < levels.size(); ++mip) {
+    stage.upload(levels[mip].data(), levels[mip].size(), offset);
+    VkBufferImageCopy region{};
+    region.bufferOffset = offset;
+    region.imageSubresource = {image.aspect(), mip, 0, 1};
+    region.imageExtent = {std::max(1u, desc.width >> mip), std::max(1u, desc.height >> mip), std::max(1u, desc.depth >> mip)};
+    regions.push_back(region);
+    offset += levels[mip].size();
+  }
   VkImageSubresourceRange range = image.full_range();
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     image_barrier(cmd, image.handle(), range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   kAnyPriorWork, kTransferWrite);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {image.aspect(), 0, 0, 1};
-    region.imageExtent = {image.desc().width, image.desc().height, image.desc().depth};
-    vkCmdCopyBufferToImage(cmd, stage.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, stage.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           uint32_t(regions.size()), regions.data());
     image_barrier(cmd, image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout, kTransferWrite,
                   kAnyPriorWork);
   });

@@ -53,5 +53,9 @@ ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout la
 // (visible to all later shader reads).
 void upload_image(const Context& ctx, const Image& image, const void* texels, VkDeviceSize bytes,
                   VkImageLayout final_layout);
+// The same for every mip level: levels[i] holds level i's tightly packed texels (one per
+// level of the image, layer 0).
+void upload_image_levels(const Context& ctx, const Image& image, const std::vector<std::span<const std::uint8_t>>& levels,
+                         VkImageLayout final_layout);
 
 }  // namespace avsm::gpu

@@ -83,6 +83,42 @@ std::string name_or(ObjectReader& object, const std::string& fallback) {
   return name;
 }
 
+ShadowSettings read_shadow(const Reader& reader, const json& value, const std::string& path);
+
+// "lights": "off", or an object naming the file's lights, each "off" or an object of
+// the light keys a scene may change about it (its place and type are the file's).
+void read_gltf_light_overrides(ObjectReader& object, ModelEntry& entry) {
+  const json* block = object.optional("lights");
+  if (!block) return;
+  const std::string path = object.path_of("lights");
+  if (block->is_string()) {
+    object.check(*block == "off", "lights", "must be \"off\" or an object of the file's lights by name");
+    entry.file_lights = false;
+    return;
+  }
+  object.check(block->is_object(), "lights", "must be \"off\" or an object of the file's lights by name");
+  for (const auto& [name, value] : block->items()) {
+    GltfLightOverride light;
+    light.name = name;
+    light.path = child_path(path, name);
+    if (value.is_string()) {
+      object.reader().expect(value == "off", light.path, "must be \"off\" or an object (color, intensity, range, shadow)");
+      light.drop = true;
+    } else {
+      ObjectReader reader(object.reader(), value, light.path);
+      light.color = reader.optional_vec3("color");
+      reader.check(!light.color || glm::all(glm::greaterThanEqual(*light.color, glm::vec3(0.0f))), "color", "components must be >= 0");
+      light.intensity = reader.optional_number("intensity");
+      reader.check(!light.intensity || *light.intensity >= 0.0f, "intensity", "must be >= 0");
+      light.range = reader.optional_number("range");
+      reader.check(!light.range || *light.range >= 0.0f, "range", "must be >= 0 (0: no limit)");
+      if (const json* shadow = reader.optional("shadow")) light.shadow = read_shadow(reader.reader(), *shadow, reader.path_of("shadow"));
+      reader.finish();
+    }
+    entry.light_overrides.push_back(std::move(light));
+  }
+}
+
 ModelEntry read_model(ObjectReader& object, const std::filesystem::path& scene_dir) {
   ModelEntry entry;
   entry.file = asset_path(object, scene_dir);
@@ -90,6 +126,7 @@ ModelEntry read_model(ObjectReader& object, const std::filesystem::path& scene_d
   entry.transform = transform_or_identity(object);
   entry.missing_normals = choice<NormalGeneration>(object, "missing_normals", NormalGeneration::flat,
                                                    {{"flat", NormalGeneration::flat}, {"smooth", NormalGeneration::smooth}});
+  read_gltf_light_overrides(object, entry);
   return entry;
 }
 
@@ -479,8 +516,8 @@ SceneDescription parse_scene_description(std::string_view json_text, const std::
   if (const json* shading = top.optional("volume_shading")) scene.volume_shading = read_volume_shading(reader, *shading);
   if (const json* shadows = top.optional("shadows")) scene.shadows = read_scene_shadows(reader, *shadows);
   if (const json* fog = top.optional("fog")) scene.fog = read_fog(reader, *fog);
-  reader.expect(top.has("cameras"), "cameras", "required key is missing (a scene needs at least one camera)");
-  reader.expect(!scene.cameras.empty(), "cameras", "a scene needs at least one camera");
+  // A scene of models may take its cameras from their glTF files (load_scene checks it has one).
+  reader.expect(!scene.cameras.empty() || !scene.models.empty(), "cameras", "a scene needs at least one camera");
   top.finish();
   return scene;
 }

@@ -22,11 +22,25 @@ namespace avsm::scene {
 
 inline constexpr int kSceneFormatVersion = 1;
 
+// "models[i].lights.<name>": what the scene file changes about one of a glTF file's
+// KHR_lights_punctual lights (named as GltfAsset::lights names them).
+struct GltfLightOverride {
+  std::string name;
+  std::string path;  // its JSON path, for "the file has no such light"
+  bool drop = false;  // "off"
+  std::optional<glm::vec3> color;
+  std::optional<float> intensity;
+  std::optional<float> range;
+  std::optional<ShadowSettings> shadow;
+};
+
 struct ModelEntry {  // "models": glTF files whose triangles become meshes
   std::string name;
   std::filesystem::path file;  // absolute or relative to the scene file, resolved
   glm::mat4 transform{1.0f};
   NormalGeneration missing_normals = NormalGeneration::flat;
+  bool file_lights = true;  // "lights": "off" leaves out all of the file's lights
+  std::vector<GltfLightOverride> light_overrides;
 };
 
 struct VolumeEntry {  // "volumes": OpenVDB fog volumes

@@ -4,6 +4,7 @@
 #include "scene/gltf.h"
 
 #include "scene/binary_reader.h"
+#include "scene/gltf_extensions.h"
 #include "scene/gltf_json_check.h"
 #include "scene/image_decode.h"
 #include "scene/load_error.h"
@@ -18,7 +19,9 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
+#include <tuple>
 
 namespace avsm::scene {
 namespace {
@@ -147,9 +150,13 @@ class Loader {
   [[noreturn]] void fail(const std::string& problem) const { throw LoadError(file_, problem); }
 
   AccessorView view(int accessor_index, const std::string& what) const;
+  // Which integer component types an attribute may have besides float: glTF's base
+  // specification allows normalized unsigned bytes and shorts for UVs; KHR_mesh_quantization
+  // allows every byte and short type for positions, normals, tangents and UVs.
+  enum class Integers { none, normalized_unsigned, any };
   template <int N>
-  std::vector<glm::vec<N, float>> read_vectors(int accessor_index, const std::string& what,
-                                               bool allow_normalized_integers) const;
+  std::vector<glm::vec<N, float>> read_vectors(int accessor_index, const std::string& what, Integers allowed) const;
+  Integers quantized_or(Integers base) const { return quantized_ ? Integers::any : base; }
   std::vector<std::uint32_t> read_indices(int accessor_index, const std::string& what) const;
 
   void check_required_extensions() const;
@@ -167,15 +174,20 @@ class Loader {
   Material convert_material(const tinygltf::Material& source);
   void convert_textures(const tinygltf::Material& source, const std::string& label, Material& material);
   int texture_for(int gltf_texture, ColorSpace color_space);
+  detail::TextureTransform material_uvs(int gltf_material) const;
+  void frame_cameras();
   Texture decode_texture(int image_index, ColorSpace color_space) const;
+  TextureSampler convert_sampler(int sampler_index) const;
 
   const tinygltf::Model& model_;
   const std::filesystem::path& file_;
   const GltfOptions& options_;
   GltfAsset asset_;
   std::map<int, std::uint32_t> materials_;  // glTF material (-1 = default) -> ours
-  std::map<std::pair<int, ColorSpace>, int> textures_;  // glTF image as colour or data -> ours
+  std::map<std::tuple<int, ColorSpace, int>, int> textures_;  // glTF image as colour or data, sampler -> ours
   std::uint64_t vertices_emitted_ = 0;
+  bool quantized_ = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                    model_.extensionsUsed.end();
 };
 
 AccessorView Loader::view(int accessor_index, const std::string& what) const {
@@ -249,16 +261,19 @@ float read_component(const unsigned char* p, int type, bool normalized) {
 }
 
 template <int N>
-std::vector<glm::vec<N, float>> Loader::read_vectors(int accessor_index, const std::string& what,
-                                                     bool allow_normalized_integers) const {
+std::vector<glm::vec<N, float>> Loader::read_vectors(int accessor_index, const std::string& what, Integers allowed) const {
   const AccessorView v = view(accessor_index, what);
   if (v.components != N) fail(what + ": expected " + std::to_string(N) + " components per element, accessor has " + std::to_string(v.components));
   const bool is_float = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  const bool is_normalized_int = v.normalized && (v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                  v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-  if (!is_float && !(allow_normalized_integers && is_normalized_int))
+  const bool is_unsigned = v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const bool is_signed = v.component_type == TINYGLTF_COMPONENT_TYPE_BYTE || v.component_type == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const bool ok = is_float || (allowed == Integers::normalized_unsigned && v.normalized && is_unsigned) ||
+                  (allowed == Integers::any && (is_unsigned || is_signed));
+  if (!ok)
     fail(what + ": component type " + std::to_string(v.component_type) + " is not supported here (expected float" +
-         (allow_normalized_integers ? " or normalized unsigned byte/short)" : ")"));
+         (allowed == Integers::normalized_unsigned ? " or normalized unsigned byte/short" : "") +
+         (allowed == Integers::none ? "; quantized attributes need the file to use KHR_mesh_quantization)" : ")"));
   std::vector<glm::vec<N, float>> values(v.count, glm::vec<N, float>(0.0f));
   if (v.data == nullptr) return values;
   const int component_size = component_bytes(v.component_type);
@@ -293,9 +308,8 @@ std::vector<std::uint32_t> Loader::read_indices(int accessor_index, const std::s
 // ---- hierarchy ----
 
 void Loader::check_required_extensions() const {
-  static const std::set<std::string> supported = {"KHR_materials_emissive_strength"};
   for (const std::string& extension : model_.extensionsRequired)
-    if (!supported.count(extension)) fail("requires extension " + extension + ", which is not supported");
+    if (!detail::is_supported_gltf_extension(extension)) fail("requires extension " + extension + ", which is not supported");
 }
 
 glm::mat4 local_matrix(const tinygltf::Node& node) {
@@ -369,6 +383,8 @@ void Loader::visit_nodes() {
     const glm::mat4 world = parent_world * local_matrix(node);
     if (!is_finite(world)) fail("node " + std::to_string(node_index) + " has a non-finite transform");
     if (node.mesh >= 0) add_mesh_instance(node.mesh, node.name, world);
+    if (auto light = detail::node_light(model_, node, world, file_)) asset_.lights.push_back(std::move(*light));
+    if (auto camera = detail::node_camera(model_, node, world, file_, asset_.warnings)) asset_.cameras.push_back(std::move(*camera));
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, world);
   }
 }
@@ -448,14 +464,6 @@ std::vector<TextureUse> texture_uses(const tinygltf::Material& m) {
           {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions, ColorSpace::srgb}};
 }
 
-// The one UV set a material's textures are read through: that of its first texture
-// (texture_uses order); textures on another set are dropped (convert_material warns).
-int texcoord_set(const tinygltf::Model& model, int material) {
-  if (material < 0 || std::size_t(material) >= model.materials.size()) return 0;
-  for (const TextureUse& use : texture_uses(model.materials[material]))
-    if (use.index >= 0) return std::max(0, use.texcoord);
-  return 0;
-}
 
 // Meshes are named after their node (instances of one glTF mesh differ), else the glTF mesh.
 void Loader::add_mesh_instance(int mesh_index, const std::string& node_name, const glm::mat4& world) {
@@ -473,7 +481,7 @@ void Loader::add_mesh_instance(int mesh_index, const std::string& node_name, con
     if (mode > TINYGLTF_MODE_TRIANGLE_FAN) fail(name + ": unknown primitive mode " + std::to_string(mode));
     const auto position = primitive.attributes.find("POSITION");
     if (position == primitive.attributes.end()) fail(name + ": no POSITION attribute");
-    const auto positions = read_vectors<3>(position->second, name + " POSITION", false);
+    const auto positions = read_vectors<3>(position->second, name + " POSITION", quantized_or(Integers::none));
     for (std::size_t i = 0; i < positions.size(); ++i)
       if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
         fail(name + ": position " + std::to_string(i) + " is not finite");
@@ -600,14 +608,17 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
   Mesh& mesh = asset_.meshes.back();
   mesh.material = material_index(primitive.material);
   const std::size_t vertex_count = mesh.positions.size();
-  const auto uv = primitive.attributes.find("TEXCOORD_" + std::to_string(texcoord_set(model_, primitive.material)));
+  const detail::TextureTransform uv_set = material_uvs(primitive.material);
+  const auto uv = primitive.attributes.find("TEXCOORD_" + std::to_string(uv_set.texcoord));
   if (uv != primitive.attributes.end()) {
-    mesh.uvs = read_vectors<2>(uv->second, name + " " + uv->first, true);
+    mesh.uvs = read_vectors<2>(uv->second, name + " " + uv->first, quantized_or(Integers::normalized_unsigned));
     if (mesh.uvs.size() != vertex_count) fail(name + ": " + uv->first + " count differs from POSITION count");
+    if (uv_set.present)  // KHR_texture_transform, applied once here for every texture of the material
+      for (glm::vec2& coordinate : mesh.uvs) coordinate = glm::vec2(uv_set.matrix * glm::vec3(coordinate, 1.0f));
   }
   const auto normal = primitive.attributes.find("NORMAL");
   if (normal != primitive.attributes.end()) {
-    mesh.normals = read_vectors<3>(normal->second, name + " NORMAL", false);
+    mesh.normals = read_vectors<3>(normal->second, name + " NORMAL", quantized_or(Integers::none));
     if (mesh.normals.size() != vertex_count) fail(name + ": NORMAL count differs from POSITION count");
     for (std::size_t i = 0; i < vertex_count; ++i)
       if (!is_finite(mesh.normals[i])) fail(name + ": normal " + std::to_string(i) + " is not finite");
@@ -616,7 +627,7 @@ void Loader::add_triangles(const tinygltf::Primitive& primitive, const std::stri
   const bool needs_tangents = asset_.materials[mesh.material].normal_texture >= 0;
   const auto tangent = primitive.attributes.find("TANGENT");
   if (needs_tangents && tangent != primitive.attributes.end()) {
-    mesh.tangents = read_vectors<4>(tangent->second, name + " TANGENT", false);
+    mesh.tangents = read_vectors<4>(tangent->second, name + " TANGENT", quantized_or(Integers::none));
     if (mesh.tangents.size() != vertex_count) fail(name + ": TANGENT count differs from POSITION count");
     for (std::size_t i = 0; i < vertex_count; ++i)
       if (!std::isfinite(mesh.tangents[i].x) || !std::isfinite(mesh.tangents[i].y) || !std::isfinite(mesh.tangents[i].z))
@@ -745,27 +756,39 @@ Material Loader::convert_material(const tinygltf::Material& source) {
   return material;
 }
 
-// The material's textures, each decoded in its colour space. All are read through one
-// UV set (texcoord_set); a texture on another set, or transformed by
-// KHR_texture_transform, is dropped or used untransformed with a warning.
+// The one UV set, and KHR_texture_transform, that a material's textures are read
+// through: those of its first texture (texture_uses order). The loader bakes the
+// transform into the mesh's UVs, as the textures of one material nearly always share it.
+detail::TextureTransform Loader::material_uvs(int gltf_material) const {
+  if (gltf_material < 0 || std::size_t(gltf_material) >= model_.materials.size()) return {};
+  const tinygltf::Material& material = model_.materials[gltf_material];
+  for (const TextureUse& use : texture_uses(material))
+    if (use.index >= 0)
+      return detail::texture_transform(*use.extensions, std::max(0, use.texcoord), "material '" + material.name + "' " + use.name, file_);
+  return {};
+}
+
+// The material's textures, each decoded in its colour space. A texture on another UV
+// set than the material's (material_uvs) is dropped, one with another transform is
+// read through the material's, each with a warning.
 void Loader::convert_textures(const tinygltf::Material& source, const std::string& label, Material& material) {
   const std::array<int*, 5> targets = material.textures();  // in texture_uses' order
   const std::vector<TextureUse> uses = texture_uses(source);
-  int uv_set = -1;
+  std::optional<detail::TextureTransform> first;
   for (std::size_t i = 0; i < uses.size(); ++i) {
     const TextureUse& use = uses[i];
     if (use.index < 0) continue;
-    const int set = std::max(0, use.texcoord);
-    if (uv_set < 0) uv_set = set;
-    if (set != uv_set) {
-      asset_.warnings.push_back(label + ": " + use.name + " reads TEXCOORD_" + std::to_string(set) +
-                                " but the material's other textures read TEXCOORD_" + std::to_string(uv_set) +
+    const detail::TextureTransform uvs = detail::texture_transform(*use.extensions, std::max(0, use.texcoord), label + " " + use.name, file_);
+    if (!first) first = uvs;
+    if (uvs.texcoord != first->texcoord) {
+      asset_.warnings.push_back(label + ": " + use.name + " reads TEXCOORD_" + std::to_string(uvs.texcoord) +
+                                " but the material's other textures read TEXCOORD_" + std::to_string(first->texcoord) +
                                 " (one UV set per material is supported); the " + use.name + " is not applied");
       continue;
     }
-    if (use.extensions->count("KHR_texture_transform"))
-      asset_.warnings.push_back(label + ": " + use.name + " has KHR_texture_transform, which is not supported; "
-                                "the texture is sampled untransformed");
+    if (uvs.matrix != first->matrix)
+      asset_.warnings.push_back(label + ": " + use.name + "'s KHR_texture_transform differs from the material's first "
+                                "texture's (one transform per material is supported); it is sampled through that one");
     *targets[i] = texture_for(use.index, use.color_space);
   }
 }
@@ -778,10 +801,51 @@ int Loader::texture_for(int gltf_texture, ColorSpace color_space) {
   if (image < 0 || std::size_t(image) >= model_.images.size())
     fail("texture " + std::to_string(gltf_texture) + " has no image we can decode (source " + std::to_string(image) +
          "; extension-only sources such as KTX2 or WebP are not supported)");
-  const auto found = textures_.find({image, color_space});
+  const int sampler = model_.textures[gltf_texture].sampler;
+  const auto found = textures_.find({image, color_space, sampler});
   if (found != textures_.end()) return found->second;
-  asset_.textures.push_back(decode_texture(image, color_space));
-  return textures_[{image, color_space}] = int(asset_.textures.size() - 1);
+  Texture texture = decode_texture(image, color_space);
+  texture.sampler = convert_sampler(sampler);
+  if (texture.sampler.mipmapped) generate_mips(texture);
+  asset_.textures.push_back(std::move(texture));
+  return textures_[{image, color_space, sampler}] = int(asset_.textures.size() - 1);
+}
+
+// glTF's sampler enums (OpenGL's values); absent members keep TextureSampler's defaults.
+TextureSampler Loader::convert_sampler(int sampler_index) const {
+  TextureSampler sampler;
+  if (sampler_index < 0) return sampler;
+  if (std::size_t(sampler_index) >= model_.samplers.size()) fail("texture uses sampler " + std::to_string(sampler_index) + ", which does not exist");
+  const tinygltf::Sampler& source = model_.samplers[sampler_index];
+  const std::string label = "sampler " + std::to_string(sampler_index);
+  auto wrap = [&](int mode, const char* what) {
+    switch (mode) {
+      case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::repeat;
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::clamp_to_edge;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::mirrored_repeat;
+      default: fail(label + ": unknown " + what + " " + std::to_string(mode));
+    }
+  };
+  sampler.wrap_u = wrap(source.wrapS, "wrapS");
+  sampler.wrap_v = wrap(source.wrapT, "wrapT");
+  switch (source.magFilter) {
+    case -1: break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: sampler.mag = TextureFilter::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: sampler.mag = TextureFilter::linear; break;
+    default: fail(label + ": unknown magFilter " + std::to_string(source.magFilter));
+  }
+  using F = TextureFilter;
+  switch (source.minFilter) {
+    case -1: break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: sampler.min = F::nearest, sampler.mipmapped = false; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: sampler.min = F::linear, sampler.mipmapped = false; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: sampler.min = F::nearest, sampler.mip = F::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: sampler.min = F::linear, sampler.mip = F::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: sampler.min = F::nearest, sampler.mip = F::linear; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: sampler.min = F::linear, sampler.mip = F::linear; break;
+    default: fail(label + ": unknown minFilter " + std::to_string(source.minFilter));
+  }
+  return sampler;
 }
 
 Texture Loader::decode_texture(int image_index, ColorSpace color_space) const {
@@ -798,6 +862,22 @@ Texture Loader::decode_texture(int image_index, ColorSpace color_space) const {
   return texture;
 }
 
+// A glTF camera has no target: put it where the view's axis passes the asset's centre
+// (the viewer orbits it), and bound an infinite far plane by the asset's farthest corner.
+void Loader::frame_cameras() {
+  for (Camera& camera : asset_.cameras) {
+    const glm::vec3 forward = camera.target - camera.position;  // unit (node_camera)
+    float focus = 1.0f, farthest = 0.0f;
+    if (!asset_.bounds.empty()) {
+      focus = glm::dot(asset_.bounds.center() - camera.position, forward);
+      for (int corner = 0; corner < 8; ++corner)
+        farthest = std::max(farthest, glm::length(asset_.bounds.corner(corner) - camera.position));
+    }
+    camera.target = camera.position + forward * std::max(focus, 10.0f * camera.near_plane);
+    if (camera.far_plane == 0.0f) camera.far_plane = std::max(2.0f * farthest, 1000.0f * camera.near_plane);
+  }
+}
+
 GltfAsset Loader::load() {
   check_required_extensions();
   visit_nodes();
@@ -810,6 +890,8 @@ GltfAsset Loader::load() {
   }
   for (const Mesh& mesh : asset_.meshes) asset_.bounds.extend(mesh.bounds);
   asset_.bounds.extend(asset_.line_strands.bounds);
+  frame_cameras();
+  for (std::string& warning : detail::ignored_content_warnings(model_, file_)) asset_.warnings.push_back(std::move(warning));
   return std::move(asset_);
 }
 

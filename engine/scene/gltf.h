@@ -1,6 +1,8 @@
 #pragma once
 // glTF 2.0 (.gltf with .bin / data URIs, and .glb) through tinygltf.
+#include "scene/camera.h"
 #include "scene/hair.h"
+#include "scene/light.h"
 #include "scene/mesh.h"
 
 #include <glm/glm.hpp>
@@ -36,6 +38,11 @@ struct GltfAsset {
   // segments that share an index are joined into one strand. Empty when none.
   HairGroom line_strands;
   std::size_t point_primitives_skipped = 0;  // POINTS primitives have no use here
+  // KHR_lights_punctual lights and perspective cameras, where the nodes place them
+  // (gltf_extensions.h: names, units, how a camera's target and infinite far plane are set).
+  // Lights get the default shadow settings.
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
   std::vector<std::string> warnings;         // tinygltf's warnings, for logs
   Bounds bounds;                             // of the meshes and the strands
 };
@@ -44,9 +51,12 @@ struct GltfAsset {
 // scenes). Throws LoadError naming the file for anything malformed: bad JSON or
 // GLB chunks, missing buffers or images, accessors out of their buffers, indices
 // out of range, non-finite positions, node cycles, unsupported required
-// extensions (e.g. Draco, mesh quantization), undecodable textures, non-finite
+// extensions (e.g. Draco), undecodable textures, non-finite
 // normals. Zero-length normals (a known exporter bug) are replaced by smooth
-// normals at those vertices, with a warning.
+// normals at those vertices, with a warning. Read: KHR_lights_punctual,
+// KHR_texture_transform (baked into the UVs), KHR_mesh_quantization,
+// KHR_materials_emissive_strength. Other extensions used but not required, skins,
+// morph targets and animations each get a warning saying what is left out.
 GltfAsset load_gltf(const std::filesystem::path& file, const GltfOptions& options = {});
 // Same from memory; `name` is used in messages and its folder for external files.
 GltfAsset parse_gltf(std::span<const std::byte> bytes, const std::filesystem::path& name,

@@ -4,7 +4,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <array>
+#include <compare>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,15 +18,46 @@ namespace avsm::scene {
 // occlusion) is linear. The renderer samples them with an SRGB or a UNORM format.
 enum class ColorSpace { srgb, linear };
 
-// Decoded image, 4 bytes per pixel, rows top to bottom. One glTF image used both
-// as a colour and as data becomes two textures.
+// How a texture is read: glTF's sampler (wrapS/T, magFilter, minFilter). Without a
+// sampler, or without a minFilter, glTF leaves the choice to the renderer: linear with
+// linear mip blending (trilinear), repeating.
+enum class TextureWrap { repeat, clamp_to_edge, mirrored_repeat };
+enum class TextureFilter { nearest, linear };
+struct TextureSampler {
+  TextureWrap wrap_u = TextureWrap::repeat;
+  TextureWrap wrap_v = TextureWrap::repeat;
+  TextureFilter mag = TextureFilter::linear;
+  TextureFilter min = TextureFilter::linear;
+  bool mipmapped = true;                      // minification reads the mip chain
+  TextureFilter mip = TextureFilter::linear;  // between mip levels (when mipmapped)
+  auto operator<=>(const TextureSampler&) const = default;
+};
+
+// Decoded image, 4 bytes per pixel, rows top to bottom, with its mip chain when its
+// sampler reads one (generated at load: a 2 x 2 box filter, in linear light for sRGB
+// colours). One glTF image used both as a colour and as data, or through two samplers,
+// becomes two textures.
 struct Texture {
   std::string name;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::vector<std::uint8_t> rgba8;
   ColorSpace color_space = ColorSpace::srgb;
+  TextureSampler sampler;
+  // Levels 1, 2, ... down to 1 x 1, each half the one above (rounded down, at least 1);
+  // empty when the sampler is not mipmapped.
+  std::vector<std::vector<std::uint8_t>> mips;
+
+  std::uint32_t mip_levels() const { return 1 + std::uint32_t(mips.size()); }
+  std::uint32_t level_width(std::uint32_t level) const { return std::max(1u, width >> level); }
+  std::uint32_t level_height(std::uint32_t level) const { return std::max(1u, height >> level); }
 };
+
+// Fills texture.mips from texture.rgba8: each level averages 2 x 2 texels of the one
+// above (the last row or column of an odd size folds into its neighbour), in linear
+// light for sRGB textures (averaging encoded values darkens), alpha linearly. The glTF
+// loader calls it for textures whose sampler reads mips.
+void generate_mips(Texture& texture);
 
 enum class AlphaMode { opaque, mask, blend };
 

@@ -24,6 +24,31 @@ std::string lowercase_extension(const std::filesystem::path& file) {
   return extension;
 }
 
+// The glTF file's KHR_lights_punctual lights join the scene's, named "<model>/<light>",
+// with what the scene file's "lights" block changes or drops.
+void add_file_lights(Scene& scene, const ModelEntry& entry, std::vector<Light>& lights) {
+  for (const GltfLightOverride& change : entry.light_overrides) {
+    const auto light = std::find_if(lights.begin(), lights.end(), [&](const Light& l) { return l.name == change.name; });
+    if (light == lights.end()) {
+      std::string names;
+      for (const Light& l : lights) names += " '" + l.name + "'";
+      throw LoadError(entry.file, "has no KHR_lights_punctual light named '" + change.name + "' (lights:" +
+                                      (names.empty() ? " none" : names) + "), which " + change.path + " names");
+    }
+    if (change.color) light->color = *change.color;
+    if (change.intensity) light->intensity = *change.intensity;
+    if (change.range) light->range = *change.range;
+    if (change.shadow) light->shadow = *change.shadow;
+    if (change.drop) light->name.clear();  // removed below, once every name has been found
+  }
+  if (!entry.file_lights) return;
+  for (Light& light : lights) {
+    if (light.name.empty()) continue;
+    light.name = entry.name + "/" + light.name;
+    scene.lights.push_back(std::move(light));
+  }
+}
+
 void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, GltfAsset asset) {
   const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
   const auto texture_base = static_cast<int>(scene.textures.size());
@@ -45,6 +70,11 @@ void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, 
   if (asset.point_primitives_skipped > 0)
     scene.warnings.push_back(label + std::to_string(asset.point_primitives_skipped) + " POINTS primitives ignored");
   for (const std::string& warning : asset.warnings) scene.warnings.push_back(label + "glTF: " + warning);
+  add_file_lights(scene, entry, asset.lights);
+  for (Camera& camera : asset.cameras) {
+    camera.name = entry.name + "/" + camera.name;
+    scene.cameras.push_back(std::move(camera));
+  }
 }
 
 HairGroom load_hair_file(const HairEntry& entry) {
@@ -119,6 +149,8 @@ Scene load_scene(const SceneDescription& description) {
     scene.hair.push_back(std::move(groom));
   }
 
+  if (scene.cameras.empty())
+    throw LoadError(description.file, "cameras: a scene needs at least one camera, and its models' glTF files have none");
   for (const Mesh& mesh : scene.meshes) scene.bounds.extend(mesh.bounds);
   for (const HairGroom& groom : scene.hair) scene.bounds.extend(groom.bounds);
   for (const Volume& volume : scene.volumes) scene.bounds.extend(volume.world_bounds);

@@ -14,18 +14,12 @@
 
 namespace avsm::passes {
 
-// A glTF material texture (RGBA8) uploaded for sampling, in SHADER_READ_ONLY_OPTIMAL. Colours
-// (base colour, emissive) are sRGB-encoded, data (metallic-roughness, normal, occlusion)
-// linear: the format decodes each as glTF means it (an sRGB format leaves alpha linear).
-gpu::Image upload_material_texture(const gpu::Context& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8,
-                                   scene::ColorSpace color_space, const std::string& name);
+// `draw` with `material`'s alpha: its mode, cutoff and factor, and `texture` and `sampler`
+// (its base-colour texture's view and sampler, VK_NULL_HANDLE for none).
+MeshDraw with_material_alpha(MeshDraw draw, const scene::Material& material, VkImageView texture, VkSampler sampler);
 
-// `draw` with `material`'s alpha: its mode, cutoff and factor, and `texture` (the view of
-// its base-colour texture, VK_NULL_HANDLE for none).
-MeshDraw with_material_alpha(MeshDraw draw, const scene::Material& material, VkImageView texture);
-
-// What a capture pass binds for alpha: the draw's texture (white for draws without one)
-// and a linear, repeating sampler.
+// What a capture pass binds for alpha: the draw's texture and sampler (white, and a
+// linear repeating sampler, for draws without one).
 // Records `draw` (the pass has bound the index buffer).
 inline void draw_mesh(VkCommandBuffer cmd, const MeshDraw& draw) {
   vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);

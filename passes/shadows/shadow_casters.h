@@ -43,6 +43,7 @@ struct MeshDraw {
   float alpha_cutoff = 0.5f;                   // mask only
   float alpha_factor = 1.0f;                   // the base colour factor's alpha
   VkImageView alpha_texture = VK_NULL_HANDLE;  // the base-colour texture, SHADER_READ_ONLY_OPTIMAL; mask, blend
+  VkSampler alpha_sampler = VK_NULL_HANDLE;    // and its sampler
   bool tests_alpha() const { return alpha != CasterAlpha::opaque; }
 };
 

@@ -369,7 +369,7 @@ TEST(SceneDescriptionErrors, FogOutOfRange) {
 TEST(SceneDescriptionErrors, MissingAndContradictoryKeys) {
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", "")), HasSubstr("scene.json: version: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("version": 1,)", R"("version": 2,)")), HasSubstr("version: unsupported version 2"));
-  EXPECT_THAT(error_of(R"({"version": 1})"), HasSubstr("cameras: required key is missing"));
+  EXPECT_THAT(error_of(R"({"version": 1})"), HasSubstr("cameras: a scene needs at least one camera"));
   EXPECT_THAT(error_of(R"({"version": 1, "cameras": []})"), HasSubstr("cameras: a scene needs at least one camera"));
   EXPECT_THAT(error_of(full_scene(R"("grid": "density",)", "")), HasSubstr("volumes[0].grid: required key is missing"));
   EXPECT_THAT(error_of(full_scene(R"("type": "spot", )", "")), HasSubstr("lights[1].type: required key is missing"));

@@ -139,17 +139,6 @@ TEST(GltfMaterial, ATextureOnAnotherUvSetIsDroppedWithAWarning) {
                                        HasSubstr("TEXCOORD_0"), HasSubstr("not applied")));
 }
 
-TEST(GltfMaterial, TextureTransformIsIgnoredWithAWarning) {
-  const auto file = testing::assimp_model("glTF2/textureTransform/TextureTransformTest.gltf");
-  AVSM_REQUIRE_FILE(file);
-  const GltfAsset asset = load_gltf(file);
-  int transform_warnings = 0;
-  for (const std::string& warning : asset.warnings)
-    transform_warnings += warning.find("KHR_texture_transform") != std::string::npos &&
-                          warning.find("sampled untransformed") != std::string::npos;
-  EXPECT_GT(transform_warnings, 0);
-}
-
 // Generated tangents follow +U; the handedness makes cross(N, T) x w point up the image
 // (-V in glTF's UVs), so that a normal texture's +Y means "up" in the picture.
 TEST(GltfMaterial, TangentsAreGeneratedFromUvDerivatives) {

@@ -10,6 +10,12 @@ fresh clone). Deterministic: running it again gives the same bytes.
   curtain.gltf  hair: 240 wavy strands of 14 points hanging 1 m down from a 1.2 m
                 rod along X at y = 1, as one LINES primitive (consecutive segments
                 that share an index form one strand); needs 'width' in the scene
+  blender_room.gltf  a small room as Blender's glTF exporter (4.x) writes one: objects named
+                as in Blender (Floor, Cube, Ball, Sun, Spot, Camera), Y up, lights in
+                KHR_lights_punctual (the sun's strength as lux, the spot's watts as candela:
+                W / 4 pi x 683 / 1000), the floor's tiling through KHR_texture_transform (a
+                Mapping node's scale), a glowing cube through KHR_materials_emissive_strength,
+                a repeating, mipmapped sampler, and a camera
   screens.gltf  two upright 1 m squares in the XY plane facing +Z, centred at x = -0.7
                 and x = 0.7: 'screen', alphaMode MASK (cutoff 0.5) with a texture of
                 4 x 4 round holes (alpha 0 inside, 1 outside); 'pane', alphaMode BLEND,
@@ -186,11 +192,116 @@ def screens():
     }
 
 
+def checker(size=64, cells=8):
+    """Light and dark grey squares, `cells` per side, with a thin dark line at each edge."""
+    cell = size // cells
+
+    def pixel(x, y):
+        if x % cell == 0 or y % cell == 0:
+            return (40, 40, 44, 255)
+        light = (x // cell + y // cell) % 2 == 0
+        return (200, 196, 188, 255) if light else (120, 124, 130, 255)
+
+    return png(size, size, pixel)
+
+
+def blender_room():
+    """A floor, a glowing cube and a ball, lit by a sun and a spot, with a camera."""
+    blob = b""
+    views, accessors, meshes = [], [], []
+
+    def add(data, fmt, count, kind, component=5126, extra=None):
+        nonlocal blob
+        packed = b"".join(struct.pack(fmt, *d) if isinstance(d, (list, tuple)) else struct.pack(fmt, d) for d in data)
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(packed)})
+        blob += packed
+        accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": kind}
+        accessor.update(extra or {})
+        accessors.append(accessor)
+        return len(accessors) - 1
+
+    def mesh(name, positions, normals, uvs, indices, material):
+        lo = [min(p[k] for p in positions) for k in range(3)]
+        hi = [max(p[k] for p in positions) for k in range(3)]
+        attributes = {"POSITION": add(positions, "<3f", len(positions), "VEC3", extra={"min": lo, "max": hi}),
+                      "NORMAL": add(normals, "<3f", len(normals), "VEC3")}
+        if uvs:
+            attributes["TEXCOORD_0"] = add(uvs, "<2f", len(uvs), "VEC2")
+        primitive = {"attributes": attributes, "indices": add(indices, "<H", len(indices), "SCALAR", 5123),
+                     "material": material}
+        meshes.append({"name": name, "primitives": [primitive]})
+        return len(meshes) - 1
+
+    floor = mesh("Plane", [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]], [[0, 1, 0]] * 4,
+                 [[0, 1], [1, 1], [1, 0], [0, 0]], [0, 1, 2, 0, 2, 3], 0)
+    box, ball_mesh = block(), ball(rings=12, segments=24)
+    cube = mesh("Cube", unpack(box, 0, "<3f"), unpack(box, 1, "<3f"), None, unpack(box, 2, "<I"), 1)
+    sphere = mesh("Sphere", unpack(ball_mesh, 0, "<3f"), unpack(ball_mesh, 1, "<3f"), None, unpack(ball_mesh, 2, "<I"), 2)
+    s = math.sqrt(0.5)
+    # Blender's default spot: 45 degrees wide (spot_size), blend 0.15; outer = size / 2,
+    # inner = outer x (1 - blend), as the exporter writes them.
+    outer = math.radians(45.0) / 2.0
+    return {
+        "asset": {"version": "2.0", "generator": "content/examples/assets/make_assets.py (Blender glTF I/O 4.x conventions)"},
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"name": "Sun", "type": "directional", "color": [1.0, 0.95, 0.88], "intensity": 3.0},
+            {"name": "Spot", "type": "spot", "color": [0.75, 0.85, 1.0], "intensity": 54.35,
+             "spot": {"innerConeAngle": round(outer * 0.85, 6), "outerConeAngle": round(outer, 6)}}]}},
+        "scene": 0,
+        "scenes": [{"name": "Scene", "nodes": [0, 1, 2, 3, 4, 5]}],
+        "nodes": [
+            {"name": "Floor", "mesh": floor},
+            {"name": "Cube", "mesh": cube, "translation": [-0.8, 0.5, 0.0]},
+            {"name": "Ball", "mesh": sphere, "translation": [0.9, 0.5, 0.6]},
+            # Sun: turned 60 degrees down (about X) and 30 degrees about Y.
+            {"name": "Sun", "rotation": [-0.482963, 0.224144, 0.129410, 0.836516],
+             "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            # Spot: 3 m up, looking straight down (-Z turned -90 degrees about X).
+            {"name": "Spot", "translation": [0.9, 3.0, 0.6], "rotation": [-s, 0.0, 0.0, s],
+             "extensions": {"KHR_lights_punctual": {"light": 1}}},
+            # Camera: 5.5 m back, 2.6 m up, pitched 22 degrees down.
+            {"name": "Camera", "camera": 0, "translation": [0.0, 2.6, 5.5], "rotation": [-0.190809, 0.0, 0.0, 0.981627]},
+        ],
+        "cameras": [{"name": "Camera", "type": "perspective",
+                     "perspective": {"aspectRatio": 1.7778, "yfov": 0.6, "znear": 0.1, "zfar": 100.0}}],
+        "materials": [
+            {"name": "Floor", "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"scale": [4.0, 4.0]}}},
+                "metallicFactor": 0.0, "roughnessFactor": 0.7}},
+            {"name": "Lamp", "emissiveFactor": [1.0, 0.55, 0.25],
+             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1.0}},
+             "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.4, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5}},
+            {"name": "Ball", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.35, 0.75, 1.0], "metallicFactor": 0.0,
+                                                      "roughnessFactor": 0.4}},
+        ],
+        "textures": [{"sampler": 0, "source": 0}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9987}],  # Blender's: linear, trilinear mipmaps, repeat
+        "images": [{"name": "checker", "mimeType": "image/png",
+                    "uri": "data:image/png;base64," + base64.b64encode(checker()).decode()}],
+        "meshes": meshes,
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+    }
+
+
+def unpack(asset, accessor, fmt):
+    """Accessor `accessor` of a one-buffer asset from gltf(), as a list of tuples (or ints)."""
+    blob = base64.b64decode(asset["buffers"][0]["uri"].split(",", 1)[1])
+    view = asset["bufferViews"][asset["accessors"][accessor]["bufferView"]]
+    size = struct.calcsize(fmt)
+    items = [struct.unpack_from(fmt, blob, view["byteOffset"] + i * size)
+             for i in range(view["byteLength"] // size)]
+    return [item[0] if len(item) == 1 else list(item) for item in items]
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     metal_ball = ball("metal_ball", (1.0, 0.78, 0.34), metallic=1.0, roughness=0.3)  # gold-like F0
     for name, asset in (("block", block()), ("ball", ball()), ("metal_ball", metal_ball), ("curtain", curtain()),
-                        ("screens", screens())):
+                        ("screens", screens()), ("blender_room", blender_room())):
         with open(os.path.join(here, name + ".gltf"), "w") as out:
             json.dump(asset, out, indent=1)
             out.write("\n")

@@ -62,11 +62,9 @@ scene::Material fallback_material() {
 OpaquePass::OpaquePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
     : ctx_(ctx),
       shaders_(shaders),
-      sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT}),
-      ltc_sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
+      ltc_sampler_(ctx, {VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}),
+      textures_(ctx) {
   pipeline_ = create_pipeline(shaders, false);
-  const uint8_t white[4] = {255, 255, 255, 255};
-  white_ = upload_material_texture(ctx, 1, 1, white, scene::ColorSpace::srgb, "white texture");  // 1.0 as sRGB and as UNORM
   const lighting::LtcTable& table = lighting::builtin_ggx_table();
   ltc_matrix_ = ltc_table_image(ctx, table.size, VK_FORMAT_R32G32B32A32_SFLOAT, table.inverse_matrix.data(),
                                 table.inverse_matrix.size() * sizeof(glm::vec4), "ltc inverse matrices");
@@ -142,9 +140,7 @@ void OpaquePass::set_scene(const scene::Scene& scene) {
   tangents_ = gpu::create_buffer_from(ctx_, std::move(tangents), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque tangents");
   indices_ = gpu::create_buffer_from(ctx_, std::move(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "opaque indices");
   materials_ = gpu::create_buffer_from(ctx_, std::move(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "opaque materials");
-  textures_.clear();
-  for (const scene::Texture& t : scene.textures)
-    textures_.push_back(upload_material_texture(ctx_, t.width, t.height, t.rgba8.data(), t.color_space, "texture " + t.name));
+  textures_.upload(scene.textures);
 }
 
 MeshCasters OpaquePass::casters() const {
@@ -157,14 +153,10 @@ MeshCasters OpaquePass::casters() const {
     }
     const scene::Material& material = scene_materials_[draw.material];
     const int texture = material.base_color_texture;
-    casters.draws.push_back(with_material_alpha(range, material,
-                                                texture >= 0 ? texture_view(texture) : VK_NULL_HANDLE));
+    casters.draws.push_back(with_material_alpha(range, material, texture >= 0 ? textures_.view(texture) : VK_NULL_HANDLE,
+                                                textures_.sampler(texture)));
   }
   return casters;
-}
-
-VkImageView OpaquePass::texture_view(int texture) const {
-  return texture >= 0 && size_t(texture) < textures_.size() ? textures_[texture].view() : white_.view();
 }
 
 OpaquePass::Outputs OpaquePass::add_to_graph(rg::Graph& graph, rg::TextureHandle color, FrameInputs& frame,
@@ -214,7 +206,7 @@ void OpaquePass::record(rg::PassContext& c, const Outputs& targets, const View& 
     bindings.buffer("Vertices", vertices_).buffer("Tangents", tangents_).buffer("Materials", materials_).buffer("Lights", lights);
     for (size_t i = 0; i < std::size(kTextureBindings); ++i) {
       const int texture = material ? *material->textures()[i] : -1;  // -1: the white texture
-      bindings.image(kTextureBindings[i], texture_view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.handle());
+      bindings.image(kTextureBindings[i], textures_.view(texture), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, textures_.sampler(texture));
     }
     bindings.image("ltc_matrix_table", ltc_matrix_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, ltc_sampler_.handle())
         .image("ltc_magnitude_table", ltc_magnitude_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

@@ -13,6 +13,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/resources.h"
+#include "passes/frame/material_textures.h"
 #include "passes/shadows/shadow_casters.h"
 #include "passes/shadows/shadow_maps_fwd.h"
 #include "passes/frame/view.h"
@@ -61,7 +62,6 @@ class OpaquePass {
   void record(rg::PassContext& c, const Outputs& targets, const View& view, const gpu::Buffer& lights,
               uint32_t light_count, const ShadowInputs& shadows) const;
   gpu::Pipeline create_pipeline(const gpu::ShaderLibrary& shaders, bool area_light_subsets) const;
-  VkImageView texture_view(int texture) const;
 
   gpu::Context& ctx_;
   const gpu::ShaderLibrary& shaders_;
@@ -69,14 +69,12 @@ class OpaquePass {
   // Made on the first frame that needs it: lavapipe compiles a pipeline as it is made, and
   // most renderers never light with an area light.
   gpu::Pipeline area_subsets_pipeline_;
-  gpu::Sampler sampler_;
   // The LTC table of rect lights (engine/lighting/ltc.h, common/area_light.glsl): M^-1's
   // coefficients and the lobe's magnitudes, filtered bilinearly.
   gpu::Image ltc_matrix_, ltc_magnitude_;
   gpu::Sampler ltc_sampler_;
   gpu::Buffer vertices_, tangents_, indices_, materials_;
-  std::vector<gpu::Image> textures_;
-  gpu::Image white_;
+  MaterialTextures textures_;
   std::vector<Draw> draws_;
   struct VertexRange {
     uint32_t first, count;
