@@ -384,6 +384,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
   for (scene::Light& light : scene.lights) options.shadow.apply(light);
+  if (options.time) {
+    if (scene.animation.empty())
+      std::fprintf(stderr, "avsm-capture: warning: --time %g: the scene has no animation; nothing moves\n", double(*options.time));
+    scene.animation.pose(scene, *options.time);
+  }
   options.volume_shading.apply(scene.volume_shading);
   for (scene::Volume& volume : scene.volumes) {
     if (options.volume_octaves) volume.multiple_scattering.octaves = *options.volume_octaves;

@@ -33,6 +33,9 @@ struct CaptureOptions {
   // --orbit DEGREES: frame i sees the scene from the camera turned i x DEGREES about its
   // target (scene::orbited): a static scene under a moving camera, as in the viewer. The
   // frames rendered again until the maps are finished keep the last frame's view.
+  // The instant rendered (seconds): the scene's animation posed there (content/README.md,
+  // "Animation"); unset: as the file places everything.
+  std::optional<float> time;
   float orbit_degrees = 0.0f;
   // --light-orbit DEGREES: frame i turns every light i x DEGREES about the vertical axis
   // through the scene's centre (positions and directions): a light that moves every

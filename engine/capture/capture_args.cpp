@@ -19,6 +19,8 @@ const char* kUsage =
     "  --height N       image height (default 720)\n"
     "  --frames K       frames to render; timings over all but the first (default 5)\n"
     "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
+    "  --time SECONDS   the instant to render: the scene's animation posed there (default:\n"
+    "                   everything where the file places it)\n"
     "  --orbit DEGREES  turn the camera about its target by this much each frame (default 0)\n"
     "  --light-orbit DEGREES  turn every light about the vertical axis through the scene's\n"
     "                   centre by this much each frame (default 0): a moving light\n"
@@ -184,6 +186,11 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.frames = parse_count(arg, value());
   } else if (arg == "--frames-in-flight") {
     options.frames_in_flight = uint32_t(parse_in_range(arg, value(), 1, 3));
+  } else if (arg == "--time") {
+    const std::string text = value();
+    const std::optional<float> seconds = parse_number<float>(text);
+    if (!seconds || !std::isfinite(*seconds)) usage_error("--time expects a number of seconds, got '" + text + "'");
+    options.time = *seconds;
   } else if (arg == "--orbit") {
     const std::string text = value();
     const std::optional<float> degrees = parse_number<float>(text);
@@ -359,6 +366,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.height != defaults.height, "--height", std::to_string(o.height));
   with_value(o.frames != defaults.frames, "--frames", std::to_string(o.frames));
   with_value(o.frames_in_flight != defaults.frames_in_flight, "--frames-in-flight", std::to_string(o.frames_in_flight));
+  with_value(o.time.has_value(), "--time", o.time ? exact_text(*o.time) : "");
   with_value(o.orbit_degrees != defaults.orbit_degrees, "--orbit", exact_text(o.orbit_degrees));
   with_value(o.light_orbit_degrees != defaults.light_orbit_degrees, "--light-orbit", exact_text(o.light_orbit_degrees));
   with_value(o.device != defaults.device, "--device", o.device);

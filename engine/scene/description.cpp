@@ -2,6 +2,7 @@
 // its JSON path, so every message can say exactly where the problem is.
 #include "scene/description.h"
 
+#include "scene/animation_reader.h"
 #include "scene/binary_reader.h"
 #include "scene/json_reader.h"
 #include "scene/load_error.h"
@@ -127,6 +128,7 @@ ModelEntry read_model(ObjectReader& object, const std::filesystem::path& scene_d
   entry.missing_normals = choice<NormalGeneration>(object, "missing_normals", NormalGeneration::flat,
                                                    {{"flat", NormalGeneration::flat}, {"smooth", NormalGeneration::smooth}});
   read_gltf_light_overrides(object, entry);
+  entry.animation = detail::read_model_animation(object);
   return entry;
 }
 
@@ -511,8 +513,16 @@ SceneDescription parse_scene_description(std::string_view json_text, const std::
   scene.models = read_list<ModelEntry>(top, "models", [&](ObjectReader& o, std::size_t) { return read_model(o, scene_dir); });
   scene.volumes = read_list<VolumeEntry>(top, "volumes", [&](ObjectReader& o, std::size_t) { return read_volume(o, scene_dir); });
   scene.hair = read_list<HairEntry>(top, "hair", [&](ObjectReader& o, std::size_t) { return read_hair(o, scene_dir); });
-  scene.lights = read_list<Light>(top, "lights", read_light);
-  scene.cameras = read_list<Camera>(top, "cameras", read_camera);
+  scene.lights = read_list<Light>(top, "lights", [&](ObjectReader& o, std::size_t i) {
+    Light light = read_light(o, i);
+    scene.light_animations.push_back(detail::read_light_animation(o, light));
+    return light;
+  });
+  scene.cameras = read_list<Camera>(top, "cameras", [&](ObjectReader& o, std::size_t i) {
+    Camera camera = read_camera(o, i);
+    scene.camera_animations.push_back(detail::read_camera_animation(o));
+    return camera;
+  });
   if (const json* shading = top.optional("volume_shading")) scene.volume_shading = read_volume_shading(reader, *shading);
   if (const json* shadows = top.optional("shadows")) scene.shadows = read_scene_shadows(reader, *shadows);
   if (const json* fog = top.optional("fog")) scene.fog = read_fog(reader, *fog);

@@ -4,6 +4,7 @@
 // duplicate keys, wrong types and out-of-range values are LoadErrors whose
 // message names the file, the JSON path (e.g. "lights[1].shadow.nodes") and
 // the problem.
+#include "scene/animation.h"
 #include "scene/camera.h"
 #include "scene/fog.h"
 #include "scene/light.h"
@@ -41,6 +42,7 @@ struct ModelEntry {  // "models": glTF files whose triangles become meshes
   NormalGeneration missing_normals = NormalGeneration::flat;
   bool file_lights = true;  // "lights": "off" leaves out all of the file's lights
   std::vector<GltfLightOverride> light_overrides;
+  TransformTracks animation;  // "animation": its placement over time (empty: it stays)
 };
 
 struct VolumeEntry {  // "volumes": OpenVDB fog volumes
@@ -73,7 +75,10 @@ struct SceneDescription {
   std::vector<VolumeEntry> volumes;
   std::vector<HairEntry> hair;
   std::vector<Light> lights;
-  std::vector<Camera> cameras;  // at least one
+  std::vector<Camera> cameras;  // at least one (or the models' glTF cameras)
+  // "animation" of each light and camera, parallel to `lights` and `cameras` (empty: it stays).
+  std::vector<LightTracks> light_animations;
+  std::vector<CameraTracks> camera_animations;
   VolumeShading volume_shading;  // "volume_shading"
   SceneShadows shadows;          // "shadows"
   Fog fog;                       // "fog" (scene/fog.h)

@@ -162,6 +162,9 @@ class Loader {
   void check_required_extensions() const;
   std::vector<int> root_nodes() const;
   void visit_nodes();
+  void read_node_animation();
+  template <int N>
+  Track<N> read_channel(const tinygltf::Animation& animation, const tinygltf::AnimationChannel& channel, const std::string& what) const;
   void add_mesh_instance(int mesh_index, const std::string& node_name, const glm::mat4& world);
   void count_vertices(std::size_t count, const std::string& name);
   void repair_zero_normals(Mesh& mesh, const std::string& name);
@@ -383,8 +386,15 @@ void Loader::visit_nodes() {
     const glm::mat4 world = parent_world * local_matrix(node);
     if (!is_finite(world)) fail("node " + std::to_string(node_index) + " has a non-finite transform");
     if (node.mesh >= 0) add_mesh_instance(node.mesh, node.name, world);
-    if (auto light = detail::node_light(model_, node, world, file_)) asset_.lights.push_back(std::move(*light));
-    if (auto camera = detail::node_camera(model_, node, world, file_, asset_.warnings)) asset_.cameras.push_back(std::move(*camera));
+    asset_.mesh_nodes.resize(asset_.meshes.size(), node_index);
+    if (auto light = detail::node_light(model_, node, world, file_)) {
+      asset_.lights.push_back(std::move(*light));
+      asset_.light_nodes.push_back(node_index);
+    }
+    if (auto camera = detail::node_camera(model_, node, world, file_, asset_.warnings)) {
+      asset_.cameras.push_back(std::move(*camera));
+      asset_.camera_nodes.push_back(node_index);
+    }
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.emplace_back(*child, world);
   }
 }
@@ -878,9 +888,83 @@ void Loader::frame_cameras() {
   }
 }
 
+// The node hierarchy at rest, and every animation's translation, rotation and scale
+// channels on it (all animations play together; "weights" is left to the morph-target
+// warning).
+void Loader::read_node_animation() {
+  auto nodes = std::make_shared<NodeAnimation>();
+  nodes->nodes.resize(model_.nodes.size());
+  for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+    const tinygltf::Node& source = model_.nodes[n];
+    NodeAnimation::Node& node = nodes->nodes[n];
+    for (int child : source.children) nodes->nodes[std::size_t(child)].parent = int(n);  // checked by root_nodes()
+    node.has_matrix = source.matrix.size() == 16;
+    node.matrix = local_matrix(source);
+    if (source.translation.size() == 3) node.translation = glm::vec3(float(source.translation[0]), float(source.translation[1]), float(source.translation[2]));
+    if (source.rotation.size() == 4)
+      node.rotation = glm::normalize(glm::quat(float(source.rotation[3]), float(source.rotation[0]), float(source.rotation[1]), float(source.rotation[2])));
+    if (source.scale.size() == 3) node.scale = glm::vec3(float(source.scale[0]), float(source.scale[1]), float(source.scale[2]));
+  }
+  for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+    const tinygltf::Animation& animation = model_.animations[a];
+    for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+      const tinygltf::AnimationChannel& channel = animation.channels[c];
+      const std::string what = "animation " + std::to_string(a) + " channel " + std::to_string(c);
+      if (channel.target_path == "weights" || channel.target_node < 0) continue;
+      if (std::size_t(channel.target_node) >= model_.nodes.size())
+        fail(what + ": targets node " + std::to_string(channel.target_node) + ", which does not exist");
+      NodeAnimation::Node& node = nodes->nodes[std::size_t(channel.target_node)];
+      if (node.has_matrix) fail(what + ": targets node " + std::to_string(channel.target_node) + ", which has a matrix (glTF forbids animating it)");
+      if (channel.target_path == "translation") node.translation_track = read_channel<3>(animation, channel, what);
+      else if (channel.target_path == "scale") node.scale_track = read_channel<3>(animation, channel, what);
+      else if (channel.target_path == "rotation") node.rotation_track = read_channel<4>(animation, channel, what);
+      else fail(what + ": unknown target path '" + channel.target_path + "'");
+    }
+  }
+  asset_.nodes = std::move(nodes);
+}
+
+// One channel's sampler as a track: its input (seconds, increasing) and output (values,
+// and for CUBICSPLINE an in-tangent, value and out-tangent per key).
+template <int N>
+Track<N> Loader::read_channel(const tinygltf::Animation& animation, const tinygltf::AnimationChannel& channel,
+                              const std::string& what) const {
+  if (channel.sampler < 0 || std::size_t(channel.sampler) >= animation.samplers.size())
+    fail(what + ": sampler " + std::to_string(channel.sampler) + " does not exist");
+  const tinygltf::AnimationSampler& sampler = animation.samplers[std::size_t(channel.sampler)];
+  Track<N> track;
+  if (sampler.interpolation == "STEP") track.interpolation = Interpolation::step;
+  else if (sampler.interpolation == "LINEAR") track.interpolation = Interpolation::linear;
+  else if (sampler.interpolation == "CUBICSPLINE") track.interpolation = Interpolation::cubic;
+  else fail(what + ": unknown interpolation '" + sampler.interpolation + "'");
+  for (const glm::vec<1, float>& time : read_vectors<1>(sampler.input, what + " input", Integers::none)) {
+    if (!std::isfinite(time.x) || (!track.times.empty() && !(time.x > track.times.back())))
+      fail(what + " input: key times must be finite and increasing");
+    track.times.push_back(time.x);
+  }
+  const auto output = read_vectors<N>(sampler.output, what + " output", Integers::any);
+  const std::size_t per_key = track.interpolation == Interpolation::cubic ? 3 : 1;
+  if (track.times.empty() || output.size() != track.times.size() * per_key)
+    fail(what + ": " + std::to_string(output.size()) + " output values for " + std::to_string(track.times.size()) + " keys");
+  for (std::size_t k = 0; k < track.times.size(); ++k) {
+    if (per_key == 3) {
+      track.in_tangents.push_back(output[3 * k]);
+      track.values.push_back(output[3 * k + 1]);
+      track.out_tangents.push_back(output[3 * k + 2]);
+    } else {
+      track.values.push_back(output[k]);
+    }
+  }
+  for (const auto& value : track.values)
+    for (int i = 0; i < N; ++i)
+      if (!std::isfinite(value[i])) fail(what + " output: a value is not finite");
+  return track;
+}
+
 GltfAsset Loader::load() {
   check_required_extensions();
   visit_nodes();
+  read_node_animation();
   if (!asset_.line_strands.points.empty()) {
     asset_.line_strands.name = file_.stem().string();
     asset_.line_strands.width_kind = StrandWidth::relative;

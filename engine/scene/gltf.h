@@ -1,5 +1,6 @@
 #pragma once
 // glTF 2.0 (.gltf with .bin / data URIs, and .glb) through tinygltf.
+#include "scene/animation.h"
 #include "scene/camera.h"
 #include "scene/hair.h"
 #include "scene/light.h"
@@ -10,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,6 +45,10 @@ struct GltfAsset {
   // Lights get the default shadow settings.
   std::vector<Light> lights;
   std::vector<Camera> cameras;
+  // The node hierarchy with the file's animation channels (all animations play together),
+  // and the node that placed each mesh, light and camera above: what moves them.
+  std::shared_ptr<NodeAnimation> nodes;
+  std::vector<int> mesh_nodes, light_nodes, camera_nodes;
   std::vector<std::string> warnings;         // tinygltf's warnings, for logs
   Bounds bounds;                             // of the meshes and the strands
 };

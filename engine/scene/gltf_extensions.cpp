@@ -84,9 +84,9 @@ std::vector<std::string> ignored_content_warnings(const tinygltf::Model& model, 
       warnings.push_back("mesh '" + mesh.name + "' of " + name + " has " + std::to_string(targets) +
                          " morph targets; it is shown without them (morph targets are not supported)");
   }
-  if (!model.animations.empty())
-    warnings.push_back(std::to_string(model.animations.size()) + " animation(s) of " + name +
-                       " are not played; nodes are shown at their rest transforms");
+  if (model.animations.size() > 1)
+    warnings.push_back(std::to_string(model.animations.size()) + " animations of " + name +
+                       " play together, as one timeline (choosing one is not supported)");
   return warnings;
 }
 

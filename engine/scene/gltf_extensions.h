@@ -20,8 +20,8 @@ namespace avsm::scene::detail {
 // Extensions the loader reads: a file may require them.
 bool is_supported_gltf_extension(const std::string& extension);
 // One line per extension in extensionsUsed that the loader does not read, naming what
-// of the file is ignored (it is loaded without it), plus skins, morph targets and
-// animations, which are shown in their rest pose.
+// of the file is ignored (it is loaded without it), plus skins (shown in their bind
+// pose), morph targets (shown without them) and several animations (played together).
 std::vector<std::string> ignored_content_warnings(const tinygltf::Model& model, const std::filesystem::path& file);
 
 // The KHR_lights_punctual light a node places (nullopt when it places none), at the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace avsm::scene {
 namespace {
@@ -25,8 +26,10 @@ std::string lowercase_extension(const std::filesystem::path& file) {
 }
 
 // The glTF file's KHR_lights_punctual lights join the scene's, named "<model>/<light>",
-// with what the scene file's "lights" block changes or drops.
-void add_file_lights(Scene& scene, const ModelEntry& entry, std::vector<Light>& lights) {
+// with what the scene file's "lights" block changes or drops. Returns each joined light's
+// scene index with its node.
+std::vector<std::pair<std::size_t, int>> add_file_lights(Scene& scene, const ModelEntry& entry, std::vector<Light>& lights,
+                                                         const std::vector<int>& nodes) {
   for (const GltfLightOverride& change : entry.light_overrides) {
     const auto light = std::find_if(lights.begin(), lights.end(), [&](const Light& l) { return l.name == change.name; });
     if (light == lights.end()) {
@@ -41,15 +44,26 @@ void add_file_lights(Scene& scene, const ModelEntry& entry, std::vector<Light>& 
     if (change.shadow) light->shadow = *change.shadow;
     if (change.drop) light->name.clear();  // removed below, once every name has been found
   }
-  if (!entry.file_lights) return;
-  for (Light& light : lights) {
-    if (light.name.empty()) continue;
-    light.name = entry.name + "/" + light.name;
-    scene.lights.push_back(std::move(light));
+  std::vector<std::pair<std::size_t, int>> joined;
+  if (!entry.file_lights) return joined;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].name.empty()) continue;
+    lights[i].name = entry.name + "/" + lights[i].name;
+    joined.emplace_back(scene.lights.size(), nodes[i]);
+    scene.lights.push_back(std::move(lights[i]));
   }
+  return joined;
 }
 
+// Adds the model's meshes, materials, textures, lights and cameras to the scene; when it
+// moves (its placement is keyed, or its file's nodes are), adds what moves to the scene's
+// animation.
 void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, GltfAsset asset) {
+  SceneAnimation::MovingModel motion;
+  motion.first = scene.meshes.size();
+  motion.placement = entry.animation;
+  motion.nodes = asset.nodes;
+  motion.mesh_nodes = asset.mesh_nodes;
   const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
   const auto texture_base = static_cast<int>(scene.textures.size());
   for (Material& material : asset.materials) {
@@ -70,11 +84,17 @@ void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, 
   if (asset.point_primitives_skipped > 0)
     scene.warnings.push_back(label + std::to_string(asset.point_primitives_skipped) + " POINTS primitives ignored");
   for (const std::string& warning : asset.warnings) scene.warnings.push_back(label + "glTF: " + warning);
-  add_file_lights(scene, entry, asset.lights);
-  for (Camera& camera : asset.cameras) {
+  motion.lights = add_file_lights(scene, entry, asset.lights, asset.light_nodes);
+  for (std::size_t c = 0; c < asset.cameras.size(); ++c) {
+    Camera& camera = asset.cameras[c];
     camera.name = entry.name + "/" + camera.name;
+    motion.cameras.emplace_back(scene.cameras.size(), asset.camera_nodes[c]);
+    motion.camera_focus.push_back(glm::length(camera.target - camera.position));
     scene.cameras.push_back(std::move(camera));
   }
+  if (entry.animation.empty() && !(asset.nodes && asset.nodes->animated())) return;
+  motion.rest.assign(scene.meshes.begin() + std::ptrdiff_t(motion.first), scene.meshes.end());
+  scene.animation.models.push_back(std::move(motion));
 }
 
 HairGroom load_hair_file(const HairEntry& entry) {
@@ -105,6 +125,23 @@ void apply_hair_overrides(HairGroom& groom, const HairEntry& entry) {
   groom.name = entry.name;
 }
 
+// The scene's bounds grown to hold its moving meshes wherever they go: sampled at 256
+// instants over the animation (between samples a mesh moves little).
+void extend_by_motion(Scene& scene) {
+  constexpr int kSamples = 256;
+  const float duration = scene.animation.duration();
+  for (const SceneAnimation::MovingModel& model : scene.animation.models) {
+    for (int sample = 0; sample <= kSamples; ++sample)
+      for (std::size_t i = 0; i < model.rest.size(); ++i) {
+        const int node = model.mesh_nodes[i];
+        const glm::mat4 rest = model.rest_world(node);
+        if (!(std::abs(glm::determinant(glm::mat3(rest))) > 1e-20f)) continue;  // stays put (SceneAnimation::moved)
+        const glm::mat4 now = model.world(node, duration * float(sample) / kSamples);
+        scene.bounds.extend(transform_bounds(model.rest[i].bounds, now * glm::inverse(rest)));
+      }
+  }
+}
+
 }  // namespace
 
 Scene load_scene(const SceneDescription& description) {
@@ -124,6 +161,11 @@ Scene load_scene(const SceneDescription& description) {
     options.missing_normals = entry.missing_normals;
     add_model(scene, entry, where, with_context(description, where, [&] { return load_gltf(entry.file, options); }));
   }
+  // (A description built in code may leave the animations out.)
+  for (std::size_t i = 0; i < std::min(description.lights.size(), description.light_animations.size()); ++i)
+    if (!description.light_animations[i].empty()) scene.animation.lights.emplace_back(i, description.light_animations[i]);
+  for (std::size_t i = 0; i < std::min(description.cameras.size(), description.camera_animations.size()); ++i)
+    if (!description.camera_animations[i].empty()) scene.animation.cameras.emplace_back(i, description.camera_animations[i]);
   for (std::size_t i = 0; i < description.volumes.size(); ++i) {
     const VolumeEntry& entry = description.volumes[i];
     VolumeOptions options;
@@ -154,6 +196,7 @@ Scene load_scene(const SceneDescription& description) {
   for (const Mesh& mesh : scene.meshes) scene.bounds.extend(mesh.bounds);
   for (const HairGroom& groom : scene.hair) scene.bounds.extend(groom.bounds);
   for (const Volume& volume : scene.volumes) scene.bounds.extend(volume.world_bounds);
+  extend_by_motion(scene);
   return scene;
 }
 

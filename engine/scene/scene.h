@@ -1,6 +1,7 @@
 #pragma once
 // A loaded scene: every asset read, placed in one world space (metres by
 // convention, +Y up) and checked. Start here: load_scene(path).
+#include "scene/animation.h"
 #include "scene/bounds.h"
 #include "scene/camera.h"
 #include "scene/description.h"
@@ -29,7 +30,10 @@ struct Scene {
   VolumeShading volume_shading;     // how the camera sees the volumes
   SceneShadows shadows;             // the budget and switches all maps share
   Fog fog;                          // the medium outside the volumes (none unless the file has one)
-  Bounds bounds;                    // meshes, hair and volume bounds together
+  // meshes, hair and volume bounds together; with moving meshes, everywhere they go
+  // (sampled over the animation), so that maps fitted once hold the whole shot
+  Bounds bounds;
+  SceneAnimation animation;         // what moves; pose(*this, t) puts it where it is at t
   std::vector<std::string> warnings;  // things that loaded but deserve a log line
 };
 

@@ -15,7 +15,9 @@ fresh clone). Deterministic: running it again gives the same bytes.
                 KHR_lights_punctual (the sun's strength as lux, the spot's watts as candela:
                 W / 4 pi x 683 / 1000), the floor's tiling through KHR_texture_transform (a
                 Mapping node's scale), a glowing cube through KHR_materials_emissive_strength,
-                a repeating, mipmapped sampler, and a camera
+                a repeating, mipmapped sampler, a camera, and an action (animation
+                'BallAction'): the ball bounces twice in 2 s, sampled at 12 keys as
+                Blender bakes one (LINEAR)
   screens.gltf  two upright 1 m squares in the XY plane facing +Z, centred at x = -0.7
                 and x = 0.7: 'screen', alphaMode MASK (cutoff 0.5) with a texture of
                 4 x 4 round holes (alpha 0 inside, 1 outside); 'pane', alphaMode BLEND,
@@ -237,6 +239,11 @@ def blender_room():
     box, ball_mesh = block(), ball(rings=12, segments=24)
     cube = mesh("Cube", unpack(box, 0, "<3f"), unpack(box, 1, "<3f"), None, unpack(box, 2, "<I"), 1)
     sphere = mesh("Sphere", unpack(ball_mesh, 0, "<3f"), unpack(ball_mesh, 1, "<3f"), None, unpack(ball_mesh, 2, "<I"), 2)
+    # The bounce: |sin| arcs, 1.2 m high, twice in 2 s, with a 0.6 m drift along X.
+    key_times = [round(2.0 * k / 11, 6) for k in range(12)]
+    key_values = [[round(0.9 - 0.3 * t, 6), round(0.5 + 1.2 * abs(math.sin(math.pi * t)), 6), 0.6] for t in key_times]
+    times_accessor = add(key_times, "<f", len(key_times), "SCALAR", extra={"min": [key_times[0]], "max": [key_times[-1]]})
+    values_accessor = add(key_values, "<3f", len(key_values), "VEC3")
     s = math.sqrt(0.5)
     # Blender's default spot: 45 degrees wide (spot_size), blend 0.15; outer = size / 2,
     # inner = outer x (1 - blend), as the exporter writes them.
@@ -263,6 +270,9 @@ def blender_room():
             # Camera: 5.5 m back, 2.6 m up, pitched 22 degrees down.
             {"name": "Camera", "camera": 0, "translation": [0.0, 2.6, 5.5], "rotation": [-0.190809, 0.0, 0.0, 0.981627]},
         ],
+        "animations": [{"name": "BallAction",
+                        "samplers": [{"input": times_accessor, "output": values_accessor, "interpolation": "LINEAR"}],
+                        "channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}}]}],
         "cameras": [{"name": "Camera", "type": "perspective",
                      "perspective": {"aspectRatio": 1.7778, "yfov": 0.6, "znear": 0.1, "zfar": 100.0}}],
         "materials": [
