@@ -38,6 +38,36 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Frames first..last of the scene's animation: each posed, what moved handed to the
+// renderer (lights placed, meshes uploaded), rendered by `render` (which returns how many
+// renders it took), and its image written as frames/frame_NNNN.png. Each frame's wall
+// time covers posing, uploading and rendering, not the image's readback.
+template <class Render>
+void render_shot(renderer::SceneRenderer& frame, scene::Scene& scene, gpu::Context& ctx, const CaptureOptions& options,
+                 ShotReport& shot, Render&& render) {
+  const std::vector<std::size_t> lights = scene.animation.moving_lights(), meshes = scene.animation.moving_meshes();
+  std::error_code ec;
+  fs::create_directories(options.out_dir / "frames", ec);
+  if (ec) throw std::runtime_error((options.out_dir / "frames").string() + ": cannot create output folder: " + ec.message());
+  for (int number = shot.range.first; number <= shot.range.last; ++number) {
+    const auto start = std::chrono::steady_clock::now();
+    ShotFrame& entry = shot.frames.emplace_back();  // first: the timing log reads the count (the first frame is kept apart)
+    entry.frame = number;
+    entry.time = shot.range.time_of(number);
+    scene.animation.pose(scene, entry.time);
+    for (std::size_t light : lights)
+      frame.place_light(uint32_t(light), scene.lights[light].position, scene.lights[light].direction);
+    for (std::size_t mesh : meshes) frame.update_mesh(uint32_t(mesh), scene.meshes[mesh]);
+    entry.renders = render();
+    entry.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    entry.image = ShotReport::image_name(number);
+    io::write_png_raw(options.out_dir / entry.image, gpu::read_image(ctx, frame.ldr(), renderer::SceneRenderer::kOutputLayout));
+    if (options.progress)
+      std::fprintf(stderr, "shot frame %d (%.3f s): %.2f ms%s\n", number, double(entry.time), entry.wall_ms,
+                   shot.frames.size() == 1 ? " (first: kept apart)" : "");
+  }
+}
+
 const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& wanted) {
   if (wanted.empty()) return scene.cameras.front();
   for (size_t i = 0; i < scene.cameras.size(); ++i)
@@ -72,6 +102,7 @@ SettingsReport settings_report(const CaptureOptions& options, const scene::Scene
   report.frames_in_flight = options.frames_in_flight;
   report.orbit_degrees = options.orbit_degrees;
   report.light_orbit_degrees = options.light_orbit_degrees;
+  report.time = options.frame_range ? std::optional(options.frame_range->time_of(options.frame_range->last)) : options.time;
   report.validation = options.validation;
   report.volume_shading = scene.volume_shading;
   report.compare_volume_shading = options.compare_volume_shading;
@@ -384,10 +415,13 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
   for (scene::Light& light : scene.lights) options.shadow.apply(light);
-  if (options.time) {
+  // The instant rendered (a shot's first frame's): the renderer is made with the scene there.
+  const std::optional<float> first_time = options.frame_range ? options.frame_range->time_of(options.frame_range->first) : options.time;
+  if (first_time) {
     if (scene.animation.empty())
-      std::fprintf(stderr, "avsm-capture: warning: --time %g: the scene has no animation; nothing moves\n", double(*options.time));
-    scene.animation.pose(scene, *options.time);
+      std::fprintf(stderr, "avsm-capture: warning: %s: the scene has no animation; nothing moves\n",
+                   options.frame_range ? "--frame-range" : "--time");
+    scene.animation.pose(scene, *first_time);
   }
   options.volume_shading.apply(scene.volume_shading);
   for (scene::Volume& volume : scene.volumes) {
@@ -474,6 +508,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   std::vector<FrameClock> slot_clock(slots.count());
   std::vector<std::chrono::steady_clock::time_point> completed;  // per frame finished
   ShadowLoss last_loss;
+  std::optional<ShotReport> shot;
+  if (options.frame_range) shot = ShotReport{*options.frame_range, {}};
   // A frame's figures, when its fence signalled (frames finish in order).
   auto finished = [&](renderer::FrameSlots::Slot& slot) {
     FrameClock& clock = slot_clock[slot.index];
@@ -482,10 +518,11 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     frame.finish_frame(slot.index);
     const uint32_t index = slot_frame[slot.index];
     last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
-    const bool warm_up = index == 0 && options.frames > 1;
+    // Left out of the timings: the first of repeated frames, or a shot's first frame.
+    const bool warm_up = shot ? shot->frames.size() == 1 : index == 0 && options.frames > 1;
     const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), frame.shadows().frame_stats(),
                                              /*measured=*/!warm_up);
-    if (options.progress)
+    if (options.progress && !shot)
       std::fprintf(stderr, "frame %u/%u: %.2f ms%s\n", std::min(index, options.frames - 1) + 1, options.frames, wall,
                    warm_up ? " (warm-up)" : index >= options.frames ? " (again)" : "");
   };
@@ -502,8 +539,36 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (options.compare_volume_shading) volume_run.emplace(ctx, calibration.mode, frame, scene, options.path_trace_volumes);
   VkCommandBuffer comparison_cmd = volume_run ? ctx.allocate_command_buffer("volume comparison frame") : VK_NULL_HANDLE;
 
+  // A frame whose maps are unfinished (capture lists or a deep shadow map's pool too
+  // small, or its build cut short) is never written. What it lacked grew for the frames
+  // after it, so the last frame is rendered again until its maps are finished, while
+  // something still grows; if they never are, the capture fails naming the lights.
+  // A paged map's bias settling is waited for too (it only makes the frame finer), but a
+  // frame written while it still moves is not an error. Returns how often it rendered again.
+  const auto render_again_while_unfinished = [&] {
+    uint32_t frames_again = 0;
+    const auto may_render_again = [&] {
+      const bool building_pages = page_budget && last_loss.building_pages;
+      return frames_again < (building_pages ? kMaxFramesBuildingPages : kMaxFramesAgain);
+    };
+    for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && may_render_again(); ++frames_again) {
+      if (options.progress)
+        std::fprintf(stderr, "frame %u: shadow maps unfinished (buffers grown, pages asked for, a page bias settling): rendering it again\n",
+                     options.frames);
+      submit_frame(options.frames + frames_again);
+      slots.finish_all(finished);
+    }
+    if (last_loss.lost) throw std::runtime_error(unfinished_maps_error(frame.shadows().frame_stats(), frames_again));
+    return frames_again;
+  };
+
   const auto loop_start = std::chrono::steady_clock::now();
-  for (uint32_t index = 0; index < options.frames; ++index) {
+  if (shot) render_shot(frame, scene, ctx, options, *shot, [&] {
+    submit_frame(options.frames - 1);
+    slots.finish_all(finished);
+    return 1 + render_again_while_unfinished();
+  });
+  for (uint32_t index = 0; !shot && index < options.frames; ++index) {
     // Interleaved with the main frames, so both paths see the same machine load; it
     // renders with nothing else in flight.
     if (volume_run) {
@@ -520,31 +585,17 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
                  completed.size(), loop_ms, slots.count(),
                  std::chrono::duration<double, std::milli>(completed.back() - completed.front()).count() /
                      double(completed.size() - 1));
-  // A frame whose maps are unfinished (capture lists or a deep shadow map's pool too
-  // small, or its build cut short) is never written. What it lacked grew for the frames
-  // after it, so the last frame is rendered again until its maps are finished, while
-  // something still grows; if they never are, the capture fails naming the lights.
-  uint32_t frames_again = 0;
-  // A paged map's bias settling is waited for too (it only makes the frame finer), but a
-  // frame written while it still moves is not an error.
-  const auto may_render_again = [&] {
-    const bool building_pages = page_budget && last_loss.building_pages;
-    return frames_again < (building_pages ? kMaxFramesBuildingPages : kMaxFramesAgain);
-  };
-  for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && may_render_again(); ++frames_again) {
-    if (options.progress)
-      std::fprintf(stderr, "frame %u: shadow maps unfinished (buffers grown, pages asked for, a page bias settling): rendering it again\n",
-                   options.frames);
-    submit_frame(options.frames + frames_again);
-    slots.finish_all(finished);
-  }
-  if (last_loss.lost) throw std::runtime_error(unfinished_maps_error(frame.shadows().frame_stats(), frames_again));
+  if (!shot) render_again_while_unfinished();
   const rg::vulkan::Executor& executor = slots.last_finished_executor();
 
   FrameOutputFiles files = write_frame_outputs(options.out_dir,
                                                {ctx, frame, executor, scene, timing_log, overflowed_frames});
   FrameReport& report = files.report;
   CaptureOutputs out{files.png, files.exr, files.timings};
+  if (shot) {
+    out.shot = options.out_dir / "shot.json";
+    write_json(out.shot, to_json(*shot));
+  }
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());
     write_json(options.out_dir / "probes.json", to_json(*report.probes));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "capture/quality.h"
+#include "capture/shot.h"
 #include "scene/light.h"
 
 namespace avsm::capture {
@@ -36,6 +37,10 @@ struct CaptureOptions {
   // The instant rendered (seconds): the scene's animation posed there (content/README.md,
   // "Animation"); unset: as the file places everything.
   std::optional<float> time;
+  // A shot (capture/shot.h): frames first..last at fps, each rendered once (again while
+  // its maps are unfinished); --frames, --orbit and --light-orbit do not apply.
+  std::optional<FrameRange> frame_range;
+  float fps = 24.0f;  // --fps: the shot's frame rate
   float orbit_degrees = 0.0f;
   // --light-orbit DEGREES: frame i turns every light i x DEGREES about the vertical axis
   // through the scene's centre (positions and directions): a light that moves every
@@ -104,6 +109,7 @@ struct CaptureOutputs {
   std::filesystem::path fog_quality;           // empty without --compare-fog
   std::vector<std::filesystem::path> curves;   // --plot-texel
   std::filesystem::path pass_list;             // --dump-passes (then nothing else is written)
+  std::filesystem::path shot;                  // shot.json; empty without --frame-range
 };
 
 // Throws std::runtime_error with a message for the user on any failure.

@@ -21,6 +21,10 @@ const char* kUsage =
     "  --frames-in-flight N  frames recorded ahead of the GPU, 1 to 3 (default 2)\n"
     "  --time SECONDS   the instant to render: the scene's animation posed there (default:\n"
     "                   everything where the file places it)\n"
+    "  --frame-range A:B  render a shot: frames A to B of the scene's animation, each once,\n"
+    "                   as frames/frame_NNNN.png with shot.json (per-frame times, the first\n"
+    "                   kept apart); the last frame's outputs as for one instant\n"
+    "  --fps F          the shot's frame rate (default 24): frame N is the instant N / F\n"
     "  --orbit DEGREES  turn the camera about its target by this much each frame (default 0)\n"
     "  --light-orbit DEGREES  turn every light about the vertical axis through the scene's\n"
     "                   centre by this much each frame (default 0): a moving light\n"
@@ -191,6 +195,16 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     const std::optional<float> seconds = parse_number<float>(text);
     if (!seconds || !std::isfinite(*seconds)) usage_error("--time expects a number of seconds, got '" + text + "'");
     options.time = *seconds;
+  } else if (arg == "--frame-range") {
+    const std::string text = value();
+    FrameRange range = options.frame_range.value_or(FrameRange{});
+    if (!parse_frame_range(text, range)) usage_error("--frame-range expects A:B with 0 <= A <= B, got '" + text + "'");
+    options.frame_range = range;
+  } else if (arg == "--fps") {
+    const std::string text = value();
+    const std::optional<float> fps = parse_number<float>(text);
+    if (!fps || !(*fps > 0.0f && *fps <= 1000.0f)) usage_error("--fps expects a frame rate in (0, 1000], got '" + text + "'");
+    options.fps = *fps;
   } else if (arg == "--orbit") {
     const std::string text = value();
     const std::optional<float> degrees = parse_number<float>(text);
@@ -345,6 +359,15 @@ CaptureCommand parse_capture_arguments(const std::vector<std::string>& args) {
     usage_error("--cascades and --clusters exclude each other: a light's maps are either cascades or clusters");
   if (command.options.compare_fog && command.options.fog == false)
     usage_error("--compare-fog needs the fog on (drop --fog off)");
+  CaptureOptions& o = command.options;
+  if (o.frame_range) {
+    o.frame_range->fps = o.fps;
+    if (o.time) usage_error("--time and --frame-range exclude each other: a shot's frames set their own times");
+    if (o.orbit_degrees != 0.0f || o.light_orbit_degrees != 0.0f)
+      usage_error("--orbit and --light-orbit turn things per repeated frame; a shot (--frame-range) moves them by the scene's animation");
+  } else if (o.fps != CaptureOptions{}.fps) {
+    usage_error("--fps needs --frame-range (the shot it sets the rate of)");
+  }
   if (command.options.path_trace_volumes > 0 && !command.options.compare_volume_shading)
     usage_error("--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   return command;
@@ -367,6 +390,10 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   with_value(o.frames != defaults.frames, "--frames", std::to_string(o.frames));
   with_value(o.frames_in_flight != defaults.frames_in_flight, "--frames-in-flight", std::to_string(o.frames_in_flight));
   with_value(o.time.has_value(), "--time", o.time ? exact_text(*o.time) : "");
+  if (o.frame_range) {
+    with_value(true, "--frame-range", std::to_string(o.frame_range->first) + ":" + std::to_string(o.frame_range->last));
+    with_value(o.fps != defaults.fps, "--fps", exact_text(o.fps));
+  }
   with_value(o.orbit_degrees != defaults.orbit_degrees, "--orbit", exact_text(o.orbit_degrees));
   with_value(o.light_orbit_degrees != defaults.light_orbit_degrees, "--light-orbit", exact_text(o.light_orbit_degrees));
   with_value(o.device != defaults.device, "--device", o.device);

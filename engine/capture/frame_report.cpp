@@ -624,7 +624,7 @@ std::string scene_label(const fs::path& scene_file) {
 json to_json(const SettingsReport& s) {
   json lights = json::array();
   for (const LightSettings& light : s.lights) lights.push_back(to_json(light));
-  return {{"scene", s.scene},
+  json out = {{"scene", s.scene},
           {"camera", s.camera},
           {"width", s.width},
           {"height", s.height},
@@ -645,6 +645,8 @@ json to_json(const SettingsReport& s) {
           {"shadows",
            {{"budget_mib", s.shadows.budget_mib}, {"fit_budget", s.shadows.fit_budget}, {"clusters", s.shadows.clusters}}},
           {"lights", lights}};
+  if (s.time) out["time"] = *s.time;
+  return out;
 }
 
 SettingsReport settings_report_from_json(const json& in) {
@@ -657,6 +659,7 @@ SettingsReport settings_report_from_json(const json& in) {
   s.frames_in_flight = value_of<uint32_t>(in, "frames_in_flight");
   if (in.contains("orbit_degrees")) s.orbit_degrees = value_of<float>(in, "orbit_degrees");  // 0 before it was recorded
   if (in.contains("light_orbit_degrees")) s.light_orbit_degrees = value_of<float>(in, "light_orbit_degrees");
+  if (in.contains("time")) s.time = value_of<float>(in, "time");
   s.validation = value_of<bool>(in, "validation");
   const json& volumes = member(in, "volume_shading");
   const std::string mode = value_of<std::string>(volumes, "mode");

@@ -173,6 +173,7 @@ struct SettingsReport {
   uint32_t frames = 0, frames_in_flight = 0;
   float orbit_degrees = 0.0f;  // --orbit: the camera turned this much per frame
   float light_orbit_degrees = 0.0f;  // --light-orbit: the lights turned this much per frame
+  std::optional<float> time;  // the instant written (--time, a shot's last frame): the animation posed there
   bool validation = false;
   scene::VolumeShading volume_shading;  // the scene's, with --volume-shading & co. applied
   bool compare_volume_shading = false;

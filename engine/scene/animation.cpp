@@ -137,6 +137,15 @@ std::vector<std::size_t> SceneAnimation::moving_meshes() const {
   return meshes;
 }
 
+std::vector<std::size_t> SceneAnimation::moving_lights() const {
+  std::vector<std::size_t> moving;
+  for (const auto& [index, tracks] : lights) moving.push_back(index);
+  for (const MovingModel& model : models)
+    for (const auto& [index, node] : model.lights) moving.push_back(index);
+  std::sort(moving.begin(), moving.end());
+  return moving;
+}
+
 Mesh SceneAnimation::moved(const Mesh& rest, const glm::mat4& rest_placement, const glm::mat4& placement) {
   // A mesh placed at rest by a singular transform (a node scaled to 0) has lost its
   // shape; it stays as it is (SceneAnimation's users are told at load).

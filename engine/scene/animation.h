@@ -131,8 +131,9 @@ struct SceneAnimation {
   bool empty() const { return cameras.empty() && lights.empty() && models.empty(); }
   // The last key's time: a shot's natural length.
   float duration() const;
-  // The scene's meshes that move (Scene::meshes indices), in order.
+  // The scene's meshes and lights that move (Scene::meshes, Scene::lights indices), in order.
   std::vector<std::size_t> moving_meshes() const;
+  std::vector<std::size_t> moving_lights() const;
   // Writes the animated cameras, lights and meshes as they are at `time` into `scene`
   // (built with this animation by load_scene: the indices are its).
   void pose(Scene& scene, float time) const;

@@ -31,6 +31,7 @@ CaptureOptions every_option_set() {
   o.frames_in_flight = 1;
   o.orbit_degrees = -2.5f;
   o.light_orbit_degrees = 1.25f;
+  o.time = 0.75f;
   o.validation = true;
   o.device = "llvmpipe";
   o.progress = false;
@@ -93,7 +94,27 @@ TEST(CaptureArgs, HelpAndListStopTheParse) {
   EXPECT_NE(capture_usage().find("--shadow-param NAME=NUMBER"), std::string::npos);
 }
 
+// A shot and its rate; --frames and the orbits do not apply to one.
+TEST(CaptureArgs, AShotRoundTrips) {
+  CaptureOptions o;
+  o.frame_range = FrameRange{2, 9, 30.0f};
+  o.fps = 30.0f;
+  const CaptureOptions parsed = parse_capture_arguments(capture_arguments(o)).options;
+  EXPECT_TRUE(parsed == o);
+  const CaptureOptions one = parse_capture_arguments({"--frame-range", "7"}).options;
+  ASSERT_TRUE(one.frame_range.has_value());
+  EXPECT_EQ(one.frame_range->first, 7);
+  EXPECT_EQ(one.frame_range->last, 7);
+  EXPECT_FLOAT_EQ(one.frame_range->fps, 24.0f);
+}
+
 TEST(CaptureArgs, BadFlagsNameThemselves) {
+  EXPECT_EQ(usage_error_of({"--frame-range", "5:2"}), "--frame-range expects A:B with 0 <= A <= B, got '5:2'");
+  EXPECT_EQ(usage_error_of({"--fps", "0"}), "--fps expects a frame rate in (0, 1000], got '0'");
+  EXPECT_EQ(usage_error_of({"--fps", "30"}), "--fps needs --frame-range (the shot it sets the rate of)");
+  EXPECT_EQ(usage_error_of({"--time", "1", "--frame-range", "0:4"}),
+            "--time and --frame-range exclude each other: a shot's frames set their own times");
+  EXPECT_EQ(usage_error_of({"--time", "soon"}), "--time expects a number of seconds, got 'soon'");
   EXPECT_EQ(usage_error_of({"--bogus"}), "unknown option '--bogus'");
   EXPECT_EQ(usage_error_of({"--width"}), "--width needs a value");
   EXPECT_EQ(usage_error_of({"--nodes", "7"}), "--nodes expects 4, 8, 12 or 16");

@@ -1,0 +1,75 @@
+#include "capture/shot.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <numeric>
+
+namespace avsm::capture {
+namespace {
+
+bool parse_int(std::string_view text, int& value) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+bool parse_frame_range(const std::string& text, FrameRange& range) {
+  const std::size_t colon = text.find(':');
+  const std::string_view whole(text);
+  int first = 0, last = 0;
+  if (colon == std::string::npos) {
+    if (!parse_int(whole, first)) return false;
+    last = first;
+  } else if (!parse_int(whole.substr(0, colon), first) || !parse_int(whole.substr(colon + 1), last)) {
+    return false;
+  }
+  if (first < 0 || last < first) return false;
+  range.first = first;
+  range.last = last;
+  return true;
+}
+
+std::filesystem::path ShotReport::image_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
+  return std::filesystem::path("frames") / name;
+}
+
+ShotSummary ShotReport::summary() const {
+  ShotSummary summary;
+  summary.frames = frames.size();
+  if (frames.empty()) return summary;
+  summary.first_ms = frames.front().wall_ms;
+  const std::size_t skip = frames.size() > 1 ? 1 : 0;
+  std::vector<double> walls;
+  for (std::size_t i = skip; i < frames.size(); ++i) walls.push_back(frames[i].wall_ms);
+  summary.mean_ms = std::accumulate(walls.begin(), walls.end(), 0.0) / double(walls.size());
+  std::vector<double> sorted = walls;
+  std::sort(sorted.begin(), sorted.end());
+  summary.median_ms = sorted.size() % 2 ? sorted[sorted.size() / 2]
+                                        : 0.5 * (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]);
+  const auto slowest = std::max_element(frames.begin() + std::ptrdiff_t(skip), frames.end(),
+                                        [](const ShotFrame& a, const ShotFrame& b) { return a.wall_ms < b.wall_ms; });
+  summary.max_ms = slowest->wall_ms;
+  summary.slowest_frame = slowest->frame;
+  return summary;
+}
+
+nlohmann::json to_json(const ShotReport& shot) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const ShotFrame& f : shot.frames)
+    frames.push_back({{"frame", f.frame}, {"time", f.time}, {"wall_ms", f.wall_ms}, {"renders", f.renders},
+                      {"image", f.image.generic_string()}});
+  const ShotSummary s = shot.summary();
+  return {{"first_frame", shot.range.first},
+          {"last_frame", shot.range.last},
+          {"fps", shot.range.fps},
+          {"frames", frames},
+          {"summary",
+           {{"frames", s.frames}, {"first_ms", s.first_ms}, {"mean_ms_after_first", s.mean_ms},
+            {"median_ms_after_first", s.median_ms}, {"max_ms_after_first", s.max_ms}, {"slowest_frame", s.slowest_frame}}}};
+}
+
+}  // namespace avsm::capture

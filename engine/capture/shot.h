@@ -1,0 +1,52 @@
+#pragma once
+// A shot: avsm-capture --frame-range A:B renders frames A to B of the scene's animation at
+// --fps, one instant each (content/README.md, "Animation"), writes each frame's image as
+// frames/frame_<NNNN>.png and this report as shot.json. The first frame is kept apart
+// from the figures: it pays for what the later ones reuse (pipelines, pages, buffers).
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace avsm::capture {
+
+struct FrameRange {
+  int first = 0, last = 0;  // inclusive shot frame numbers
+  float fps = 24.0f;
+  float time_of(int frame) const { return float(frame) / fps; }
+  bool operator==(const FrameRange&) const = default;
+};
+
+// "A:B" with 0 <= A <= B (or "A" alone: one frame); nullopt-like failure as false.
+bool parse_frame_range(const std::string& text, FrameRange& range);
+
+struct ShotFrame {
+  int frame = 0;
+  float time = 0.0f;     // seconds
+  double wall_ms = 0.0;  // posing, uploading what moved, rendering (and again while maps were unfinished)
+  uint32_t renders = 1;  // 1, or more where maps were unfinished
+  std::filesystem::path image;
+};
+
+struct ShotSummary {
+  std::size_t frames = 0;
+  double first_ms = 0.0;
+  // Over the frames after the first (the first's alone for a one-frame shot).
+  double mean_ms = 0.0, median_ms = 0.0, max_ms = 0.0;
+  int slowest_frame = 0;
+};
+
+struct ShotReport {
+  FrameRange range;
+  std::vector<ShotFrame> frames;
+
+  ShotSummary summary() const;
+  // frames/frame_<NNNN>.png, the numbering of the shot's frames (4 digits, more if needed).
+  static std::filesystem::path image_name(int frame);
+};
+
+nlohmann::json to_json(const ShotReport& shot);
+
+}  // namespace avsm::capture
