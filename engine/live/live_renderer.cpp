@@ -89,9 +89,19 @@ LiveRenderer::LiveRenderer(gpu::Context& ctx, LiveOptions options)
   const scene::SceneDescription description = scene::read_scene_description(options_.scene_file);
   loaded_ = scene::load_scene(description);
   edited_ = loaded_;
+  edited_.animation.pose(edited_, time_);
   renderer_ = make_renderer(edited_);
   scene_files_.watch(scene_files(description));
   shader_files_.watch(shaders_->source_files());
+}
+
+void LiveRenderer::set_time(float time) {
+  time_ = time;
+  if (edited_.animation.empty()) return;
+  edited_.animation.pose(edited_, time);
+  for (std::size_t light : edited_.animation.moving_lights())
+    renderer_->place_light(uint32_t(light), edited_.lights[light].position, edited_.lights[light].direction);
+  for (std::size_t mesh : edited_.animation.moving_meshes()) renderer_->update_mesh(uint32_t(mesh), edited_.meshes[mesh]);
 }
 
 LiveRenderer::~LiveRenderer() {
@@ -222,6 +232,7 @@ void LiveRenderer::reload_scene(bool read_files, Clock::time_point now, PollResu
   scene::Scene fresh_edited = fresh_loaded;
   try {
     if (edit_) edit_(fresh_edited);
+    fresh_edited.animation.pose(fresh_edited, time_);
     if (before_change_) before_change_();
     renderer_->set_scene(fresh_edited, next_shadow_options_);
   } catch (const std::exception& e) {

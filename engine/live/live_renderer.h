@@ -78,6 +78,10 @@ class LiveRenderer {
   // Takes effect on the next poll() (a failure there keeps the old ones).
   void set_shadow_options(const passes::ShadowOptions& options);
   void set_size(uint32_t width, uint32_t height);
+  // Puts the scene's animation at `time` (seconds; scene/animation.h): the lights and meshes
+  // that move are handed to the renderer now. Reloads and edits keep the time.
+  void set_time(float time);
+  float time() const { return time_; }
   // Loads another scene file on the next poll() (same rules: a bad file keeps the current scene).
   void set_scene_file(const std::filesystem::path& file);
   // Called on the renderer now and on every new one (a shader reload builds a new
@@ -118,6 +122,7 @@ class LiveRenderer {
   std::unique_ptr<renderer::SceneRenderer> renderer_;
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
+  float time_ = 0.0f;
   std::function<void(renderer::SceneRenderer&)> setup_;
   std::function<void()> before_change_;
   FileWatcher scene_files_, shader_files_;

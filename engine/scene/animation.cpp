@@ -137,6 +137,19 @@ std::vector<std::size_t> SceneAnimation::moving_meshes() const {
   return meshes;
 }
 
+std::vector<float> SceneAnimation::MovingModel::key_times() const {
+  std::vector<float> times;
+  for (const Track<3>* track : {&placement.translation, &placement.rotation_deg, &placement.scale})
+    times.insert(times.end(), track->times.begin(), track->times.end());
+  if (nodes)
+    for (const NodeAnimation::Node& node : nodes->nodes) {
+      times.insert(times.end(), node.translation_track.times.begin(), node.translation_track.times.end());
+      times.insert(times.end(), node.rotation_track.times.begin(), node.rotation_track.times.end());
+      times.insert(times.end(), node.scale_track.times.begin(), node.scale_track.times.end());
+    }
+  return times;
+}
+
 std::vector<std::size_t> SceneAnimation::moving_lights() const {
   std::vector<std::size_t> moving;
   for (const auto& [index, tracks] : lights) moving.push_back(index);

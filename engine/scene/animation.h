@@ -122,9 +122,16 @@ struct SceneAnimation {
     std::vector<std::pair<std::size_t, int>> lights, cameras;
     std::vector<float> camera_focus;  // per camera: how far ahead its target lies
 
+    glm::mat4 fixed_placement{1.0f};  // where the scene file puts the model when its placement has no keys
+
     float end() const { return std::max(placement.end(), nodes ? nodes->end() : 0.0f); }
-    glm::mat4 rest_world(int node) const { return placement.rest() * nodes->rest_world(node); }
-    glm::mat4 world(int node, float time) const { return placement.at(time) * nodes->world(node, time); }
+    // Every key's time, of the placement and the nodes: where a path may turn.
+    std::vector<float> key_times() const;
+    glm::mat4 rest_world(int node) const { return placement_rest() * nodes->rest_world(node); }
+    glm::mat4 world(int node, float time) const {
+      return (placement.empty() ? fixed_placement : placement.at(time)) * nodes->world(node, time);
+    }
+    glm::mat4 placement_rest() const { return placement.empty() ? fixed_placement : placement.rest(); }
   };
   std::vector<MovingModel> models;
 

@@ -62,6 +62,7 @@ void add_model(Scene& scene, const ModelEntry& entry, const std::string& where, 
   SceneAnimation::MovingModel motion;
   motion.first = scene.meshes.size();
   motion.placement = entry.animation;
+  motion.fixed_placement = entry.transform;
   motion.nodes = asset.nodes;
   motion.mesh_nodes = asset.mesh_nodes;
   const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
@@ -125,20 +126,27 @@ void apply_hair_overrides(HairGroom& groom, const HairEntry& entry) {
   groom.name = entry.name;
 }
 
-// The scene's bounds grown to hold its moving meshes wherever they go: sampled at 256
-// instants over the animation (between samples a mesh moves little).
+// The scene's bounds grown to hold its moving meshes wherever they go: placed at every
+// key (where a path turns) and at 256 instants between, the box they sweep then padded by
+// 1% of its size for what a spline does between samples.
 void extend_by_motion(Scene& scene) {
   constexpr int kSamples = 256;
   const float duration = scene.animation.duration();
   for (const SceneAnimation::MovingModel& model : scene.animation.models) {
-    for (int sample = 0; sample <= kSamples; ++sample)
+    std::vector<float> times = model.key_times();
+    for (int sample = 0; sample <= kSamples; ++sample) times.push_back(duration * float(sample) / kSamples);
+    Bounds swept;
+    for (float time : times)
       for (std::size_t i = 0; i < model.rest.size(); ++i) {
         const int node = model.mesh_nodes[i];
         const glm::mat4 rest = model.rest_world(node);
         if (!(std::abs(glm::determinant(glm::mat3(rest))) > 1e-20f)) continue;  // stays put (SceneAnimation::moved)
-        const glm::mat4 now = model.world(node, duration * float(sample) / kSamples);
-        scene.bounds.extend(transform_bounds(model.rest[i].bounds, now * glm::inverse(rest)));
+        swept.extend(transform_bounds(model.rest[i].bounds, model.world(node, time) * glm::inverse(rest)));
       }
+    if (swept.empty()) continue;
+    const glm::vec3 pad = 0.01f * swept.size();
+    scene.bounds.extend(swept.min - pad);
+    scene.bounds.extend(swept.max + pad);
   }
 }
 

@@ -100,11 +100,17 @@ ControlCommand parse_control_command(const std::string& line) {
     command.kind = ControlCommand::Kind::levels;
     const std::string light = argument("a light index or off");
     if (light != "off") command.overlay_light = uint32_t(parse_whole(light, "levels"));
+  } else if (name == "time") {
+    command.kind = ControlCommand::Kind::time;
+    command.seconds = parse_number(argument("seconds"), "time");
+  } else if (name == "play" || name == "pause") {
+    command.kind = ControlCommand::Kind::time;
+    command.play = name == "play";
   } else if (name == "quit") {
     command.kind = ControlCommand::Kind::quit;
   } else {
     throw std::invalid_argument("unknown command '" + name +
-                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, orbit DEGREES, levels I|off, quit)");
+                                "' (frame, inspect X,Y, screenshot DIR, light I FIELD VALUE, exposure V, orbit DEGREES, levels I|off, time SECONDS, play, pause, quit)");
   }
   if (words >> rest) throw std::invalid_argument("'" + name + "': unexpected '" + rest + "'");
   return command;

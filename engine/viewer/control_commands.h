@@ -20,6 +20,9 @@
 //                            frame shows it)
 //   levels I|off             tint light I's receivers by the shadow map level they read
 //                            (the panel's "shadow levels" overlay), or stop
+//   time SECONDS             move the timeline's playhead there (the scene's animation,
+//                            snapped to the timeline's frames); the reply has the time
+//   play, pause              play the animation, one timeline frame per 'frame', or stop
 //   quit                     stop (the exit status still reports validation messages)
 #include <glm/glm.hpp>
 
@@ -33,7 +36,7 @@
 namespace avsm::viewer {
 
 struct ControlCommand {
-  enum class Kind { frame, inspect, screenshot, light, exposure, orbit, levels, quit };
+  enum class Kind { frame, inspect, screenshot, light, exposure, orbit, levels, time, quit };
   Kind kind = Kind::frame;
   glm::vec2 pixel{0.0f};             // inspect
   std::filesystem::path directory;   // screenshot
@@ -42,6 +45,8 @@ struct ControlCommand {
   float exposure = 1.0f;             // exposure
   float degrees = 0.0f;              // orbit
   std::optional<uint32_t> overlay_light;  // levels (nullopt: off)
+  float seconds = 0.0f;                   // time
+  std::optional<bool> play;               // play (true), pause (false); unset: time scrubs
 };
 
 // Throws std::invalid_argument saying what is wrong with the line.

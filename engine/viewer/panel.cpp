@@ -291,6 +291,8 @@ PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar(2);
   draw_status(view, requests);
+  if (view.timeline.animated() && ImGui::CollapsingHeader("Timeline", ImGuiTreeNodeFlags_DefaultOpen))
+    draw_timeline(view.timeline, requests);
   if (ImGui::CollapsingHeader("Texel inspection", ImGuiTreeNodeFlags_DefaultOpen)) draw_inspection(view, requests);
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_lights(view, settings, requests);
   if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(view);
@@ -301,6 +303,27 @@ PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const
   if (ImGui::CollapsingHeader("Scene file")) draw_scene_file(requests);
   ImGui::End();
   return requests;
+}
+
+// Play and pause, the playhead (frame and seconds), loop, and the frame rate it snaps to.
+void Panel::draw_timeline(Timeline& timeline, PanelRequests& requests) {
+  if (ImGui::Button(timeline.playing() ? "pause" : "play")) timeline.playing() ? timeline.pause() : timeline.play();
+  ImGui::SameLine();
+  ImGui::Text("frame %d, %.3f s of %.3f s", timeline.frame(), double(timeline.time()), double(timeline.duration()));
+  float time = timeline.time();
+  if (ImGui::SliderFloat("time", &time, 0.0f, timeline.duration(), "%.3f s")) {
+    timeline.scrub(time);
+    requests.time_changed = true;
+  }
+  bool loop = timeline.loop();
+  if (ImGui::Checkbox("loop", &loop)) timeline.set_loop(loop);
+  ImGui::SameLine();
+  float fps = timeline.fps();
+  ImGui::SetNextItemWidth(80.0f);
+  if (ImGui::InputFloat("fps", &fps, 0.0f, 0.0f, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue)) {
+    timeline.set_fps(fps);
+    requests.time_changed = true;  // the playhead's frame is another instant at another rate
+  }
 }
 
 void Panel::draw_status(const PanelView& view, PanelRequests& requests) {

@@ -22,6 +22,7 @@
 #include "viewer/camera_controller.h"
 #include "viewer/scene_overrides.h"
 #include "viewer/texel_inspector.h"
+#include "viewer/timeline.h"
 #include "viewer/view_layout.h"
 
 namespace avsm::viewer {
@@ -56,6 +57,7 @@ struct PanelView {
   const std::vector<ImTextureID>& light_maps;  // one per light once a frame made them; may be empty
   CameraMode camera_mode;
   const std::string& status;  // e.g. where the last screenshot went
+  Timeline& timeline;         // the panel plays, pauses, scrubs and sets its loop and rate
 };
 
 // What the user asked for this frame, besides the settings.
@@ -70,6 +72,7 @@ struct PanelRequests {
   std::optional<CameraMode> camera_mode;
   std::optional<std::pair<uint32_t, glm::uvec2>> inspect_light_texel;  // light, level-0 texel
   bool clear_inspection = false;
+  bool time_changed = false;  // the timeline was scrubbed
 };
 
 class Panel {
@@ -81,6 +84,7 @@ class Panel {
 
  private:
   void draw_status(const PanelView& view, PanelRequests& requests);
+  void draw_timeline(Timeline& timeline, PanelRequests& requests);
   void draw_scene_file(PanelRequests& requests);
   void draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);

@@ -30,6 +30,7 @@
 #include "viewer/imgui_renderer.h"
 #include "viewer/light_map_textures.h"
 #include "viewer/panel.h"
+#include "viewer/timeline.h"
 #include "viewer/swapchain.h"
 #include "viewer/texel_inspector.h"
 #include "viewer/view_layout.h"
@@ -96,6 +97,10 @@ class ViewerApp {
   // control script's "frame" after its edits shows them.
   void wait_for_settled_files();
   void handle_input();
+  // Plays the scene's animation: interactively by the wall clock; under --control one
+  // frame of the timeline per rendered frame, so that a script's frames are a shot's.
+  void advance_timeline(bool render);
+  void show_time();  // hands the timeline's time to the live renderer
   void apply(const PanelRequests& requests);
   // Records and submits a scene frame; its results are read when it completes.
   void render_scene_frame();
@@ -158,6 +163,8 @@ class ViewerApp {
   fs::path scene_file_;
   std::string status_;
   Clock::time_point last_iteration_ = Clock::now();
+  Timeline timeline_;
+  Clock::time_point last_tick_ = Clock::now();
   bool failed_ = false;
   // What poll() reported since the last control reply.
   std::vector<std::string> reloaded_files_;
@@ -232,14 +239,16 @@ int ViewerApp::run() {
 }
 
 void ViewerApp::iterate(bool render) {
-  window_.poll_events(render || scene_dirty_ || edits_pending_ ? 0.0 : kIdleWaitSeconds);
+  window_.poll_events(render || scene_dirty_ || edits_pending_ || timeline_.playing() ? 0.0 : kIdleWaitSeconds);
   follow_window_size();
   poll_live();
+  advance_timeline(render);
   scene_slots_.finish_completed([this](renderer::FrameSlots::Slot& slot) { scene_frame_finished(slot); });
 
   imgui_input_.new_frame();
   handle_input();
-  apply(panel_.draw({*live_, scene_slots_.last_finished_executor().plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_},
+  apply(panel_.draw({*live_, scene_slots_.last_finished_executor().plan(), frame_stats_, inspector_, light_map_ids_, camera_.mode, status_,
+                     timeline_},
                     settings_, layout_));
   ImGui::Render();
   // Edits waiting for the next poll would make this frame stale: render after it.
@@ -278,6 +287,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       reply["frame"] = frames_submitted_;
       reply["rendered"] = frames_submitted_ > before;
       reply["view"] = {layout_.view.width, layout_.view.height};  // the frame's size; `inspect` takes its pixels
+      reply["time"] = live_->time();  // the instant this frame shows
       reply["ms"] = frame_stats_.wall_ms;
       reply["changed"] = reloaded_files_;
       reply["shaders_reloaded"] = shaders_reloaded_;
@@ -328,6 +338,18 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
                                     std::to_string(live_->scene().lights.size()) + " lights");
       settings_.level_overlay = command.overlay_light;
       apply({.level_overlay_changed = true});
+      break;
+    case ControlCommand::Kind::time:
+      timeline_.set_duration(live_->scene().animation.duration());
+      if (command.play) {
+        *command.play ? timeline_.play() : timeline_.pause();
+      } else {
+        timeline_.scrub(command.seconds);
+        show_time();
+      }
+      reply["time"] = timeline_.time();
+      reply["playing"] = timeline_.playing();
+      reply["duration"] = timeline_.duration();
       break;
     case ControlCommand::Kind::quit: break;
   }
@@ -445,7 +467,23 @@ void ViewerApp::handle_input() {
   if (camera_.update(input)) scene_dirty_ = true;
 }
 
+void ViewerApp::advance_timeline(bool render) {
+  timeline_.set_duration(live_->scene().animation.duration());
+  const Clock::time_point now = Clock::now();
+  const double elapsed = options_.control ? (render ? 1.0 / timeline_.fps() : 0.0)
+                                          : std::chrono::duration<double>(now - last_tick_).count();
+  last_tick_ = now;
+  if (timeline_.advance(elapsed)) show_time();
+}
+
+void ViewerApp::show_time() {
+  finish_scene_frames();  // moving meshes are uploaded: the frames in flight read them
+  live_->set_time(timeline_.time());
+  scene_dirty_ = true;
+}
+
 void ViewerApp::apply(const PanelRequests& requests) {
+  if (requests.time_changed) show_time();
   if (requests.scene_edited) {
     live_->set_scene_edit([overrides = settings_.overrides](scene::Scene& scene) { overrides.apply(scene); });
     edits_pending_ = true;

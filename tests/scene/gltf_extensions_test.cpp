@@ -378,20 +378,24 @@ TEST(GltfAnimation, NodeChannelsMoveMeshesAndTheLightsOnTheirNodes) {
   EXPECT_NEAR(turned[0].z, -1.0f, 1e-5f);
   EXPECT_NEAR(turned[3].x, 3.0f, 1e-5f);
 
-  testing::write_text(dir / "shot.scene.json", R"({"version": 1, "models": [{"name": "quad", "file": "quad.gltf"}],
+  // Placed 10 m along Z by the scene file: the nodes move under that placement.
+  testing::write_text(dir / "shot.scene.json", R"({"version": 1,
+    "models": [{"name": "quad", "file": "quad.gltf", "transform": {"translation": [0, 0, 10]}}],
     "cameras": [{"position": [0, 1, 5], "target": [0, 0, 0], "vertical_fov_deg": 45, "near": 0.1, "far": 50}]})");
   Scene scene = load_scene(dir / "shot.scene.json");
   ASSERT_EQ(scene.animation.models.size(), 1u);
   // The unit quad in the XY plane, turned edge-on to X from 1 s: it reaches x = 3 just
   // before (2 m along), x = 4 at the end.
   EXPECT_GE(scene.bounds.max.x, 4.0f - 1e-4f) << "the bounds hold the quad's whole slide";
-  scene.animation.pose(scene, 1.0f);  // 2 m along, turned: x = 2, z from -1 to 0
+  scene.animation.pose(scene, 1.0f);  // 2 m along, turned: x = 2, z from 9 to 10
   EXPECT_NEAR(scene.meshes[0].bounds.min.x, 2.0f, 1e-5f);
   EXPECT_NEAR(scene.meshes[0].bounds.max.x, 2.0f, 1e-5f);
-  EXPECT_NEAR(scene.meshes[0].bounds.min.z, -1.0f, 1e-5f);
+  EXPECT_NEAR(scene.meshes[0].bounds.min.z, 9.0f, 1e-5f);
+  EXPECT_NEAR(scene.meshes[0].bounds.max.z, 10.0f, 1e-5f);
   ASSERT_EQ(scene.lights.size(), 1u);
   EXPECT_NEAR(scene.lights[0].position.x, 2.0f, 1e-5f);
   EXPECT_NEAR(scene.lights[0].position.y, 1.0f, 1e-5f);
+  EXPECT_NEAR(scene.lights[0].position.z, 10.0f, 1e-5f);
 }
 
 TEST(GltfAnimation, AChannelWithTooFewValuesIsALoadError) {

@@ -15,6 +15,7 @@
 #include "viewer/scene_overrides.h"
 #include "viewer/scene_picking.h"
 #include "viewer/texel_inspector.h"
+#include "viewer/timeline.h"
 #include "viewer/view_layout.h"
 
 namespace avsm::viewer {
@@ -229,6 +230,36 @@ TEST(SceneOverrides, AreaLightEditsAreClamped) {
   EXPECT_EQ(scene.lights[1].type, scene::LightType::spot) << "a spot light does not become an area light";
 }
 
+TEST(Timeline, PlaysSnapsToItsFramesLoopsOrStopsAtTheEnd) {
+  Timeline timeline;
+  EXPECT_FALSE(timeline.animated());
+  timeline.play();
+  EXPECT_FALSE(timeline.playing()) << "nothing to play";
+  timeline.set_duration(2.0f);
+  timeline.set_fps(10.0f);
+  EXPECT_FALSE(timeline.advance(0.5)) << "paused: the playhead stays";
+  timeline.play();
+  EXPECT_FALSE(timeline.advance(0.05)) << "half a frame: the shown time stays";
+  EXPECT_TRUE(timeline.advance(0.05));
+  EXPECT_EQ(timeline.frame(), 1);
+  EXPECT_FLOAT_EQ(timeline.time(), 0.1f);
+  for (int i = 0; i < 9; ++i) timeline.advance(0.1);  // ten steps of 1/10 s land on frame 10, not 9
+  EXPECT_EQ(timeline.frame(), 10);
+  timeline.scrub(1.95f);
+  EXPECT_FLOAT_EQ(timeline.time(), 1.9f) << "snapped down to its frame";
+  timeline.advance(0.2);  // past the end: looping wraps round
+  EXPECT_TRUE(timeline.playing());
+  EXPECT_EQ(timeline.frame(), 1);
+  timeline.set_loop(false);
+  timeline.advance(5.0);
+  EXPECT_FALSE(timeline.playing()) << "without a loop it stops at the end";
+  EXPECT_FLOAT_EQ(timeline.time(), 2.0f);
+  timeline.play();
+  EXPECT_EQ(timeline.frame(), 0) << "playing again from the end starts over";
+  timeline.scrub(-3.0f);
+  EXPECT_EQ(timeline.frame(), 0);
+}
+
 TEST(ControlCommands, ParsesEveryCommand) {
   EXPECT_EQ(parse_control_command("frame").kind, ControlCommand::Kind::frame);
   const ControlCommand inspect = parse_control_command("inspect 12,34");
@@ -248,6 +279,12 @@ TEST(ControlCommands, ParsesEveryCommand) {
   const ControlCommand orbit = parse_control_command("orbit -2.5");
   EXPECT_EQ(orbit.kind, ControlCommand::Kind::orbit);
   EXPECT_FLOAT_EQ(orbit.degrees, -2.5f);
+  const ControlCommand time = parse_control_command("time 1.25");
+  EXPECT_EQ(time.kind, ControlCommand::Kind::time);
+  EXPECT_FLOAT_EQ(time.seconds, 1.25f);
+  EXPECT_FALSE(time.play.has_value());
+  EXPECT_EQ(parse_control_command("play").play, std::optional<bool>(true));
+  EXPECT_EQ(parse_control_command("pause").play, std::optional<bool>(false));
   EXPECT_EQ(parse_control_command("quit").kind, ControlCommand::Kind::quit);
 }
 
@@ -259,6 +296,8 @@ TEST(ControlCommands, RejectsMalformedLinesWithAReason) {
   EXPECT_THROW(parse_control_command("orbit"), std::invalid_argument);
   EXPECT_THROW(parse_control_command("orbit left"), std::invalid_argument);
   EXPECT_THROW(parse_control_command("orbit 400"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("time"), std::invalid_argument);
+  EXPECT_THROW(parse_control_command("play now"), std::invalid_argument);
   SceneOverrides overrides;
   EXPECT_THROW(set_light_field(overrides, 0, "technique", "best"), std::invalid_argument);
   EXPECT_THROW(set_light_field(overrides, 0, "colour", "red"), std::invalid_argument);
