@@ -593,8 +593,12 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   FrameReport& report = files.report;
   CaptureOutputs out{files.png, files.exr, files.timings};
   if (shot) {
+    write_shot_video(options.out_dir, *shot);
+    if (options.progress)
+      std::fprintf(stderr, "video:   %s\n", shot->video.empty() ? shot->video_note.c_str() : (options.out_dir / shot->video).c_str());
     out.shot = options.out_dir / "shot.json";
     write_json(out.shot, to_json(*shot));
+    report.shot = shot;
   }
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());

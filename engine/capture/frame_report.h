@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "capture/quality.h"
+#include "capture/shot.h"
 #include "capture/resolution.h"
 #include "passes/shadows/shadow_stats.h"
 #include "scene/bounds.h"
@@ -203,6 +204,7 @@ struct FrameReport {
   // settings.json: written by avsm-capture (not by the viewer's screenshots); absent in
   // capture folders written before it existed.
   std::optional<SettingsReport> settings;
+  std::optional<ShotReport> shot;  // --frame-range: the shot's frames, times and video
 };
 
 nlohmann::json to_json(const TimingReport& timings);

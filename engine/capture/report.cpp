@@ -73,7 +73,9 @@ void write_head(std::ostringstream& html, const TimingReport& timings) {
   write_html_head(html, "avsm-capture report: " + timings.device,
                   "#frame-image{width:100%;max-width:960px;height:auto;border:1px solid #ccc}\n"
                   "#light-images{display:flex;flex-wrap:wrap;gap:1em}\n"
-                  "img.light-map{width:256px;height:auto;border:1px solid #ccc}\n");
+                  "img.light-map{width:256px;height:auto;border:1px solid #ccc}\n"
+                  "#contact-sheet{display:flex;flex-wrap:wrap;gap:0.5em}\n"
+                  "#contact-sheet figure{margin:0;font-size:12px}\n");
 }
 
 void write_frame(std::ostringstream& html, const fs::path& out_dir, const TimingReport& timings) {
@@ -423,6 +425,46 @@ void write_graph(std::ostringstream& html, const PlanSummary& plan, const std::s
        << "</pre>\n</details>\n</section>\n";
 }
 
+// A shot: each frame's wall time as a bar (the first, kept apart, in grey), a contact
+// sheet of up to 24 frames spread over the shot, and its video or why there is none.
+void write_shot(std::ostringstream& html, const fs::path& out_dir, const ShotReport& shot) {
+  const ShotSummary summary = shot.summary();
+  html << "<section>\n<h2>Shot</h2>\n<p>Frames " << shot.range.first << " to " << shot.range.last << " at "
+       << format_value("%g", shot.range.fps) << " fps: the first " << format_value("%.1f", summary.first_ms)
+       << " ms (kept apart), then " << format_value("%.1f", summary.mean_ms) << " ms on average, median "
+       << format_value("%.1f", summary.median_ms) << ", slowest " << format_value("%.1f", summary.max_ms) << " (frame "
+       << summary.slowest_frame << ").</p>\n";
+  double highest = 1e-9;
+  for (const ShotFrame& f : shot.frames) highest = std::max(highest, f.wall_ms);
+  const double width = 720.0, height = 160.0, bar = width / double(std::max<size_t>(shot.frames.size(), 1));
+  html << "<svg id=\"shot-timings\" width=\"" << width << "\" height=\"" << height + 20 << "\" role=\"img\" "
+       << "aria-label=\"wall ms per shot frame\">\n";
+  for (size_t i = 0; i < shot.frames.size(); ++i) {
+    const ShotFrame& f = shot.frames[i];
+    const double h = height * f.wall_ms / highest;
+    html << "<rect x=\"" << bar * double(i) << "\" y=\"" << height - h << "\" width=\"" << std::max(bar - 1.0, 1.0)
+         << "\" height=\"" << h << "\" fill=\"" << (i == 0 ? "#999" : "#4a7bd0") << "\"><title>frame " << f.frame << ": "
+         << format_value("%.2f", f.wall_ms) << " ms</title></rect>\n";
+  }
+  html << "<text x=\"0\" y=\"" << height + 16 << "\" font-size=\"12\">wall ms per frame (tallest "
+       << format_value("%.1f", highest) << "); grey: the first frame</text>\n</svg>\n";
+  html << "<div id=\"contact-sheet\">\n";
+  const size_t shown = std::min<size_t>(shot.frames.size(), 24);
+  for (size_t k = 0; k < shown; ++k) {
+    const size_t i = shown > 1 ? k * (shot.frames.size() - 1) / (shown - 1) : 0;
+    const ShotFrame& f = shot.frames[i];
+    html << "<figure><img width=\"160\" alt=\"frame " << f.frame << "\" src=\"" << embed_png(out_dir / f.image).data_uri
+         << "\"><figcaption>" << f.frame << " (" << format_value("%.3f", f.time) << " s)</figcaption></figure>\n";
+  }
+  html << "</div>\n";
+  if (!shot.video.empty())
+    html << "<p><a href=\"" << escape_markup(shot.video.generic_string()) << "\">" << escape_markup(shot.video.generic_string())
+         << "</a></p>\n";
+  else
+    html << "<p class=\"note\">" << escape_markup(shot.video_note) << "</p>\n";
+  html << "</section>\n";
+}
+
 void write_footer(std::ostringstream& html, const fs::path& out_dir) {
   std::vector<std::string> names;
   std::error_code ec;
@@ -441,6 +483,7 @@ void write_report(const fs::path& out_dir, const FrameReport& report, const fs::
   std::ostringstream html;
   write_head(html, report.timings);
   write_frame(html, out_dir, report.timings);
+  if (report.shot) write_shot(html, out_dir, *report.shot);
   write_light_images(html, out_dir, report.memory.lights);
   write_timing_chart(html, report.timings);
   write_memory(html, report.memory);

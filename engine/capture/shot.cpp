@@ -1,5 +1,7 @@
 #include "capture/shot.h"
 
+#include "capture/run_command.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -57,13 +59,34 @@ ShotSummary ShotReport::summary() const {
   return summary;
 }
 
+void write_shot_video(const std::filesystem::path& out_dir, ShotReport& shot) {
+  if (shot.frames.empty()) return;
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%g", double(shot.range.fps));
+  // Even sizes: yuv420p halves the chroma planes.
+  const std::optional<CommandResult> result = run_command(
+      {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-start_number", std::to_string(shot.range.first), "-i",
+       (out_dir / "frames" / "frame_%04d.png").string(), "-vf", "scale=trunc(iw/2)*2:trunc(ih/2)*2", "-c:v", "libx264",
+       "-pix_fmt", "yuv420p", (out_dir / "shot.mp4").string()});
+  if (!result) {
+    shot.video_note = "ffmpeg is not installed, so no shot.mp4 (Debian: apt install ffmpeg)";
+  } else if (result->exit_code != 0) {
+    shot.video_note = "ffmpeg failed (exit status " + std::to_string(result->exit_code) + "): " + result->err;
+  } else {
+    shot.video = "shot.mp4";
+  }
+}
+
 nlohmann::json to_json(const ShotReport& shot) {
   nlohmann::json frames = nlohmann::json::array();
   for (const ShotFrame& f : shot.frames)
     frames.push_back({{"frame", f.frame}, {"time", f.time}, {"wall_ms", f.wall_ms}, {"renders", f.renders},
                       {"image", f.image.generic_string()}});
   const ShotSummary s = shot.summary();
-  return {{"first_frame", shot.range.first},
+  nlohmann::json video = shot.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(shot.video.generic_string());
+  return {{"video", video},
+          {"video_note", shot.video_note},
+          {"first_frame", shot.range.first},
           {"last_frame", shot.range.last},
           {"fps", shot.range.fps},
           {"frames", frames},

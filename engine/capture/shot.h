@@ -41,6 +41,8 @@ struct ShotSummary {
 struct ShotReport {
   FrameRange range;
   std::vector<ShotFrame> frames;
+  std::filesystem::path video;  // shot.mp4 (relative to the folder); empty when none was written
+  std::string video_note;       // why not, when not
 
   ShotSummary summary() const;
   // frames/frame_<NNNN>.png, the numbering of the shot's frames (4 digits, more if needed).
@@ -48,5 +50,10 @@ struct ShotReport {
 };
 
 nlohmann::json to_json(const ShotReport& shot);
+
+// shot.mp4 from the shot's frames through Debian's ffmpeg (H.264, yuv420p, at the shot's
+// rate) when ffmpeg is on PATH; otherwise, or when it fails, shot.video stays empty and
+// shot.video_note says why.
+void write_shot_video(const std::filesystem::path& out_dir, ShotReport& shot);
 
 }  // namespace avsm::capture

@@ -1,7 +1,8 @@
 # A shot (avsm-capture --frame-range) of the Blender-style example, whose ball bounces: DIR
 # must hold frames/frame_0000.png .. frame_<LAST>.png, shot.json with one entry per frame
 # and its summary (the first frame kept apart), settings.json with the last frame's time
-# (TIME), and frames that differ where the ball moved.
+# (TIME), frames that differ where the ball moved, shot.mp4 or a note saying why there is
+# none, and report.html with the shot's timing chart and contact sheet.
 file(READ "${DIR}/shot.json" shot)
 string(JSON count LENGTH "${shot}" frames)
 math(EXPR expected "${LAST} + 1")
@@ -28,6 +29,22 @@ string(JSON time GET "${settings}" time)
 if(NOT time EQUAL ${TIME})
   message(FATAL_ERROR "settings.json: time ${time}, expected ${TIME}")
 endif()
+string(JSON video GET "${shot}" video)
+string(JSON video_note GET "${shot}" video_note)
+if(video STREQUAL "" OR video STREQUAL "null")
+  if(NOT video_note MATCHES "ffmpeg")
+    message(FATAL_ERROR "shot.json has neither a video nor a note about ffmpeg: '${video_note}'")
+  endif()
+elseif(NOT EXISTS "${DIR}/${video}")
+  message(FATAL_ERROR "shot.json names ${video}, which was not written")
+endif()
+file(READ "${DIR}/report.html" report)
+foreach(part "id=\"shot-timings\"" "id=\"contact-sheet\"" "alt=\"frame ${LAST}\"")
+  string(FIND "${report}" "${part}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "report.html lacks ${part}")
+  endif()
+endforeach()
 string(JSON first_image GET "${shot}" frames 0 image)
 string(JSON last_image GET "${shot}" frames ${last_index} image)
 file(SHA256 "${DIR}/${first_image}" first)
