@@ -1,5 +1,7 @@
 #include "sweep/manifest.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <optional>
 
@@ -27,6 +29,9 @@ const std::vector<std::pair<std::string, std::string>> kCompareToChoices = {{"un
 struct SettingsPart {
   std::optional<std::string> scene, camera, compare_to;
   std::optional<int> width, height, frames;
+  std::optional<capture::FrameRange> frame_range;  // "frame_range": "A:B" (its fps from "fps")
+  std::optional<float> fps;
+  std::optional<int> chunk;  // frames per job of a shot
   scene::ShadowOverrides shadow;
 
   void apply(JobSettings& settings) const {
@@ -36,6 +41,11 @@ struct SettingsPart {
     if (width) settings.width = uint32_t(*width);
     if (height) settings.height = uint32_t(*height);
     if (frames) settings.frames = uint32_t(*frames);
+    if (frame_range) {
+      settings.first_frame = frame_range->first;
+      settings.last_frame = frame_range->last;
+    }
+    if (fps) settings.fps = *fps;
     apply_overrides(shadow, settings.shadow);
   }
 
@@ -92,7 +102,9 @@ class ManifestReader {
     top.string_or("description", "");
     if (const json* defaults = top.optional("defaults")) {
       ObjectReader object(reader_, *defaults, "defaults");
-      read_part(object, kJobFields).apply(defaults_);
+      const SettingsPart part = read_part(object, kJobFields);
+      part.apply(defaults_);
+      defaults_chunk_ = part.chunk;
       object.finish();
     }
     if (const json* cross = top.optional("cross")) read_cross(*cross);
@@ -171,7 +183,18 @@ class ManifestReader {
       part.width = read_in_range(object, "width", 1, kMaxImageSide);
       part.height = read_in_range(object, "height", 1, kMaxImageSide);
     }
-    if (fields & kFrames) part.frames = read_in_range(object, "frames", 1, kMaxFrames);
+    if (fields & kFrames) {
+      part.frames = read_in_range(object, "frames", 1, kMaxFrames);
+      if (const json* range = object.optional("frame_range")) {
+        capture::FrameRange parsed;
+        const std::string text = reader_.string(*range, object.path_of("frame_range"));
+        object.check(capture::parse_frame_range(text, parsed), "frame_range", "expected \"A:B\" with 0 <= A <= B, got '" + text + "'");
+        part.frame_range = parsed;
+      }
+      part.fps = object.optional_number("fps");
+      object.check(!part.fps || (*part.fps > 0.0f && *part.fps <= 1000.0f), "fps", "must be a frame rate in (0, 1000]");
+      part.chunk = read_in_range(object, "chunk", 1, kMaxFrames);
+    }
     if (fields & kShadowInline) part.shadow = read_shadow(object);
     if (fields & kShadowObject) {
       if (const json* shadow = object.optional("shadow")) {
@@ -216,10 +239,10 @@ class ManifestReader {
     cross.finish();
 
     std::vector<std::size_t> pick(axes.size(), 0);  // one entry per axis; counts like an odometer
-    const std::size_t first = jobs_.size();
+    std::vector<Job> product;
     for (;;) {
-      jobs_.push_back({"cross", {}});
-      JobRecord& job = jobs_.back().record;
+      product.push_back({"cross", {}});
+      JobRecord& job = product.back().record;
       job.id = product_id(axes, pick);
       job.settings = defaults_;
       for (std::size_t a = 0; a < axes.size(); ++a) axes[a].entries[pick[a]].second.apply(job.settings);
@@ -231,7 +254,7 @@ class ManifestReader {
       while (a > 0 && ++pick[a - 1] == axes[a - 1].entries.size()) pick[--a] = 0;
       if (a == 0) break;
     }
-    for (std::size_t i = first; i < jobs_.size(); ++i) check_unique_id(jobs_[i], "cross");
+    for (Job& job : product) add_shot_chunks(job, defaults_chunk_);  // a shot in "defaults" splits each
   }
 
   static std::string product_id(const std::vector<Axis>& axes, const std::vector<std::size_t>& pick) {
@@ -269,13 +292,44 @@ class ManifestReader {
       ObjectReader object(reader_, list[i], job.path);
       job.record.id = read_id(object);
       job.record.settings = defaults_;
-      read_part(object, kJobFields).apply(job.record.settings);
+      const SettingsPart part = read_part(object, kJobFields);
+      part.apply(job.record.settings);
       job.record.settings.reference_job = object.string_or("reference_job", "");
+      const std::optional<int> chunk = part.chunk ? part.chunk : defaults_chunk_;
+      object.check(!chunk || job.record.settings.is_shot(), "chunk", "splits a shot: give the job a \"frame_range\"");
+      object.check(!job.record.settings.is_shot() || job.record.settings.reference_job.empty(), "reference_job",
+                   "a shot is not compared with another job (compare its frames with avsm-compare)");
       object.finish();
-      jobs_.push_back(std::move(job));
-      check_unique_id(jobs_.back(), scene::child_path(jobs_.back().path, "id"));
+      add_shot_chunks(job, chunk);
     }
   }
+
+  // A job of one instant as it is; a shot as one job per `chunk` frames (all of them
+  // without a chunk), ids "<id>.f<first>-<last>", each the shot's part of one array task.
+  void add_shot_chunks(Job& job, std::optional<int> chunk) {
+    JobSettings& settings = job.record.settings;
+    if (!settings.is_shot()) {
+      jobs_.push_back(std::move(job));
+      check_unique_id(jobs_.back(), id_path(jobs_.back()));
+      return;
+    }
+    settings.shot = job.record.id;
+    const int first = settings.first_frame, last = settings.last_frame, size = chunk.value_or(last - first + 1);
+    for (int start = first; start <= last; start += size) {
+      Job part = job;
+      part.record.settings.first_frame = start;
+      part.record.settings.last_frame = std::min(last, start + size - 1);
+      if (chunk) {
+        char suffix[32];
+        std::snprintf(suffix, sizeof suffix, ".f%04d-%04d", start, part.record.settings.last_frame);
+        part.record.id += suffix;
+      }
+      jobs_.push_back(std::move(part));
+      check_unique_id(jobs_.back(), id_path(jobs_.back()));
+    }
+  }
+
+  static std::string id_path(const Job& job) { return job.path == "cross" ? job.path : scene::child_path(job.path, "id"); }
 
   void check_unique_id(const Job& job, const std::string& path) const {
     for (const Job& other : jobs_)
@@ -318,6 +372,7 @@ class ManifestReader {
   Reader reader_;
   fs::path dir_;
   JobSettings defaults_ = capture_defaults();
+  std::optional<int> defaults_chunk_;
   std::vector<Job> jobs_;
 };
 
@@ -341,6 +396,10 @@ capture::CaptureOptions capture_options(const JobSettings& settings) {
   options.frames = settings.frames;
   options.shadow = settings.shadow;
   options.compare_to_uncompressed = settings.compare_to == "uncompressed";
+  if (settings.is_shot()) {
+    options.frame_range = capture::FrameRange{settings.first_frame, settings.last_frame, settings.fps};
+    options.fps = settings.fps;
+  }
   return options;
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 
 #include <nlohmann/json.hpp>
@@ -120,9 +121,11 @@ scene::ShadowOverrides shadow_overrides_from_json(const json& in) {
 }
 
 json to_json(const JobSettings& s) {
-  return {{"scene", s.scene},   {"camera", s.camera},         {"width", s.width},
-          {"height", s.height}, {"frames", s.frames},         {"shadow", to_json(s.shadow)},
-          {"compare_to", s.compare_to}, {"reference_job", s.reference_job}};
+  json out = {{"scene", s.scene},   {"camera", s.camera},         {"width", s.width},
+              {"height", s.height}, {"frames", s.frames},         {"shadow", to_json(s.shadow)},
+              {"compare_to", s.compare_to}, {"reference_job", s.reference_job}};
+  if (s.is_shot()) out["shot"] = {{"id", s.shot}, {"first_frame", s.first_frame}, {"last_frame", s.last_frame}, {"fps", s.fps}};
+  return out;
 }
 
 JobSettings job_settings_from_json(const json& in) {
@@ -139,6 +142,13 @@ JobSettings job_settings_from_json(const json& in) {
   }
   s.compare_to = value_of<std::string>(in, "compare_to");
   s.reference_job = value_of<std::string>(in, "reference_job");
+  if (in.contains("shot")) {  // absent for one instant (and in indexes written before shots)
+    const json& shot = member(in, "shot");
+    s.shot = value_of<std::string>(shot, "id");
+    s.first_frame = value_of<int>(shot, "first_frame");
+    s.last_frame = value_of<int>(shot, "last_frame");
+    s.fps = value_of<float>(shot, "fps");
+  }
   return s;
 }
 
@@ -173,14 +183,40 @@ JobRecord job_record_from_json(const json& in) {
   return job;
 }
 
+json to_json(const ShotIndex& shot) {
+  json frames = json::array();
+  for (const ShotFrameIndex& f : shot.frames)
+    frames.push_back({{"frame", f.frame}, {"time", f.time}, {"job", f.job}, {"image", f.image}});
+  return {{"id", shot.id},         {"first_frame", shot.first_frame}, {"last_frame", shot.last_frame},
+          {"fps", shot.fps},       {"chunks", shot.chunks},           {"complete", shot.complete()},
+          {"frames", frames}};
+}
+
+ShotIndex shot_index_from_json(const json& in) {
+  ShotIndex shot;
+  shot.id = value_of<std::string>(in, "id");
+  shot.first_frame = value_of<int>(in, "first_frame");
+  shot.last_frame = value_of<int>(in, "last_frame");
+  shot.fps = value_of<float>(in, "fps");
+  shot.chunks = value_of<std::vector<std::string>>(in, "chunks");
+  shot.frames = array_of<ShotFrameIndex>(in, "frames", [](const json& f) {
+    return ShotFrameIndex{value_of<int>(f, "frame"), value_of<float>(f, "time"), value_of<std::string>(f, "job"),
+                          value_of<std::string>(f, "image")};
+  });
+  return shot;
+}
+
 json to_json(const SweepIndex& index) {
-  json jobs = json::array();
+  json jobs = json::array(), shots = json::array();
   for (const JobRecord& job : index.jobs) jobs.push_back(to_json(job));
-  return {{"manifest", index.manifest}, {"jobs", jobs}};
+  for (const ShotIndex& shot : index.shots) shots.push_back(to_json(shot));
+  return {{"manifest", index.manifest}, {"jobs", jobs}, {"shots", shots}};
 }
 
 SweepIndex sweep_index_from_json(const json& in) {
-  return {value_of<std::string>(in, "manifest"), array_of<JobRecord>(in, "jobs", job_record_from_json)};
+  SweepIndex index{value_of<std::string>(in, "manifest"), array_of<JobRecord>(in, "jobs", job_record_from_json), {}};
+  if (in.contains("shots")) index.shots = array_of<ShotIndex>(in, "shots", shot_index_from_json);
+  return index;
 }
 
 // ---- files ----
@@ -216,10 +252,37 @@ void write_job_record(const fs::path& sweep_dir, const JobRecord& job) {
   write_json_atomically(job_file(sweep_dir, job.id), to_json(job));
 }
 
+namespace {
+
+// The shots among the jobs, each merged from its done chunks' shot.json (frame order).
+std::vector<ShotIndex> merge_shots(const fs::path& sweep_dir, const std::vector<JobRecord>& jobs) {
+  std::vector<ShotIndex> shots;
+  for (const JobRecord& job : jobs) {
+    const JobSettings& s = job.settings;
+    if (!s.is_shot()) continue;
+    auto shot = std::find_if(shots.begin(), shots.end(), [&](const ShotIndex& x) { return x.id == s.shot; });
+    if (shot == shots.end()) shot = shots.insert(shots.end(), ShotIndex{s.shot, s.first_frame, s.last_frame, s.fps, {}, {}});
+    shot->first_frame = std::min(shot->first_frame, s.first_frame);
+    shot->last_frame = std::max(shot->last_frame, s.last_frame);
+    shot->chunks.push_back(job.id);
+    if (job.status != JobStatus::done) continue;
+    const json chunk = capture::read_report_file(sweep_dir / job.output / "shot.json", +[](const json& in) { return in; });
+    for (const json& frame : member(chunk, "frames"))
+      shot->frames.push_back({value_of<int>(frame, "frame"), value_of<float>(frame, "time"), job.id,
+                              (fs::path(job.output) / value_of<std::string>(frame, "image")).generic_string()});
+  }
+  for (ShotIndex& shot : shots)
+    std::sort(shot.frames.begin(), shot.frames.end(), [](const ShotFrameIndex& a, const ShotFrameIndex& b) { return a.frame < b.frame; });
+  return shots;
+}
+
+}  // namespace
+
 SweepIndex collect(const fs::path& sweep_dir) {
   SweepIndex index = read_index(sweep_dir);
   for (JobRecord& job : index.jobs)
     if (std::optional<JobRecord> record = read_job_record(sweep_dir, job.id)) job = std::move(*record);
+  index.shots = merge_shots(sweep_dir, index.jobs);
   write_index(sweep_dir, index);
   return index;
 }

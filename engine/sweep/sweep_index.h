@@ -32,7 +32,13 @@ struct JobSettings {
   scene::ShadowOverrides shadow;  // only the overrides set are written
   std::string compare_to;         // "uncompressed" or empty (no quality.json)
   std::string reference_job;      // the id of the job whose frame.exr this one is compared to; may be empty
+  // A shot (avsm-capture --frame-range): frames first_frame..last_frame at fps; -1: one
+  // instant. `shot` names the shot a chunk renders part of (the manifest job's id).
+  int first_frame = -1, last_frame = -1;
+  float fps = 24.0f;
+  std::string shot;
 
+  bool is_shot() const { return first_frame >= 0; }
   bool operator==(const JobSettings&) const = default;
 };
 
@@ -49,9 +55,33 @@ struct JobRecord {
   bool operator==(const JobRecord&) const = default;
 };
 
+// A shot split into chunks (one job, one Slurm array task each), merged: its frames in
+// order, each with the chunk that rendered it and its image (relative to the sweep
+// folder). Timings stay in each chunk's shot.json, so that two runs index alike.
+struct ShotFrameIndex {
+  int frame = 0;
+  float time = 0.0f;
+  std::string job;
+  std::string image;
+
+  bool operator==(const ShotFrameIndex&) const = default;
+};
+
+struct ShotIndex {
+  std::string id;
+  int first_frame = 0, last_frame = 0;
+  float fps = 24.0f;
+  std::vector<std::string> chunks;     // job ids, in frame order
+  std::vector<ShotFrameIndex> frames;  // those rendered so far (chunks done)
+
+  bool complete() const { return frames.size() == std::size_t(last_frame - first_frame + 1); }
+  bool operator==(const ShotIndex&) const = default;
+};
+
 struct SweepIndex {
   std::string manifest;  // absolute path of the original manifest
   std::vector<JobRecord> jobs;  // manifest order
+  std::vector<ShotIndex> shots;  // the shots among the jobs, merged by collect()
 
   bool operator==(const SweepIndex&) const = default;
   const JobRecord* find(std::string_view id) const;
@@ -67,6 +97,8 @@ nlohmann::json to_json(const JobSettings& settings);
 JobSettings job_settings_from_json(const nlohmann::json& in);
 nlohmann::json to_json(const JobRecord& job);
 JobRecord job_record_from_json(const nlohmann::json& in);
+nlohmann::json to_json(const ShotIndex& shot);
+ShotIndex shot_index_from_json(const nlohmann::json& in);
 nlohmann::json to_json(const SweepIndex& index);
 SweepIndex sweep_index_from_json(const nlohmann::json& in);
 
@@ -82,8 +114,9 @@ std::optional<JobRecord> read_job_record(const std::filesystem::path& sweep_dir,
 void write_job_record(const std::filesystem::path& sweep_dir, const JobRecord& job);
 
 // Rebuilds DIR/index.json from DIR/<id>/job.json: the index's job list (written when
-// the sweep was prepared) with every job that has a job.json replaced by it. Returns
-// what it wrote. Throws naming the file when a job.json is not the job of its folder.
+// the sweep was prepared) with every job that has a job.json replaced by it, and its
+// shots merged from their chunks' shot.json. Returns what it wrote. Throws naming the
+// file when a job.json is not the job of its folder.
 SweepIndex collect(const std::filesystem::path& sweep_dir);
 
 }  // namespace avsm::sweep

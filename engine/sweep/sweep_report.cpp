@@ -460,6 +460,30 @@ std::vector<JobResult> read_job_results(const fs::path& sweep_dir, const SweepIn
   return results;
 }
 
+// The shots, merged from their chunks: frames rendered of the shot's, the chunks, and its
+// first and last frames rendered so far.
+void write_shots(std::ostringstream& html, const fs::path& sweep_dir, const std::vector<ShotIndex>& shots) {
+  if (shots.empty()) return;
+  html << "<section>\n<h2>Shots</h2>\n<table id=\"shots-table\">\n<tr><th>shot</th><th>frames</th><th>fps</th>"
+          "<th>chunks</th><th>first and last frame rendered</th></tr>\n";
+  for (const ShotIndex& shot : shots) {
+    const int total = shot.last_frame - shot.first_frame + 1;
+    html << "<tr><td>" << capture::escape_markup(shot.id) << "</td><td>" << shot.frames.size() << " of " << total << " ("
+         << shot.first_frame << " to " << shot.last_frame << ")</td><td>" << capture::format_value("%g", shot.fps) << "</td><td>"
+         << capture::escape_markup(joined(shot.chunks, ", ")) << "</td><td>";
+    for (const ShotFrameIndex* frame : {shot.frames.empty() ? nullptr : &shot.frames.front(),
+                                        shot.frames.size() < 2 ? nullptr : &shot.frames.back()}) {
+      if (frame == nullptr) continue;
+      std::error_code ec;
+      if (!fs::exists(sweep_dir / frame->image, ec)) continue;
+      html << "<img width=\"160\" alt=\"" << capture::escape_markup(shot.id) << " frame " << frame->frame << "\" src=\""
+           << capture::embed_png(sweep_dir / frame->image).data_uri << "\"> ";
+    }
+    html << "</td></tr>\n";
+  }
+  html << "</table>\n</section>\n";
+}
+
 void write_sweep_report(const fs::path& sweep_dir, const fs::path& html_path) {
   const SweepIndex index = read_index(sweep_dir);
   const std::vector<JobResult> results = read_job_results(sweep_dir, index);
@@ -467,6 +491,7 @@ void write_sweep_report(const fs::path& sweep_dir, const fs::path& html_path) {
   capture::write_html_head(html, "avsm-sweep report: " + sweep_dir.filename().string(), kStyle);
   write_summary(html, sweep_dir, index, results);
   write_jobs_table(html, results);
+  write_shots(html, sweep_dir, index.shots);
   write_images(html, sweep_dir, results);
   write_tradeoff(html, results);
   html << "<footer>\n<p class=\"note\">Written by avsm-sweep report from "

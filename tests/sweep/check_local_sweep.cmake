@@ -1,7 +1,8 @@
 cmake_minimum_required(VERSION 3.20)
 # avsm-sweep run end to end (tests/sweep/data/local_sweep.json): 4 tiny jobs, 2 at once,
-# one failing on purpose. index.json must list 3 done jobs with their capture folders
-# and 1 failed job with its exit code and the capture's error; a re-run must skip the
+# one failing on purpose, and a shot of 4 frames in 2 chunks. index.json must list 5 done
+# jobs with their capture folders and 1 failed job with its exit code and the capture's
+# error, and the shot merged from its chunks (4 frames, in order); a re-run must skip the
 # finished jobs (their job.json untouched) and run the failed one again; status must
 # say some failed; a bad manifest must be refused with exit code 2, naming the path.
 # -DSWEEP=<avsm-sweep> -DDATA=<tests/sweep/data> -DDIR=<scratch folder>
@@ -28,8 +29,8 @@ if(NOT (EXISTS "${DIR}/manifest.json"))
   message(FATAL_ERROR "no copy of the manifest in ${DIR}")
 endif()
 string(JSON count LENGTH "${index}" jobs)
-if(NOT (count EQUAL 4))
-  message(FATAL_ERROR "index.json lists ${count} jobs, not 4")
+if(NOT (count EQUAL 6))
+  message(FATAL_ERROR "index.json lists ${count} jobs, not 6")
 endif()
 set(done_ids "")
 math(EXPR last "${count} - 1")
@@ -68,7 +69,7 @@ foreach(i RANGE ${last})
     endforeach()
     file(READ "${DIR}/${id}/job.json" job_file_${id})
     list(APPEND done_ids ${id})
-    if(id STREQUAL "exact")
+    if(id STREQUAL "exact" OR id MATCHES "^bounce\\.")
       if(NOT (reference STREQUAL ""))
         message(FATAL_ERROR "${id}: the reference has reference_job '${reference}'")
       endif()
@@ -79,9 +80,25 @@ foreach(i RANGE ${last})
     endif()
   endif()
 endforeach()
-if(NOT (done_ids STREQUAL "avsm4;osm;exact"))
+if(NOT (done_ids STREQUAL "avsm4;osm;exact;bounce.f0000-0001;bounce.f0002-0003"))
   message(FATAL_ERROR "done jobs in manifest order: '${done_ids}'")
 endif()
+# The shot, merged: its two chunks, its four frames in order, each image in its chunk's folder.
+string(JSON shot GET "${index}" shots 0)
+string(JSON shot_id GET "${shot}" id)
+string(JSON complete GET "${shot}" complete)
+string(JSON chunks LENGTH "${shot}" chunks)
+string(JSON frames LENGTH "${shot}" frames)
+if(NOT (shot_id STREQUAL "bounce" AND complete AND chunks EQUAL 2 AND frames EQUAL 4))
+  message(FATAL_ERROR "index.json shot: ${shot}")
+endif()
+foreach(i RANGE 3)
+  string(JSON frame GET "${shot}" frames ${i} frame)
+  string(JSON image GET "${shot}" frames ${i} image)
+  if(NOT (frame EQUAL i AND EXISTS "${DIR}/${image}"))
+    message(FATAL_ERROR "index.json shot frame ${i}: frame ${frame}, image '${image}'")
+  endif()
+endforeach()
 
 # A re-run skips the done jobs and tries the failed one again.
 sweep(1 run "${DATA}/local_sweep.json" --out "${DIR}" --jobs 2)

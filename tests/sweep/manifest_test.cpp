@@ -105,6 +105,40 @@ TEST_F(ManifestTest, ExplicitJobsFollowTheProductWithTheDefaults) {
                                       "depth_bias=0.5", "--shadow-param", "slices=32"}));
 }
 
+// A shot split into chunks of 4 frames: one job each, "<id>.f<first>-<last>", the last
+// chunk shorter; each a --frame-range of avsm-capture, all naming their shot.
+TEST_F(ManifestTest, AShotSplitsIntoChunksOfFrames) {
+  const SweepIndex index = parse(R"({
+    "version": 1,
+    "jobs": [ { "id": "orbit", "frame_range": "10:19", "fps": 30, "chunk": 4 },
+              { "id": "whole", "frame_range": "0:2" } ]
+  })");
+  ASSERT_EQ(index.jobs.size(), 4u);
+  EXPECT_EQ(index.jobs[0].id, "orbit.f0010-0013");
+  EXPECT_EQ(index.jobs[1].id, "orbit.f0014-0017");
+  EXPECT_EQ(index.jobs[2].id, "orbit.f0018-0019");
+  EXPECT_EQ(index.jobs[3].id, "whole") << "without a chunk, the shot is one job under its own id";
+  const JobSettings& last = index.jobs[2].settings;
+  EXPECT_EQ(last.shot, "orbit");
+  EXPECT_EQ(last.first_frame, 18);
+  EXPECT_EQ(last.last_frame, 19);
+  EXPECT_FLOAT_EQ(last.fps, 30.0f);
+  EXPECT_EQ(index.jobs[2].capture_args, (std::vector<std::string>{"--frame-range", "18:19", "--fps", "30"}));
+  EXPECT_EQ(index.jobs[3].settings.shot, "whole");
+}
+
+TEST_F(ManifestTest, ShotMistakesNameTheirPath) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"version": 1, "jobs": [ { "id": "a", "frame_range": "9:2" } ]})",
+       "jobs[0].frame_range: expected \"A:B\" with 0 <= A <= B, got '9:2'"},
+      {R"({"version": 1, "jobs": [ { "id": "a", "chunk": 4 } ]})", "jobs[0].chunk: splits a shot: give the job a \"frame_range\""},
+      {R"({"version": 1, "jobs": [ { "id": "a", "frame_range": "0:4", "fps": -1 } ]})", "jobs[0].fps: must be a frame rate in (0, 1000]"}};
+  for (const auto& [manifest, message] : cases) {
+    const std::string error = error_of(manifest);
+    EXPECT_NE(error.find(message), std::string::npos) << error;
+  }
+}
+
 TEST_F(ManifestTest, CaptureOptionsCarryTheSettings) {
   const JobSettings settings = parse(kCross).jobs[0].settings;
   const capture::CaptureOptions options = capture_options(settings);

@@ -58,7 +58,7 @@ status=0
 "$sweep" wait "$work/slurm" --timeout 300 || status=$?
 [ $status -eq $expected_exit ] || fail "avsm-sweep wait exited $status, expected $expected_exit"
 cmake -DA="$work/slurm" -DB="$local_dir" -P "$here/check_same_sweep.cmake"
-jobs=$(grep -c '"id":' "$work/slurm/index.json")
+jobs=$(grep -c '"capture_args":' "$work/slurm/index.json")  # one per job (shots have ids too)
 for ((task = 0; task < jobs; ++task)); do
   [ -s "$work/slurm/slurm/task-$task.log" ] || fail "Slurm wrote no $work/slurm/slurm/task-$task.log"
 done
