@@ -17,7 +17,7 @@
 namespace avsm::passes {
 namespace {
 
-constexpr TechniqueParameter kParameters[] = {
+constexpr TechniqueParameter kDsmParameters[] = {
     {"error", 0.01, 0, 1, 0, "the largest transmittance error the compression may make, in (0, 1)"},
 };
 
@@ -38,7 +38,7 @@ class Dsm final : public ShadowTechnique {
  public:
   std::string_view name() const override { return "dsm"; }
   std::string_view summary() const override { return "deep shadow maps: exact curves compressed to an error bound"; }
-  std::span<const TechniqueParameter> parameters() const override { return kParameters; }
+  std::span<const TechniqueParameter> parameters() const override { return kDsmParameters; }
   void check(const scene::ShadowSettings& s, const std::string& who) const override {
     const double e = error(s);
     if (!(e > 0.0 && e < 1.0))
