@@ -70,7 +70,7 @@ foreach(case "DifferentSettingsFail;1;setting 'light sun' nodes +4 +16 +equal +F
   set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED capture_quality_nodes)
 endforeach()
 
-# Two sweep folders: the local run's (sweep.LocalRun: 3 jobs done, 1 failed) against
+# Two sweep folders: the local run's (sweep.LocalRun: 5 jobs done, 1 failed) against
 # itself passes; against a copy in which a done job failed, that job fails.
 set(LOCAL_SWEEP ${CMAKE_CURRENT_BINARY_DIR}/local_sweep)
 add_test(NAME compare.PlantLostJob
@@ -82,7 +82,7 @@ foreach(case "SweepAgainstItselfPasses;${LOCAL_SWEEP};0;PASS: no threshold cross
   list(POP_FRONT case name new expect_exit)
   add_test(NAME compare.${name}
     COMMAND ${CMAKE_COMMAND} "-DCOMMAND=$<TARGET_FILE:avsm-compare>;${LOCAL_SWEEP};${new};--junit;${COMPARE_OUT}/${name}.xml"
-            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${case}" -DJUNIT=${COMPARE_OUT}/${name}.xml -DSUITES=4
+            -DEXPECT_EXIT=${expect_exit} "-DEXPECT=${case}" -DJUNIT=${COMPARE_OUT}/${name}.xml -DSUITES=6
             -P ${CMAKE_SOURCE_DIR}/tests/cmake/check_compare.cmake)
   set_tests_properties(compare.${name} PROPERTIES FIXTURES_REQUIRED "sweep_local_run;lost_job_sweep")
 endforeach()
