@@ -24,13 +24,6 @@ constexpr std::uint64_t kMaxSceneFileBytes = 64ull << 20;
 
 // ---- pieces ----
 
-glm::mat4 rotation_from_degrees(const glm::vec3& degrees) {
-  const glm::vec3 r = glm::radians(degrees);
-  const glm::mat4 identity(1.0f);
-  return glm::rotate(identity, r.z, glm::vec3(0, 0, 1)) * glm::rotate(identity, r.y, glm::vec3(0, 1, 0)) *
-         glm::rotate(identity, r.x, glm::vec3(1, 0, 0));
-}
-
 glm::mat4 read_matrix(const Reader& reader, const json& value, const std::string& path) {
   reader.expect(value.is_array() && value.size() == 16, path, "expected an array of 16 numbers (column-major)");
   glm::mat4 m;
@@ -56,8 +49,7 @@ glm::mat4 read_transform(const Reader& reader, const json& value, const std::str
     if (const json* s = object.optional("scale"))
       scale = s->is_number() ? glm::vec3(float(reader.number(*s, object.path_of("scale"))))
                              : reader.vec3(*s, object.path_of("scale"));
-    result = glm::translate(glm::mat4(1.0f), translation) * rotation_from_degrees(rotation) *
-             glm::scale(glm::mat4(1.0f), scale);
+    result = TransformTracks::at_parts(translation, rotation, scale);  // the form animations key too
   }
   object.finish();
   const float det = glm::determinant(glm::mat3(result));
