@@ -31,6 +31,7 @@
 #include "passes/frame/view.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/volume_sequence_player.h"
 #include "scene/scene.h"
 
 namespace avsm::capture {
@@ -39,12 +40,15 @@ namespace fs = std::filesystem;
 namespace {
 
 // Frames first..last of the scene's animation: each posed, what moved handed to the
-// renderer (lights placed, meshes uploaded), rendered by `render` (which returns how many
-// renders it took), and its image written as frames/frame_NNNN.png. Each frame's wall
-// time covers posing, uploading and rendering, not the image's readback.
+// renderer (lights placed, meshes uploaded, the volume sequences' frames streamed), rendered
+// by `render` (which returns how many renders it took), and its image written as
+// frames/frame_NNNN.png. Each frame's wall time covers posing, uploading and rendering
+// (and any wait for a sequence frame the reader had not finished), not the readback.
 template <class Render>
 void render_shot(renderer::SceneRenderer& frame, scene::Scene& scene, gpu::Context& ctx, const CaptureOptions& options,
                  ShotReport& shot, Render&& render) {
+  std::optional<renderer::VolumeSequencePlayer> sequences;
+  if (!scene.volume_sequences.empty()) sequences.emplace(scene.volume_sequences, ctx.info().max_image_dimension_3d);
   const std::vector<std::size_t> lights = scene.animation.moving_lights(), meshes = scene.animation.moving_meshes();
   std::error_code ec;
   fs::create_directories(options.out_dir / "frames", ec);
@@ -58,10 +62,17 @@ void render_shot(renderer::SceneRenderer& frame, scene::Scene& scene, gpu::Conte
     for (std::size_t light : lights)
       frame.place_light(uint32_t(light), scene.lights[light].position, scene.lights[light].direction);
     for (std::size_t mesh : meshes) frame.update_mesh(uint32_t(mesh), scene.meshes[mesh]);
+    if (sequences) {
+      const auto waited_from = std::chrono::steady_clock::now();
+      for (const renderer::VolumeSequencePlayer::Shown& shown : sequences->at(entry.time, /*wait=*/true))
+        frame.show_volume_frame(shown.volume, shown.part);
+      entry.volume_wait_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waited_from).count();
+    }
     entry.renders = render();
     entry.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     entry.image = ShotReport::image_name(number);
     io::write_png_raw(options.out_dir / entry.image, gpu::read_image(ctx, frame.ldr(), renderer::SceneRenderer::kOutputLayout));
+    entry.memory = process_memory();
     if (options.progress)
       std::fprintf(stderr, "shot frame %d (%.3f s): %.2f ms%s\n", number, double(entry.time), entry.wall_ms,
                    shot.frames.size() == 1 ? " (first: kept apart)" : "");
@@ -418,10 +429,12 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   // The instant rendered (a shot's first frame's): the renderer is made with the scene there.
   const std::optional<float> first_time = options.frame_range ? options.frame_range->time_of(options.frame_range->first) : options.time;
   if (first_time) {
-    if (scene.animation.empty())
+    if (!scene.moves())
       std::fprintf(stderr, "avsm-capture: warning: %s: the scene has no animation; nothing moves\n",
                    options.frame_range ? "--frame-range" : "--time");
     scene.animation.pose(scene, *first_time);
+    for (const scene::VolumeSequence& sequence : scene.volume_sequences)
+      scene.volumes[sequence.volume] = sequence.load_frame(sequence.timing.frame_at(*first_time));
   }
   options.volume_shading.apply(scene.volume_shading);
   for (scene::Volume& volume : scene.volumes) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <fstream>
+#include <malloc.h>
 #include <numeric>
 
 namespace avsm::capture {
@@ -16,6 +18,15 @@ bool parse_int(std::string_view text, int& value) {
 }
 
 }  // namespace
+
+ProcessMemory process_memory() {
+  ProcessMemory memory;
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmRSS:", 0) == 0) memory.resident_mib = std::stod(line.substr(6)) / 1024.0;  // "VmRSS:  1234 kB"
+  memory.heap_mib = double(mallinfo2().uordblks) / (1024.0 * 1024.0);
+  return memory;
+}
 
 bool parse_frame_range(const std::string& text, FrameRange& range) {
   const std::size_t colon = text.find(':');
@@ -81,7 +92,8 @@ nlohmann::json to_json(const ShotReport& shot) {
   nlohmann::json frames = nlohmann::json::array();
   for (const ShotFrame& f : shot.frames)
     frames.push_back({{"frame", f.frame}, {"time", f.time}, {"wall_ms", f.wall_ms}, {"renders", f.renders},
-                      {"image", f.image.generic_string()}});
+                      {"volume_wait_ms", f.volume_wait_ms}, {"resident_mib", f.memory.resident_mib},
+                      {"heap_mib", f.memory.heap_mib}, {"image", f.image.generic_string()}});
   const ShotSummary s = shot.summary();
   nlohmann::json video = shot.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(shot.video.generic_string());
   return {{"video", video},

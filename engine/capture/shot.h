@@ -22,11 +22,20 @@ struct FrameRange {
 // "A:B" with 0 <= A <= B (or "A" alone: one frame); nullopt-like failure as false.
 bool parse_frame_range(const std::string& text, FrameRange& range);
 
+// The process's memory: resident (VmRSS) and the heap in use (glibc's mallinfo2), which
+// resident memory hides while freed heap pages take the growth (as bench/soak measures).
+struct ProcessMemory {
+  double resident_mib = 0.0, heap_mib = 0.0;
+};
+ProcessMemory process_memory();
+
 struct ShotFrame {
   int frame = 0;
   float time = 0.0f;     // seconds
   double wall_ms = 0.0;  // posing, uploading what moved, rendering (and again while maps were unfinished)
   uint32_t renders = 1;  // 1, or more where maps were unfinished
+  double volume_wait_ms = 0.0;  // of wall_ms, waiting for volume sequence frames not read yet
+  ProcessMemory memory;         // after the frame (a flat line over a loop: nothing leaks)
   std::filesystem::path image;
 };
 

@@ -1,5 +1,7 @@
 #include "live/live_renderer.h"
 
+#include <cstdio>
+
 #include <fstream>
 #include <map>
 #include <set>
@@ -91,12 +93,54 @@ LiveRenderer::LiveRenderer(gpu::Context& ctx, LiveOptions options)
   edited_ = loaded_;
   edited_.animation.pose(edited_, time_);
   renderer_ = make_renderer(edited_);
+  restart_sequences();
   scene_files_.watch(scene_files(description));
   shader_files_.watch(shaders_->source_files());
 }
 
+void LiveRenderer::restart_sequences() {
+  shown_frames_.clear();
+  sequence_error_.reset();
+  sequences_.reset();  // its worker stops before the new one starts
+  if (edited_.volume_sequences.empty()) return;
+  // Frames are read with the scene file's settings, and the editor's changes to a volume's
+  // optics (scene_overrides) follow into every frame read from now on.
+  std::vector<scene::VolumeSequence> sequences = edited_.volume_sequences;
+  for (scene::VolumeSequence& sequence : sequences) {
+    const scene::Volume& edited = edited_.volumes[sequence.volume];
+    sequence.entry.extinction_scale = edited.extinction_scale;
+    sequence.entry.albedo = edited.albedo;
+    sequence.entry.multiple_scattering = edited.multiple_scattering;
+    sequence.entry.sky_light = edited.sky_light;
+  }
+  sequences_ = std::make_unique<renderer::VolumeSequencePlayer>(std::move(sequences), ctx_.info().max_image_dimension_3d);
+  // The renderer holds the frame of time 0 (the scene's): the time's own, before the next frame.
+  try {
+    show_sequence_frames(/*wait=*/true);
+  } catch (const scene::LoadError& e) {
+    sequence_error_ = ReloadError{e.file(), 0, e.what()};
+  }
+}
+
+void LiveRenderer::show_sequence_frames(bool wait) {
+  if (!sequences_) return;
+  const std::vector<renderer::VolumeSequencePlayer::Shown> shown = sequences_->at(time_, wait);
+  for (const renderer::VolumeSequencePlayer::Shown& frame : shown) {
+    renderer_->show_volume_frame(frame.volume, frame.part);
+    shown_frames_[frame.volume] = frame.part;
+  }
+  const std::vector<scene::LoadError> errors = sequences_->take_errors();
+  if (!errors.empty()) {
+    sequence_error_ = ReloadError{errors.back().file(), 0, errors.back().what()};
+    std::fprintf(stderr, "avsm-viewer: %s (the volume keeps its last frame)\n", errors.back().what());
+  } else if (!shown.empty()) {
+    sequence_error_.reset();
+  }
+}
+
 void LiveRenderer::set_time(float time) {
   time_ = time;
+  show_sequence_frames(/*wait=*/false);
   if (edited_.animation.empty()) return;
   edited_.animation.pose(edited_, time);
   for (std::size_t light : edited_.animation.moving_lights())
@@ -160,7 +204,8 @@ PollResult LiveRenderer::poll(Clock::time_point now) {
   // The scene first, so new pipelines are built for the scene they will draw.
   if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, now, result);
   if (!shader_changes.empty()) reload_shaders(now, result);
-  error_ = shader_error_ ? shader_error_ : scene_error_;
+  show_sequence_frames(/*wait=*/false);  // frames read since the last poll
+  error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_;
   result.waiting = scene_files_.busy() || shader_files_.busy();
   return result;
 }
@@ -188,6 +233,7 @@ void LiveRenderer::reload_shaders(Clock::time_point now, PollResult& result) {
   if (before_change_) before_change_();
   vkDeviceWaitIdle(ctx_.device());  // the old pipelines may still be in flight
   renderer_ = std::move(fresh);
+  for (const auto& [volume, part] : shown_frames_) renderer_->show_volume_frame(volume, part);
   // A new include may have appeared; watch what the good shaders are made of now.
   shader_files_.watch(shaders_->source_files());
   result.shaders_reloaded = true;
@@ -246,6 +292,7 @@ void LiveRenderer::reload_scene(bool read_files, Clock::time_point now, PollResu
   scene_error_.reset();
   loaded_ = std::move(fresh_loaded);
   edited_ = std::move(fresh_edited);
+  restart_sequences();
   options_.shadow_options = next_shadow_options_;
   if (read_files) {
     options_.scene_file = file;

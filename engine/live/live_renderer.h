@@ -17,6 +17,7 @@
 // Nothing here needs a window: the viewer drives it, and so do the tests.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,7 @@
 #include "live/file_watcher.h"
 #include "passes/shadows/shadow_maps.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/volume_sequence_player.h"
 #include "scene/scene.h"
 
 namespace avsm::live {
@@ -120,6 +122,13 @@ class LiveRenderer {
   LiveOptions options_;
   std::unique_ptr<gpu::ShaderLibrary> shaders_;
   std::unique_ptr<renderer::SceneRenderer> renderer_;
+  // The volume sequences of the scene as edited, read ahead as the time moves; what the
+  // renderer shows of them (given again to a renderer that replaces it).
+  std::unique_ptr<renderer::VolumeSequencePlayer> sequences_;
+  std::map<uint32_t, std::shared_ptr<const passes::PreparedVolume>> shown_frames_;
+  void restart_sequences();
+  // Hands the renderer the sequence frames of the current time that are ready (`wait`: waits for them).
+  void show_sequence_frames(bool wait);
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
   float time_ = 0.0f;
@@ -127,7 +136,8 @@ class LiveRenderer {
   std::function<void()> before_change_;
   FileWatcher scene_files_, shader_files_;
   std::optional<ReloadError> shader_error_, scene_error_;
-  std::optional<ReloadError> error_;  // the shader error if any, else the scene error
+  std::optional<ReloadError> sequence_error_;  // a sequence frame that could not be read (the last good one stays)
+  std::optional<ReloadError> error_;  // the shader error if any, else the scene error, else the sequence error
   bool files_dirty_ = false;   // read the scene and its assets again
   bool edits_dirty_ = false;   // apply edits / shadow options / size again
   std::optional<std::filesystem::path> next_scene_file_;

@@ -1,5 +1,7 @@
 #include "renderer/scene_renderer.h"
 
+#include <utility>
+
 #include <stdexcept>
 #include <string>
 
@@ -56,10 +58,15 @@ void SceneRenderer::set_scene(const scene::Scene& scene, const passes::ShadowOpt
   light_count_ = uint32_t(scene.lights.size());
   fitted_bounds_ = scene.bounds;
   mesh_objects_ = passes::mesh_caster_objects(scene);
+  volume_objects_.clear();
+  const std::vector<passes::CasterObject> objects = passes::scene_caster_objects(scene);
+  for (uint32_t o = 0; o < objects.size(); ++o)
+    if (objects[o].kind == passes::CasterObject::Kind::volume) volume_objects_.push_back(o);
   light_buffers_.create(ctx_, passes::light_buffer_desc(light_count_, "scene lights"));
   opaque_.set_scene(scene);
   hair_.set_scene(scene);
   volumes_.set_volumes(scene.volumes);
+  next_volumes_.clear();
   set_volume_shading(scene.volume_shading);
   fog_media_.set_fog(scene.fog, scene.bounds);
   shadows_.set_scene(scene, shadow_options);
@@ -139,6 +146,19 @@ void SceneRenderer::update_mesh(uint32_t mesh, const scene::Mesh& now) {
   if (object != passes::kNoCasterObject) shadows_.caster_moved(object, now.bounds);
 }
 
+void SceneRenderer::show_volume_frame(uint32_t volume, std::shared_ptr<const passes::PreparedVolume> part) {
+  if (volume >= volume_objects_.size())
+    throw std::out_of_range("SceneRenderer::show_volume_frame: volume " + std::to_string(volume) + " of " +
+                            std::to_string(volume_objects_.size()));
+  if (!fitted_bounds_.contains(part->volume->world_bounds))
+    throw std::invalid_argument("volume '" + part->volume->name +
+                                "' reaches outside the bounds the shadow maps were fitted to; set the scene again "
+                                "to fit them anew");
+  if (next_volumes_.empty()) next_volumes_ = volumes_.prepared();
+  shadows_.caster_moved(volume_objects_[volume], part->volume->world_bounds);
+  next_volumes_[volume] = std::move(part);
+}
+
 void SceneRenderer::finish_frame(uint32_t slot) {
   shadows_.finish_frame(slot);
   finished_slot_ = slot;
@@ -164,6 +184,9 @@ rg::Graph SceneRenderer::build_frame(const passes::View& view, uint32_t slot) {
     throw std::invalid_argument("SceneRenderer::build_frame: frame slot " + std::to_string(slot) + " of " +
                                 std::to_string(frames_in_flight()) + " frames in flight");
   rg::Graph graph;
+  // A volume sequence's new frames, copied in first (the slot's staging is free: its frame completed).
+  if (!next_volumes_.empty()) volumes_.stream(std::exchange(next_volumes_, {}), slot);
+  volumes_.add_upload(graph, slot);
   // Both outputs are read back after the frame, hence TransferSrc as their final state;
   // the next frame's writes wait for those reads (the frame before may still run).
   const rg::ImportState read_back = rg::ImportState::of(rg::Usage::TransferSrc);

@@ -75,6 +75,14 @@ class SceneRenderer {
   // those the lights were fitted to (set the scene again to fit them anew), and
   // std::out_of_range for a mesh the scene lacks.
   void update_mesh(uint32_t mesh, const scene::Mesh& now);
+  // Volume `volume` shows `part` (a sequence's frame, prepared: passes/frame/volume_data.h)
+  // from the next frame declared on: its data is staged for that frame's slot and copied
+  // in by the frame itself, without waiting for the frames in flight, and the shadow maps
+  // build again the pages its old and new bounds overlap. Throws std::out_of_range for a
+  // volume the scene lacks, std::invalid_argument for bounds that leave those the lights
+  // were fitted to (scene::Scene::bounds holds every frame of its sequences).
+  void show_volume_frame(uint32_t volume, std::shared_ptr<const passes::PreparedVolume> part);
+  const passes::VolumePass::StreamStats& volume_stream_stats() const { return volumes_.stream_stats(); }
   void set_exposure(float exposure) { exposure_ = exposure; }
   // How the camera sees the volumes; set_scene() takes the scene's. Throws
   // std::invalid_argument for a divisor other than 1, 2, 4 or a step outside 0.125..4 voxels.
@@ -199,6 +207,8 @@ class SceneRenderer {
   std::vector<scene::Light> lights_;
   scene::Bounds fitted_bounds_;         // what the lights' maps were fitted to (the scene's bounds)
   std::vector<uint32_t> mesh_objects_;  // per scene mesh, its caster object (passes::mesh_caster_objects())
+  std::vector<uint32_t> volume_objects_;  // per scene volume, its caster object
+  std::vector<std::shared_ptr<const passes::PreparedVolume>> next_volumes_;  // shown from the next frame (empty: as they are)
   passes::FrameBuffers light_buffers_;  // the GpuLights, per frame slot, written as a frame is declared
   uint32_t light_count_ = 0;
   uint32_t finished_slot_ = 0;  // of the last frame finished: where its results are

@@ -4,6 +4,7 @@
 
 #include "scene/animation_reader.h"
 #include "scene/binary_reader.h"
+#include "scene/frame_pattern.h"
 #include "scene/json_reader.h"
 #include "scene/load_error.h"
 
@@ -147,6 +148,37 @@ MultipleScattering read_multiple_scattering(ObjectReader& object) {
   return scattering;
 }
 
+// "sequence": the timing of a volume whose file names a frame pattern.
+void read_sequence_settings(ObjectReader& object, VolumeEntry& entry) {
+  std::optional<FramePattern> pattern;
+  try {
+    pattern = parse_frame_pattern(entry.file);
+  } catch (const std::invalid_argument& error) {
+    object.check(false, "file", error.what());
+  }
+  const json* value = object.optional("sequence");
+  if (!value) return;
+  object.check(pattern.has_value(), "sequence",
+               "needs a file name with a frame number field (\"smoke.####.vdb\", \"smoke.$F4.vdb\" or \"smoke.%04d.vdb\")");
+  ObjectReader sequence(object.reader(), *value, object.path_of("sequence"));
+  SequenceSettings& settings = entry.sequence;
+  if (const json* frames = sequence.optional("frames")) {
+    const bool pair = frames->is_array() && frames->size() == 2 && (*frames)[0].is_number_integer() &&
+                      (*frames)[1].is_number_integer();
+    sequence.check(pair, "frames", "must be [first, last], two whole file frame numbers");
+    settings.first = (*frames)[0].get<int>();
+    settings.last = (*frames)[1].get<int>();
+    sequence.check(*settings.first >= 0 && *settings.first <= *settings.last, "frames",
+                   "must have 0 <= first <= last, got [" + std::to_string(*settings.first) + ", " +
+                       std::to_string(*settings.last) + "]");
+  }
+  settings.fps = sequence.number_or("fps", settings.fps);
+  sequence.check(settings.fps > 0.0f && settings.fps <= 1000.0f, "fps", "must be above 0 and at most 1000 frames per second");
+  settings.offset = sequence.optional_integer("offset");
+  settings.loop = choice<bool>(sequence, "mode", false, {{"hold", false}, {"loop", true}});
+  sequence.finish();
+}
+
 VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene_dir) {
   VolumeEntry entry;
   entry.file = asset_path(object, scene_dir);
@@ -178,6 +210,7 @@ VolumeEntry read_volume(ObjectReader& object, const std::filesystem::path& scene
   entry.sky_light = object.number_or("sky_light", entry.sky_light);
   object.check(entry.sky_light >= 0.0f && entry.sky_light <= 4.0f, "sky_light",
                "must be 0 (no sky light) to 4 (the sky's share of the volume's light)");
+  read_sequence_settings(object, entry);
   return entry;
 }
 

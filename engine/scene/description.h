@@ -45,9 +45,19 @@ struct ModelEntry {  // "models": glTF files whose triangles become meshes
   TransformTracks animation;  // "animation": its placement over time (empty: it stays)
 };
 
+// A volume sequence's timing as the scene file gives it ("sequence": {...}); unset
+// values come from the files on disk (scene/volume_sequence.h).
+struct SequenceSettings {
+  std::optional<int> first, last;  // "frames": [first, last], file frame numbers
+  float fps = 24.0f;               // "fps"
+  std::optional<int> offset;       // "offset": the file frame shown at time 0 (default: the first)
+  bool loop = false;               // "mode": "hold" (default) or "loop"
+};
+
 struct VolumeEntry {  // "volumes": OpenVDB fog volumes
   std::string name;
-  std::filesystem::path file;
+  std::filesystem::path file;  // a frame pattern ("smoke.####.vdb", "$F4", "%04d") makes it a sequence
+  SequenceSettings sequence;
   std::string grid;
   glm::mat4 transform{1.0f};
   float extinction_scale = 1.0f;  // sigma_t = extinction_scale * density, per world unit

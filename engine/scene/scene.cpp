@@ -176,20 +176,16 @@ Scene load_scene(const SceneDescription& description) {
     if (!description.camera_animations[i].empty()) scene.animation.cameras.emplace_back(i, description.camera_animations[i]);
   for (std::size_t i = 0; i < description.volumes.size(); ++i) {
     const VolumeEntry& entry = description.volumes[i];
-    VolumeOptions options;
-    options.grid_name = entry.grid;
-    options.transform = entry.transform;
-    options.extinction_scale = entry.extinction_scale;
-    options.albedo = entry.albedo;
-    options.majorant_brick_size = entry.majorant_brick_size;
     const std::string where = "volumes[" + std::to_string(i) + "]";
-    Volume volume = with_context(description, where, [&] { return load_vdb_volume(entry.file, options); });
-    volume.name = entry.name;
-    volume.lighting_cache_downsample = entry.lighting_cache_downsample;
-    volume.lighting_cache = entry.lighting_cache;
-    volume.multiple_scattering = entry.multiple_scattering;
-    volume.sky_light = entry.sky_light;
-    scene.volumes.push_back(std::move(volume));
+    const std::optional<FramePattern> pattern = parse_frame_pattern(entry.file);  // checked as the file was read
+    if (!pattern) {
+      scene.volumes.push_back(with_context(description, where, [&] { return load_volume(entry, entry.file); }));
+      continue;
+    }
+    // A sequence: the frame at time 0 now, the others as they play (renderer/volume_sequence_player.h).
+    VolumeSequence sequence = with_context(description, where, [&] { return open_volume_sequence(entry, *pattern, i); });
+    scene.volumes.push_back(with_context(description, where, [&] { return sequence.load_frame(sequence.timing.frame_at(0.0f)); }));
+    scene.volume_sequences.push_back(std::move(sequence));
   }
   for (std::size_t i = 0; i < description.hair.size(); ++i) {
     const HairEntry& entry = description.hair[i];
@@ -204,8 +200,16 @@ Scene load_scene(const SceneDescription& description) {
   for (const Mesh& mesh : scene.meshes) scene.bounds.extend(mesh.bounds);
   for (const HairGroom& groom : scene.hair) scene.bounds.extend(groom.bounds);
   for (const Volume& volume : scene.volumes) scene.bounds.extend(volume.world_bounds);
+  for (const VolumeSequence& sequence : scene.volume_sequences) scene.bounds.extend(sequence.bounds);
   extend_by_motion(scene);
   return scene;
+}
+
+float Scene::duration() const {
+  float end = animation.duration();
+  for (const VolumeSequence& sequence : volume_sequences)  // the last frame, shown for one frame's time
+    end = std::max(end, float(sequence.timing.last - sequence.timing.offset + 1) / sequence.timing.fps);
+  return end;
 }
 
 Scene load_scene(const std::filesystem::path& file) { return load_scene(read_scene_description(file)); }

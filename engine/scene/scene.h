@@ -11,6 +11,7 @@
 #include "scene/load_error.h"
 #include "scene/mesh.h"
 #include "scene/volume.h"
+#include "scene/volume_sequence.h"
 
 #include <filesystem>
 #include <string>
@@ -24,7 +25,8 @@ struct Scene {
   std::vector<Material> materials;  // Mesh::material indexes this
   std::vector<Texture> textures;    // the Material texture members index this
   std::vector<HairGroom> hair;      // world space, StrandWidth::absolute (world units)
-  std::vector<Volume> volumes;
+  std::vector<Volume> volumes;      // a sequence's holds the frame shown at time 0
+  std::vector<VolumeSequence> volume_sequences;  // the volumes whose frames change over time
   std::vector<Light> lights;
   std::vector<Camera> cameras;      // at least one
   VolumeShading volume_shading;     // how the camera sees the volumes
@@ -35,6 +37,11 @@ struct Scene {
   Bounds bounds;
   SceneAnimation animation;         // what moves; pose(*this, t) puts it where it is at t
   std::vector<std::string> warnings;  // things that loaded but deserve a log line
+
+  // Something changes over time: keyed or glTF animation, or a volume sequence.
+  bool moves() const { return !animation.empty() || !volume_sequences.empty(); }
+  // When the last key or sequence frame is reached: a shot's natural length, in seconds.
+  float duration() const;
 };
 
 // Reads the scene file and every asset it references. Throws LoadError: for

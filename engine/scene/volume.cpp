@@ -4,6 +4,7 @@
 
 #include "scene/load_error.h"
 #include "scene/vdb_layout.h"
+#include "scene/volume_sequence.h"
 
 #include <nanovdb/util/OpenToNanoVDB.h>
 #include <openvdb/io/File.h>
@@ -223,6 +224,32 @@ Volume load_vdb_volume(const std::filesystem::path& file, const VolumeOptions& o
   measure(volume, *grid, file);
   convert_to_nanovdb(volume, *grid, file);
   return volume;
+}
+
+Bounds read_vdb_bounds(const std::filesystem::path& file, const VolumeOptions& options) {
+  check_vdb_file(file, options.grid_name, options.max_file_bytes);
+  initialize_openvdb();
+  openvdb::GridBase::Ptr header;
+  try {
+    openvdb::io::File vdb(file.string());
+    vdb.open(/*delayLoad=*/true);
+    header = vdb.readGridMetadata(options.grid_name);
+    vdb.close();
+  } catch (const std::exception& error) {
+    throw LoadError(file, std::string("OpenVDB cannot read its grid header: ") + error.what());
+  }
+  const auto min = header->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+  const auto max = header->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+  if (!min || !max) {  // written without its box: read the voxels
+    VolumeOptions whole = options;
+    return load_vdb_volume(file, whole).world_bounds;
+  }
+  if (!header->transform().isLinear()) throw LoadError(file, "grid '" + options.grid_name + "' has a non-linear (frustum) transform");
+  const glm::mat4 world_from_index =
+      options.transform * glm::mat4(to_glm(header->transform().baseMap()->getAffineMap()->getMat4()));
+  const openvdb::Vec3i lo = min->value(), hi = max->value();
+  const Bounds support{glm::vec3(lo.x() - 1, lo.y() - 1, lo.z() - 1), glm::vec3(hi.x() + 1, hi.y() + 1, hi.z() + 1)};
+  return transform_bounds(support, world_from_index);
 }
 
 }  // namespace avsm::scene

@@ -340,7 +340,7 @@ nlohmann::json ViewerApp::execute(const ControlCommand& command) {
       apply({.level_overlay_changed = true});
       break;
     case ControlCommand::Kind::time:
-      timeline_.set_duration(live_->scene().animation.duration());
+      timeline_.set_duration(live_->scene().duration());
       if (command.play) {
         *command.play ? timeline_.play() : timeline_.pause();
       } else {
@@ -468,7 +468,7 @@ void ViewerApp::handle_input() {
 }
 
 void ViewerApp::advance_timeline(bool render) {
-  timeline_.set_duration(live_->scene().animation.duration());
+  timeline_.set_duration(live_->scene().duration());
   const Clock::time_point now = Clock::now();
   const double elapsed = options_.control ? (render ? 1.0 / timeline_.fps() : 0.0)
                                           : std::chrono::duration<double>(now - last_tick_).count();

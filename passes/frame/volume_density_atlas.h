@@ -8,9 +8,11 @@
 // Values are stored divided by the volume's largest density (R16F keeps 11 bits of
 // it) and scaled back in the shader.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpu/resources.h"
+#include "passes/frame/volume_data.h"
 #include "scene/volume.h"
 #include "shared/volume.h"
 
@@ -24,19 +26,24 @@ using shared::GpuVolume;  // shaders/shared/volume.h
 
 class VolumeDensityAtlas {
  public:
-  static constexpr uint32_t kEmptySlot = 0xffffffffu;  // kEmptyBrickSlot in volume.glsl
+  static constexpr uint32_t kEmptySlot = kEmptyAtlasSlot;
   static constexpr VkFormat kFormat = VK_FORMAT_R16_SFLOAT;
 
-  // Builds the atlas of `volumes` and fills the atlas fields of their parameter
-  // blocks (parallel to `volumes`). Throws std::invalid_argument naming the volume
-  // when the atlas would exceed the device's 3D image size.
-  void build(const gpu::Context& ctx, const std::vector<scene::Volume>& volumes, std::vector<GpuVolume>& gpu_volumes);
+  // Creates the atlas image (at least `size` texels; the shaders scale by textureSize) and
+  // the brick slot buffer (at least `slot_count` entries), both empty.
+  void create(const gpu::Context& ctx, glm::ivec3 size, uint64_t slot_count);
+  // A one-texel atlas of zero density in kLayout, to bind where there are no volumes.
+  void create_empty(const gpu::Context& ctx);
+  // Whether a packing's atlas and slots fit what create() made.
+  bool fits(const PackedVolumes& packed) const;
   void clear();
 
   // One slot index per majorant brick, in the majorant buffer's order.
   const gpu::Buffer& slots() const { return slots_; }
+  const gpu::Image& image() const { return image_; }
   VkImageView view() const { return image_.view(); }
   VkSampler sampler() const { return sampler_.handle(); }
+  glm::ivec3 size() const { return size_; }
   uint64_t bytes() const { return bytes_; }
   static constexpr VkImageLayout kLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
@@ -44,7 +51,13 @@ class VolumeDensityAtlas {
   gpu::Image image_;
   gpu::Buffer slots_;
   gpu::Sampler sampler_;
+  glm::ivec3 size_{0};
   uint64_t bytes_ = 0;
 };
+
+// The regions' copies into the atlas image from a buffer holding, from `buffer_offset`
+// on, each volume's region texels (AtlasRegion::texels) one after the other.
+std::vector<VkBufferImageCopy> atlas_copies(const std::vector<std::shared_ptr<const PreparedVolume>>& parts,
+                                            const PackedVolumes& packed, VkDeviceSize buffer_offset);
 
 }  // namespace avsm::passes

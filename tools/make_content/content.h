@@ -27,6 +27,16 @@ void write_scene_json(const std::filesystem::path& file);
 // The benchmark scenes (bench_*.scene.json) into `dir`, next to the default scene's assets.
 void write_bench_scenes(const std::filesystem::path& dir);
 
+// A short smoke sequence, simulated: a buoyant plume advected (semi-Lagrangian) through a
+// swirling wind, frames 1..frame_count as dir/plume.####.vdb with the grids a fluid cache
+// has (float "density" and "temperature", vec3 "velocity"), 3 cm voxels; and
+// plume_sequence.scene.json in `scene_dir`, the default stage with it playing at 24 fps.
+void write_plume_sequence(const std::filesystem::path& scene_dir, const std::filesystem::path& dir, int frame_count);
+
+// Overwrites the random UUID OpenVDB stamps every file with, so that the build writes
+// byte-identical content every time.
+void make_uuid_deterministic(const std::filesystem::path& file);
+
 // Integer hash to [0, 1): deterministic "random" numbers.
 float hash01(std::uint32_t a, std::uint32_t b = 0, std::uint32_t c = 0);
 

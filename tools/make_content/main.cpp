@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
       out = argv[++i];
     } else if (std::strcmp(argv[i], "--help") == 0) {
-      usage("writes the procedural default scene (scene.json, plume.vdb, curtain.hair, stage.gltf, stage.bin) and the benchmark scenes (bench_*.scene.json)");
+      usage("writes the procedural default scene (scene.json, plume.vdb, curtain.hair, stage.gltf, stage.bin), the benchmark scenes (bench_*.scene.json) and a simulated smoke sequence (plume_sequence/, plume_sequence.scene.json)");
       return 0;
     } else {
       return usage((std::string("unknown option '") + argv[i] + "'").c_str());
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     avsm::content::write_stage_gltf(out / "stage.gltf", out / "stage.bin");
     avsm::content::write_scene_json(out / "scene.json");
     avsm::content::write_bench_scenes(out);
+    avsm::content::write_plume_sequence(out, out / "plume_sequence", 24);
   } catch (const std::exception& error) {
     std::cerr << "avsm-make-content: " << error.what() << "\n";
     return 1;

@@ -75,6 +75,8 @@ float plume_density(float x, float y, float z) {
   return 4.0f * (1.0f - 0.55f * h) * profile * shaped * fade;
 }
 
+}  // namespace
+
 // OpenVDB stamps every file with a random UUID; overwrite it with a fixed one
 // so that the build writes byte-identical content every time. The UUID is
 // 36 ASCII characters after the magic (8 bytes), file version, library major
@@ -91,8 +93,6 @@ void make_uuid_deterministic(const std::filesystem::path& file) {
   stream.write(kFixedUuid, 36);
   if (!stream) throw std::runtime_error(file.string() + ": cannot rewrite the UUID");
 }
-
-}  // namespace
 
 void write_plume_vdb(const std::filesystem::path& file) {
   openvdb::initialize();

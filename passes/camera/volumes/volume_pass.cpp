@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/barriers.h"
 #include "gpu/context.h"
 #include "gpu/device_limits.h"
 #include "gpu/transfer.h"
@@ -23,92 +24,50 @@
 namespace avsm::passes {
 namespace {
 
-// NanoVDB grids must start on a 32-byte boundary (NANOVDB_DATA_ALIGNMENT).
-constexpr size_t kGridAlignment = 32;
-// PNanoVDB in GLSL addresses its buffer with 32-bit byte offsets.
-constexpr uint64_t kMaxGridBytes = uint64_t(std::numeric_limits<uint32_t>::max()) + 1;
-
-
 using Push = shared::VolumeMarchPush;  // shaders/shared/passes/camera/volumes/volume_march.h
 
-std::string label(const scene::Volume& volume, size_t index) {
-  return "volume " + std::to_string(index) + (volume.name.empty() ? "" : " '" + volume.name + "'");
+// The packing's sections in a staging buffer, where the upload copies them from.
+struct StagingLayout {
+  VkDeviceSize grids = 0, brick_grids = 0, parameters = 0, slots = 0, atlas = 0, end = 0;
+};
+
+StagingLayout staging_layout(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
+  const auto aligned = [](VkDeviceSize offset) { return (offset + 15) / 16 * 16; };
+  StagingLayout layout;
+  layout.brick_grids = aligned(packed.grids.size());
+  layout.parameters = aligned(layout.brick_grids + packed.brick_grids.size() * sizeof(float));
+  layout.slots = aligned(layout.parameters + packed.parameters.size() * sizeof(GpuVolume));
+  layout.atlas = aligned(layout.slots + packed.slots.size() * sizeof(uint32_t));
+  layout.end = layout.atlas;
+  for (const auto& part : parts) layout.end += part->atlas.texels.size() * sizeof(uint16_t);
+  return layout;
 }
 
-// The GPU reads the bytes as a NanoVDB float grid through PNanoVDB, which trusts them.
-void check_grid(const scene::Volume& volume, size_t index) {
-  const std::string who = label(volume, index);
-  if (volume.nanovdb.size() < sizeof(nanovdb::GridData))
-    throw std::invalid_argument("VolumePass: " + who + " has no NanoVDB grid (" +
-                                std::to_string(volume.nanovdb.size()) + " bytes)");
-  const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(volume.nanovdb.data());
-  if (!grid->isValid()) throw std::invalid_argument("VolumePass: " + who + " does not start with a NanoVDB grid");
-  if (grid->gridType() != nanovdb::GridType::Float)
-    throw std::invalid_argument("VolumePass: " + who + " holds a " + nanovdb::toStr(grid->gridType()) +
-                                " grid; the march reads float density");
-  if (grid->gridSize() > volume.nanovdb.size())
-    throw std::invalid_argument("VolumePass: " + who + " says its grid has " + std::to_string(grid->gridSize()) +
-                                " bytes but only " + std::to_string(volume.nanovdb.size()) + " are there");
+void write_staging(void* mapped, const StagingLayout& layout, const PackedVolumes& packed,
+                   const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
+  auto* bytes = static_cast<std::byte*>(mapped);
+  std::memcpy(bytes + layout.grids, packed.grids.data(), packed.grids.size());
+  std::memcpy(bytes + layout.brick_grids, packed.brick_grids.data(), packed.brick_grids.size() * sizeof(float));
+  std::memcpy(bytes + layout.parameters, packed.parameters.data(), packed.parameters.size() * sizeof(GpuVolume));
+  std::memcpy(bytes + layout.slots, packed.slots.data(), packed.slots.size() * sizeof(uint32_t));
+  VkDeviceSize at = layout.atlas;
+  for (const auto& part : parts) {
+    std::memcpy(bytes + at, part->atlas.texels.data(), part->atlas.texels.size() * sizeof(uint16_t));
+    at += part->atlas.texels.size() * sizeof(uint16_t);
+  }
 }
 
-void check_majorant(const scene::Volume& volume, size_t index) {
-  const scene::MajorantGrid& m = volume.majorant;
-  const uint64_t bricks = uint64_t(std::max(m.dims.x, 0)) * uint64_t(std::max(m.dims.y, 0)) * uint64_t(std::max(m.dims.z, 0));
-  if (bricks == 0 || m.brick_size < 1 || bricks != m.max_density.size())
-    throw std::invalid_argument("VolumePass: " + label(volume, index) + " has a malformed majorant grid (" +
-                                std::to_string(m.max_density.size()) + " values for " + std::to_string(m.dims.x) +
-                                "x" + std::to_string(m.dims.y) + "x" + std::to_string(m.dims.z) + " bricks of " +
-                                std::to_string(m.brick_size) + ")");
-}
-
-void check_optics(const scene::Volume& volume, size_t index) {
-  const bool ok = std::isfinite(volume.extinction_scale) && volume.extinction_scale >= 0.0f &&
-                  glm::all(glm::greaterThanEqual(volume.albedo, glm::vec3(0.0f))) &&
-                  glm::all(glm::lessThanEqual(volume.albedo, glm::vec3(1.0f)));
-  if (!ok)
-    throw std::invalid_argument("VolumePass: " + label(volume, index) +
-                                " needs a finite extinction scale >= 0 and an albedo in [0, 1]");
-}
-
-float smallest_voxel_edge(const scene::Volume& volume) {
-  const glm::mat3 linear(volume.world_from_index);
-  return std::min({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
-}
-
-GpuVolume to_gpu(const scene::Volume& volume, uint64_t grid_byte_offset, uint64_t majorant_offset) {
-  GpuVolume gpu{};
-  gpu.index_from_world = volume.index_from_world;
-  // The trilinear support reaches one voxel beyond the active voxels (as in scene::optical_depth).
-  gpu.support_min = glm::vec3(volume.active_index_min - 1);
-  gpu.support_max = glm::vec3(volume.active_index_max + 1);
-  gpu.step_length = VolumePass::kStepInVoxels * smallest_voxel_edge(volume);
-  gpu.extinction_scale = volume.extinction_scale;
-  gpu.albedo = volume.albedo;
-  gpu.grid_byte_offset = uint32_t(grid_byte_offset);
-  gpu.majorant_origin = volume.majorant.index_origin;
-  gpu.brick_size = volume.majorant.brick_size;
-  gpu.majorant_dims = volume.majorant.dims;
-  gpu.majorant_offset = uint32_t(majorant_offset);
-  gpu.voxel_size = smallest_voxel_edge(volume);
-  gpu.octaves = uint32_t(std::clamp(volume.multiple_scattering.octaves, 1, 8));
-  gpu.octave_attenuation = volume.multiple_scattering.attenuation;
-  gpu.octave_contribution = volume.multiple_scattering.contribution;
-  gpu.sky_light = volume.sky_light;
-  gpu.sky_offset = shared::kNoSkyLighting;  // set with the grids
-  return gpu;  // the atlas fields are set by VolumeDensityAtlas::build
-}
-
-gpu::Buffer storage_buffer(const gpu::Context& ctx, const void* data, size_t bytes, const char* name,
-                           const std::string& sized_by = {}) {
-  return gpu::create_buffer_with_data(
-      ctx, {0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryLocation::DeviceLocal, name, sized_by}, data, bytes);
+gpu::Buffer device_buffer(const gpu::Context& ctx, VkDeviceSize bytes, const char* name, const std::string& sized_by = {}) {
+  return gpu::Buffer::create(ctx, {std::max<VkDeviceSize>(bytes, 16),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   gpu::MemoryLocation::DeviceLocal, name, sized_by});
 }
 
 // What sizes the grid buffer, for a message when it does not fit the device: each grid's bytes.
-std::string grid_sizes(const std::vector<scene::Volume>& volumes) {
+std::string grid_sizes(const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
   std::string sizes = "the scene's volumes: fewer, or smaller NanoVDB grids (";
-  for (size_t i = 0; i < volumes.size(); ++i)
-    sizes += (i ? ", " : "") + label(volumes[i], i) + " " + gpu::format_mib(volumes[i].nanovdb.size());
+  for (size_t i = 0; i < parts.size(); ++i)
+    sizes += (i ? ", " : "") + parts[i]->volume->name + " " + gpu::format_mib(parts[i]->volume->nanovdb.size());
   return sizes + ")";
 }
 
@@ -120,57 +79,154 @@ VolumePass::VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders)
       depth_sampler_(ctx, gpu::texel_sampler_desc("volume depth")) {}
 
 void VolumePass::set_volumes(const std::vector<scene::Volume>& volumes) {
-  std::vector<std::byte> grids;
-  // Every volume's majorants one after another (the atlas's brick slots are indexed as
-  // they are), then every volume's sky lighting (scene/volume_scattering.h).
-  std::vector<float> brick_grids;
-  std::vector<std::vector<float>> sky_grids;
-  std::vector<GpuVolume> parameters;
-  for (size_t i = 0; i < volumes.size(); ++i) {
-    const scene::Volume& volume = volumes[i];
-    check_grid(volume, i);
-    check_majorant(volume, i);
-    check_optics(volume, i);
-    const size_t grid_offset = (grids.size() + kGridAlignment - 1) / kGridAlignment * kGridAlignment;
-    if (grid_offset + volume.nanovdb.size() > kMaxGridBytes)
-      throw std::invalid_argument("VolumePass: " + label(volume, i) +
-                                  " does not fit: all NanoVDB grids together must stay under 4 GiB");
-    grids.resize(grid_offset + volume.nanovdb.size());
-    std::memcpy(grids.data() + grid_offset, volume.nanovdb.data(), volume.nanovdb.size());
-    parameters.push_back(to_gpu(volume, grid_offset, brick_grids.size()));
-    brick_grids.insert(brick_grids.end(), volume.majorant.max_density.begin(), volume.majorant.max_density.end());
-    // The sky's light and the octaves' escape chance read it.
-    const bool needs_sky = volume.sky_light > 0.0f || volume.multiple_scattering.octaves > 1;
-    sky_grids.push_back(needs_sky ? scene::sky_lighting(volume) : std::vector<float>{});
-  }
-  for (size_t i = 0; i < volumes.size(); ++i) {
-    if (sky_grids[i].empty()) continue;
-    parameters[i].sky_offset = uint32_t(brick_grids.size());
-    brick_grids.insert(brick_grids.end(), sky_grids[i].begin(), sky_grids[i].end());
-  }
-  // First, so that grids the device cannot hold (its storage buffer range: the march binds
-  // them whole) are refused before the atlas is built and while the last volumes stay.
-  gpu::Buffer grid_buffer;
-  if (!volumes.empty())
-    grid_buffer = storage_buffer(ctx_, grids.data(), grids.size(), "volume nanovdb grids", grid_sizes(volumes));
+  std::vector<std::shared_ptr<const PreparedVolume>> parts;
+  for (size_t i = 0; i < volumes.size(); ++i)
+    parts.push_back(std::make_shared<PreparedVolume>(
+        prepare_volume(std::make_shared<scene::Volume>(volumes[i]), i, ctx_.info().max_image_dimension_3d)));
+  set_prepared(std::move(parts));
+}
 
+void VolumePass::set_prepared(std::vector<std::shared_ptr<const PreparedVolume>> parts) {
+  const PackedVolumes packed = pack_volumes(parts, ctx_.info().max_image_dimension_3d);
+  allocate(packed, parts, /*headroom=*/1.0);
+  upload_now(packed, parts);
+  parts_ = std::move(parts);
+  for (Upload& upload : pending_) upload = {};
+}
+
+void VolumePass::allocate(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts,
+                          double headroom) {
+  // The grids first, so that grids the device cannot hold (its storage buffer range: the
+  // march binds them whole) are refused before anything else is replaced.
+  const auto grown = [headroom](size_t bytes) { return VkDeviceSize(double(bytes) * headroom); };
+  gpu::Buffer grids;
+  if (!parts.empty()) grids = device_buffer(ctx_, grown(packed.grids.size()), "volume nanovdb grids", grid_sizes(parts));
   volume_count_ = 0;
-  grids_ = gpu::Buffer();
+  grids_ = std::move(grids);
   brick_grids_ = gpu::Buffer();
   parameters_ = gpu::Buffer();
   boxes_.clear();
   atlas_.clear();
-  atlas_.build(ctx_, volumes, parameters);
+  atlas_initialized_ = false;
+  const glm::ivec3 limit(int(ctx_.info().max_image_dimension_3d));
+  atlas_.create(ctx_, glm::min(glm::ivec3(glm::vec3(packed.atlas_size) * float(headroom)), limit),
+                grown(packed.slots.size()));
   if (!placeholder_) placeholder_ = gpu::create_buffer_from(ctx_, std::vector<GpuVolume>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "no volumes");
-  if (volumes.empty()) return;
-  for (const scene::Volume& volume : volumes)
-    boxes_.push_back({volume.world_from_index, glm::vec3(volume.active_index_min - 1), glm::vec3(volume.active_index_max + 1),
-                      smallest_voxel_edge(volume), volume.majorant.brick_size, volume.world_bounds,
-                      volume.lighting_cache_downsample, volume.lighting_cache});
-  grids_ = std::move(grid_buffer);
-  brick_grids_ = storage_buffer(ctx_, brick_grids.data(), brick_grids.size() * sizeof(float), "volume brick grids");
-  parameters_ = storage_buffer(ctx_, parameters.data(), parameters.size() * sizeof(GpuVolume), "volume parameters");
-  volume_count_ = uint32_t(volumes.size());
+  if (parts.empty()) return;
+  brick_grids_ = device_buffer(ctx_, grown(packed.brick_grids.size() * sizeof(float)), "volume brick grids");
+  parameters_ = device_buffer(ctx_, packed.parameters.size() * sizeof(GpuVolume), "volume parameters");
+}
+
+bool VolumePass::fits(const PackedVolumes& packed) const {
+  return grids_ && packed.grids.size() <= grids_.size() && packed.brick_grids.size() * sizeof(float) <= brick_grids_.size() &&
+         packed.parameters.size() * sizeof(GpuVolume) <= parameters_.size() && atlas_.fits(packed);
+}
+
+void VolumePass::upload_now(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
+  Upload upload = stage(packed, parts, staging_now_);
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { record_upload(cmd, upload); });
+  staging_now_ = gpu::Buffer();  // only streaming keeps staging memory
+  describe(parts, packed.parameters.size() * sizeof(GpuVolume));
+}
+
+VolumePass::Upload VolumePass::stage(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts,
+                                     gpu::Buffer& staging) {
+  const StagingLayout layout = staging_layout(packed, parts);
+  if (!staging || staging.size() < layout.end)
+    staging = gpu::Buffer::create(ctx_, {std::max<VkDeviceSize>(layout.end + layout.end / 4, 256), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                         gpu::MemoryLocation::HostUpload, "volume staging"});
+  write_staging(staging.mapped(), layout, packed, parts);
+  Upload upload;
+  upload.staging = staging.handle();
+  upload.copies = {{grids_.handle(), {layout.grids, 0, packed.grids.size()}},
+                   {brick_grids_.handle(), {layout.brick_grids, 0, packed.brick_grids.size() * sizeof(float)}},
+                   {parameters_.handle(), {layout.parameters, 0, packed.parameters.size() * sizeof(GpuVolume)}},
+                   {atlas_.slots().handle(), {layout.slots, 0, packed.slots.size() * sizeof(uint32_t)}}};
+  upload.atlas = atlas_copies(parts, packed, layout.atlas);
+  upload.bytes = layout.end;
+  return upload;
+}
+
+// Copies a staged packing into the volumes' buffers and atlas. These are scene data that
+// passes bind outside the graph (VolumeCasters), so the copies carry their own barriers:
+// after every earlier read (earlier frames on the one queue, or this frame's passes
+// before), and before every later one.
+void VolumePass::record_upload(VkCommandBuffer cmd, const Upload& upload) {
+  std::vector<VkBufferMemoryBarrier2> before, after;
+  for (const auto& [buffer, copy] : upload.copies) {
+    if (buffer == VK_NULL_HANDLE) continue;
+    before.push_back(gpu::make_buffer_barrier(buffer, gpu::kAllShaderRead, gpu::kTransferWrite));
+    after.push_back(gpu::make_buffer_barrier(buffer, gpu::kTransferWrite, gpu::kAllShaderRead));
+  }
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  const VkImageMemoryBarrier2 to_copy = gpu::make_image_barrier(
+      atlas_.image().handle(), all, atlas_initialized_ ? VolumeDensityAtlas::kLayout : VK_IMAGE_LAYOUT_UNDEFINED,
+      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, gpu::kAllShaderRead, gpu::kTransferWrite);
+  const VkImageMemoryBarrier2 to_read = gpu::make_image_barrier(atlas_.image().handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                                VolumeDensityAtlas::kLayout, gpu::kTransferWrite, gpu::kAllShaderRead);
+  const auto barriers = [cmd](const std::vector<VkBufferMemoryBarrier2>& buffers, const VkImageMemoryBarrier2& image) {
+    VkDependencyInfo info{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    info.bufferMemoryBarrierCount = uint32_t(buffers.size());
+    info.pBufferMemoryBarriers = buffers.data();
+    info.imageMemoryBarrierCount = 1;
+    info.pImageMemoryBarriers = &image;
+    vkCmdPipelineBarrier2(cmd, &info);
+  };
+  barriers(before, to_copy);
+  for (const auto& [buffer, copy] : upload.copies)
+    if (buffer != VK_NULL_HANDLE && copy.size > 0) vkCmdCopyBuffer(cmd, upload.staging, buffer, 1, &copy);
+  if (!upload.atlas.empty())
+    vkCmdCopyBufferToImage(cmd, upload.staging, atlas_.image().handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           uint32_t(upload.atlas.size()), upload.atlas.data());
+  barriers(after, to_read);
+  atlas_initialized_ = true;
+}
+
+void VolumePass::stream(std::vector<std::shared_ptr<const PreparedVolume>> parts, uint32_t slot) {
+  if (slot >= pending_.size()) throw std::invalid_argument("VolumePass::stream: frame slot " + std::to_string(slot) + " of " + std::to_string(pending_.size()));
+  if (parts.size() != parts_.size())
+    throw std::invalid_argument("VolumePass::stream: " + std::to_string(parts.size()) + " volumes for a scene of " +
+                                std::to_string(parts_.size()) + "; set_volumes() changes their number");
+  const PackedVolumes packed = pack_volumes(parts, ctx_.info().max_image_dimension_3d);
+  if (!fits(packed)) {
+    // Larger than any frame before: new buffers, with room to grow into, once the frames
+    // in flight that read the old ones are done (rare: a sequence grows a few times).
+    vkDeviceWaitIdle(ctx_.device());
+    allocate(packed, parts, /*headroom=*/1.5);
+    upload_now(packed, parts);
+    for (Upload& upload : pending_) upload = {};
+    ++stream_stats_.reallocations;
+  } else {
+    pending_[slot] = stage(packed, parts, staging_[slot]);
+    pending_packed_parameters_[slot] = packed.parameters.size() * sizeof(GpuVolume);
+    pending_parts_[slot] = parts;
+  }
+  stream_stats_.bytes += packed.grids.size() + packed.brick_grids.size() * sizeof(float);
+  ++stream_stats_.frames;
+  parts_ = std::move(parts);
+}
+
+void VolumePass::add_upload(rg::Graph& graph, uint32_t slot) {
+  if (slot >= pending_.size() || pending_[slot].staging == VK_NULL_HANDLE) return;
+  Upload upload = std::move(pending_[slot]);
+  pending_[slot] = {};
+  // The CPU-side description follows what the GPU holds from this frame on.
+  describe(pending_parts_[slot], pending_packed_parameters_[slot]);
+  pending_parts_[slot].clear();
+  graph.add_pass("volume upload", rg::QueueType::Transfer, [](rg::PassBuilder& b) { b.side_effect(); },
+                 [this, upload = std::move(upload)](rg::PassContext& c) { record_upload(c.cmd(), upload); });
+}
+
+void VolumePass::describe(const std::vector<std::shared_ptr<const PreparedVolume>>& parts, VkDeviceSize parameter_bytes) {
+  boxes_.clear();
+  for (const auto& part : parts) {
+    const scene::Volume& volume = *part->volume;
+    boxes_.push_back({volume.world_from_index, part->support_min, part->support_max, part->voxel_size,
+                      volume.majorant.brick_size, volume.world_bounds, volume.lighting_cache_downsample,
+                      volume.lighting_cache});
+  }
+  parameter_bytes_ = parameter_bytes;
+  volume_count_ = uint32_t(parts.size());
 }
 
 void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool with_atlas) {
@@ -185,7 +241,7 @@ void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool wi
 VolumeCasters VolumePass::casters() const {
   const VkBuffer none = placeholder_.handle();
   if (volume_count_ == 0) return {none, none, none, 0, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
-  return {grids_.handle(), brick_grids_.handle(), parameters_.handle(), parameters_.size(), volume_count_,
+  return {grids_.handle(), brick_grids_.handle(), parameters_.handle(), parameter_bytes_, volume_count_,
           atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
 }
 

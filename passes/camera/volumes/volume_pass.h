@@ -26,6 +26,8 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,6 +38,8 @@
 #include "passes/shadows/shadow_casters.h"
 #include "passes/shadows/shadow_maps_fwd.h"
 #include "passes/frame/view.h"
+#include "passes/frame/frames_in_flight.h"
+#include "passes/frame/volume_data.h"
 #include "passes/frame/volume_density_atlas.h"
 #include "scene/volume.h"
 #include "shared/volume.h"
@@ -82,6 +86,25 @@ class VolumePass {
   // at once); an empty list turns the pass off. Throws std::invalid_argument naming the
   // volume if one is not a usable NanoVDB float grid or has a malformed majorant grid.
   void set_volumes(const std::vector<scene::Volume>& volumes);
+  // The same from volumes already prepared (passes/frame/volume_data.h).
+  void set_prepared(std::vector<std::shared_ptr<const PreparedVolume>> parts);
+  const std::vector<std::shared_ptr<const PreparedVolume>>& prepared() const { return parts_; }
+
+  // Streaming (a volume sequence moving on): `parts` replace the volumes (as many as
+  // there are) in the frame declared next into `slot`, whose previous frame completed.
+  // They are written into the slot's staging buffer, and add_upload() copies them into
+  // the volumes' buffers at the start of that frame, so the CPU never waits for the GPU
+  // and no frame in flight sees its data change. Only a packing larger than any before
+  // waits for the device, to make the buffers anew with room to grow (StreamStats).
+  void stream(std::vector<std::shared_ptr<const PreparedVolume>> parts, uint32_t slot);
+  // Declares the slot's staged copies as the graph's first pass ("volume upload"), if any.
+  void add_upload(rg::Graph& graph, uint32_t slot);
+  struct StreamStats {
+    uint64_t frames = 0;         // stream() calls
+    uint64_t bytes = 0;          // grid and brick bytes streamed
+    uint64_t reallocations = 0;  // of those, the ones that made the buffers anew
+  };
+  const StreamStats& stream_stats() const { return stream_stats_; }
 
   // Marches the volumes from the camera for every pixel, stopping at the opaque depth,
   // and composites onto `color` in place. Returns the written version of `color`, or
@@ -109,6 +132,22 @@ class VolumePass {
 
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
+  // A staged packing: the staging buffer and what to copy from it where.
+  struct Upload {
+    VkBuffer staging = VK_NULL_HANDLE;
+    std::vector<std::pair<VkBuffer, VkBufferCopy>> copies;
+    std::vector<VkBufferImageCopy> atlas;
+    VkDeviceSize bytes = 0;
+  };
+  using Parts = std::vector<std::shared_ptr<const PreparedVolume>>;
+  // Makes the buffers and atlas for `packed`, `headroom` times its sizes.
+  void allocate(const PackedVolumes& packed, const Parts& parts, double headroom);
+  bool fits(const PackedVolumes& packed) const;
+  Upload stage(const PackedVolumes& packed, const Parts& parts, gpu::Buffer& staging);
+  void upload_now(const PackedVolumes& packed, const Parts& parts);  // waits for the copies
+  void record_upload(VkCommandBuffer cmd, const Upload& upload);
+  // The CPU's description of what the GPU holds (boxes, count) from now on.
+  void describe(const Parts& parts, VkDeviceSize parameter_bytes);
   void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
               const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows, const FogInputs& fog,
               rg::BufferHandle page_requests, bool majorant_skipping) const;
@@ -121,8 +160,17 @@ class VolumePass {
   gpu::Buffer parameters_;  // one GpuVolume per volume
   gpu::Buffer placeholder_;  // bound for the volume buffers when there are no volumes
   VolumeDensityAtlas atlas_;
+  bool atlas_initialized_ = false;  // in kLayout since its last upload
   std::vector<VolumeBox> boxes_;
   uint32_t volume_count_ = 0;
+  VkDeviceSize parameter_bytes_ = 0;
+  Parts parts_;  // as last set or streamed
+  gpu::Buffer staging_now_;
+  std::array<gpu::Buffer, kMaxFramesInFlight> staging_;  // per frame slot
+  std::array<Upload, kMaxFramesInFlight> pending_;
+  std::array<Parts, kMaxFramesInFlight> pending_parts_;
+  std::array<VkDeviceSize, kMaxFramesInFlight> pending_packed_parameters_{};
+  StreamStats stream_stats_;
   bool majorant_skipping_ = true;
 };
 

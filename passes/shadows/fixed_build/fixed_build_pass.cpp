@@ -22,8 +22,7 @@ FixedBuildPass::FixedBuildPass(gpu::Context& ctx, const gpu::ShaderLibrary& shad
       depth_sampler_(ctx, gpu::texel_sampler_desc("light depth")),
       placeholder_(gpu::create_buffer_from(ctx, std::vector<shared::GpuVolume>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                            "fixed build: no casters")) {
-  std::vector<shared::GpuVolume> no_volumes;
-  empty_atlas_.build(ctx, {}, no_volumes);
+  empty_atlas_.create_empty(ctx);
 }
 
 rg::BufferHandle FixedBuildPass::add_to_graph(rg::Graph& graph, const std::string& prefix,
