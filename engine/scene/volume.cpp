@@ -245,8 +245,9 @@ Bounds read_vdb_bounds(const std::filesystem::path& file, const VolumeOptions& o
     return load_vdb_volume(file, whole).world_bounds;
   }
   if (!header->transform().isLinear()) throw LoadError(file, "grid '" + options.grid_name + "' has a non-linear (frustum) transform");
-  const glm::mat4 world_from_index =
-      options.transform * glm::mat4(to_glm(header->transform().baseMap()->getAffineMap()->getMat4()));
+  // As set_mapping() computes it, so that the frame's own bounds come out the same.
+  const glm::mat4 world_from_index(glm::dmat4(options.transform) *
+                                   to_glm(header->transform().baseMap()->getAffineMap()->getMat4()));
   const openvdb::Vec3i lo = min->value(), hi = max->value();
   const Bounds support{glm::vec3(lo.x() - 1, lo.y() - 1, lo.z() - 1), glm::vec3(hi.x() + 1, hi.y() + 1, hi.z() + 1)};
   return transform_bounds(support, world_from_index);
