@@ -43,13 +43,20 @@ std::vector<fs::path> gltf_resources(const fs::path& gltf) {
 }
 
 // The files a scene is made of: the scene file and every asset it references.
-std::vector<fs::path> scene_files(const scene::SceneDescription& description) {
+// The files a scene was loaded from. A volume sequence is watched by its first and last
+// frames (a simulation written again rewrites both), not frame by frame.
+std::vector<fs::path> scene_files(const scene::SceneDescription& description, const scene::Scene& scene) {
   std::vector<fs::path> files{description.file};
   for (const scene::ModelEntry& model : description.models) {
     files.push_back(model.file);
     for (const fs::path& resource : gltf_resources(model.file)) files.push_back(resource);
   }
-  for (const scene::VolumeEntry& volume : description.volumes) files.push_back(volume.file);
+  for (const scene::VolumeEntry& volume : description.volumes)
+    if (!scene::parse_frame_pattern(volume.file)) files.push_back(volume.file);
+  for (const scene::VolumeSequence& sequence : scene.volume_sequences) {
+    files.push_back(sequence.pattern.file(sequence.timing.first));
+    files.push_back(sequence.pattern.file(sequence.timing.last));
+  }
   for (const scene::HairEntry& hair : description.hair) files.push_back(hair.file);
   return files;
 }
@@ -94,7 +101,7 @@ LiveRenderer::LiveRenderer(gpu::Context& ctx, LiveOptions options)
   edited_.animation.pose(edited_, time_);
   renderer_ = make_renderer(edited_);
   restart_sequences();
-  scene_files_.watch(scene_files(description));
+  scene_files_.watch(scene_files(description, loaded_));
   shader_files_.watch(shaders_->source_files());
 }
 
@@ -122,12 +129,12 @@ void LiveRenderer::restart_sequences() {
   }
 }
 
-void LiveRenderer::show_sequence_frames(bool wait) {
-  if (!sequences_) return;
+bool LiveRenderer::show_sequence_frames(bool wait) {
+  if (!sequences_) return false;
   const std::vector<renderer::VolumeSequencePlayer::Shown> shown = sequences_->at(time_, wait);
   for (const renderer::VolumeSequencePlayer::Shown& frame : shown) {
     renderer_->show_volume_frame(frame.volume, frame.part);
-    shown_frames_[frame.volume] = frame.part;
+    shown_frames_[frame.volume] = frame;
   }
   const std::vector<scene::LoadError> errors = sequences_->take_errors();
   if (!errors.empty()) {
@@ -136,11 +143,17 @@ void LiveRenderer::show_sequence_frames(bool wait) {
   } else if (!shown.empty()) {
     sequence_error_.reset();
   }
+  return !shown.empty();
 }
 
-void LiveRenderer::set_time(float time) {
+void LiveRenderer::set_time(float time, bool wait_for_sequences) {
   time_ = time;
-  show_sequence_frames(/*wait=*/false);
+  try {
+    show_sequence_frames(wait_for_sequences);
+  } catch (const scene::LoadError& e) {  // waited for a frame that cannot be read: it keeps the last
+    sequence_error_ = ReloadError{e.file(), 0, e.what()};
+    error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_;
+  }
   if (edited_.animation.empty()) return;
   edited_.animation.pose(edited_, time);
   for (std::size_t light : edited_.animation.moving_lights())
@@ -204,7 +217,7 @@ PollResult LiveRenderer::poll(Clock::time_point now) {
   // The scene first, so new pipelines are built for the scene they will draw.
   if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, now, result);
   if (!shader_changes.empty()) reload_shaders(now, result);
-  show_sequence_frames(/*wait=*/false);  // frames read since the last poll
+  result.sequence_frames = show_sequence_frames(/*wait=*/false);  // frames read since the last poll
   error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_;
   result.waiting = scene_files_.busy() || shader_files_.busy();
   return result;
@@ -233,7 +246,7 @@ void LiveRenderer::reload_shaders(Clock::time_point now, PollResult& result) {
   if (before_change_) before_change_();
   vkDeviceWaitIdle(ctx_.device());  // the old pipelines may still be in flight
   renderer_ = std::move(fresh);
-  for (const auto& [volume, part] : shown_frames_) renderer_->show_volume_frame(volume, part);
+  for (const auto& [volume, shown] : shown_frames_) renderer_->show_volume_frame(volume, shown.part);
   // A new include may have appeared; watch what the good shaders are made of now.
   shader_files_.watch(shaders_->source_files());
   result.shaders_reloaded = true;
@@ -296,7 +309,7 @@ void LiveRenderer::reload_scene(bool read_files, Clock::time_point now, PollResu
   options_.shadow_options = next_shadow_options_;
   if (read_files) {
     options_.scene_file = file;
-    scene_files_.watch(scene_files(description));
+    scene_files_.watch(scene_files(description, loaded_));
   }
   result.scene_reloaded = true;
 }

@@ -62,7 +62,8 @@ struct PollResult {
   bool scene_reloaded = false;                 // the scene (file, assets or edits) was handed to the renderer again
   bool failed = false;                         // a reload failed; error() has it
   bool waiting = false;                        // a change is still settling (or was read mid-write): poll again
-  bool anything_new() const { return shaders_reloaded || scene_reloaded; }
+  bool sequence_frames = false;                // volume sequence frames read since were handed to the renderer
+  bool anything_new() const { return shaders_reloaded || scene_reloaded || sequence_frames; }
 };
 
 class LiveRenderer {
@@ -82,8 +83,16 @@ class LiveRenderer {
   void set_size(uint32_t width, uint32_t height);
   // Puts the scene's animation at `time` (seconds; scene/animation.h): the lights and meshes
   // that move are handed to the renderer now. Reloads and edits keep the time.
-  void set_time(float time);
+  // Volume sequences' frames go to the renderer as the player has them read; with
+  // `wait_for_sequences`, this waits for them (scripted runs, which must show the time's own).
+  void set_time(float time, bool wait_for_sequences = false);
   float time() const { return time_; }
+  // The file frame a volume sequence shows (handed to the renderer for its next frame),
+  // or nullopt for a volume that is no sequence or has none yet.
+  std::optional<int> sequence_frame(uint32_t volume) const {
+    const auto it = shown_frames_.find(volume);
+    return it == shown_frames_.end() ? std::nullopt : std::optional(it->second.frame);
+  }
   // Loads another scene file on the next poll() (same rules: a bad file keeps the current scene).
   void set_scene_file(const std::filesystem::path& file);
   // Called on the renderer now and on every new one (a shader reload builds a new
@@ -125,10 +134,11 @@ class LiveRenderer {
   // The volume sequences of the scene as edited, read ahead as the time moves; what the
   // renderer shows of them (given again to a renderer that replaces it).
   std::unique_ptr<renderer::VolumeSequencePlayer> sequences_;
-  std::map<uint32_t, std::shared_ptr<const passes::PreparedVolume>> shown_frames_;
+  std::map<uint32_t, renderer::VolumeSequencePlayer::Shown> shown_frames_;  // by volume
   void restart_sequences();
   // Hands the renderer the sequence frames of the current time that are ready (`wait`: waits for them).
-  void show_sequence_frames(bool wait);
+  // Returns whether it handed any.
+  bool show_sequence_frames(bool wait);
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
   float time_ = 0.0f;

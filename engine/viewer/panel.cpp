@@ -292,7 +292,7 @@ PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const
   ImGui::PopStyleVar(2);
   draw_status(view, requests);
   if (view.timeline.animated() && ImGui::CollapsingHeader("Timeline", ImGuiTreeNodeFlags_DefaultOpen))
-    draw_timeline(view.timeline, requests);
+    draw_timeline(view.timeline, view.live, requests);
   if (ImGui::CollapsingHeader("Texel inspection", ImGuiTreeNodeFlags_DefaultOpen)) draw_inspection(view, requests);
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_lights(view, settings, requests);
   if (ImGui::CollapsingHeader("GPU timings", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(view);
@@ -306,7 +306,7 @@ PanelRequests Panel::draw(const PanelView& view, ViewerSettings& settings, const
 }
 
 // Play and pause, the playhead (frame and seconds), loop, and the frame rate it snaps to.
-void Panel::draw_timeline(Timeline& timeline, PanelRequests& requests) {
+void Panel::draw_timeline(Timeline& timeline, const live::LiveRenderer& live, PanelRequests& requests) {
   if (ImGui::Button(timeline.playing() ? "pause" : "play")) timeline.playing() ? timeline.pause() : timeline.play();
   ImGui::SameLine();
   ImGui::Text("frame %d, %.3f s of %.3f s", timeline.frame(), double(timeline.time()), double(timeline.duration()));
@@ -323,6 +323,13 @@ void Panel::draw_timeline(Timeline& timeline, PanelRequests& requests) {
   if (ImGui::InputFloat("fps", &fps, 0.0f, 0.0f, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue)) {
     timeline.set_fps(fps);
     requests.time_changed = true;  // the playhead's frame is another instant at another rate
+  }
+  // Volume sequences: the file frame each shows (it lags the playhead while being read).
+  for (const scene::VolumeSequence& sequence : live.scene().volume_sequences) {
+    const std::optional<int> shown = live.sequence_frame(uint32_t(sequence.volume));
+    ImGui::Text("%s: %s, file frame %s of %d-%d", live.scene().volumes[sequence.volume].name.c_str(),
+                sequence.pattern.written.c_str(), shown ? std::to_string(*shown).c_str() : "-", sequence.timing.first,
+                sequence.timing.last);
   }
 }
 

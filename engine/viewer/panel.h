@@ -84,7 +84,7 @@ class Panel {
 
  private:
   void draw_status(const PanelView& view, PanelRequests& requests);
-  void draw_timeline(Timeline& timeline, PanelRequests& requests);
+  void draw_timeline(Timeline& timeline, const live::LiveRenderer& live, PanelRequests& requests);
   void draw_scene_file(PanelRequests& requests);
   void draw_lights(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);
   void draw_media(const PanelView& view, ViewerSettings& settings, PanelRequests& requests);

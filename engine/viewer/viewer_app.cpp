@@ -478,7 +478,7 @@ void ViewerApp::advance_timeline(bool render) {
 
 void ViewerApp::show_time() {
   finish_scene_frames();  // moving meshes are uploaded: the frames in flight read them
-  live_->set_time(timeline_.time());
+  live_->set_time(timeline_.time(), /*wait_for_sequences=*/options_.control);  // scripted: the time's own frames
   scene_dirty_ = true;
 }
 

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
@@ -296,6 +297,51 @@ TEST_F(LiveRendererTest, EditsApplyToEveryReloadAndBadEditsAreRejected) {
   EXPECT_EQ(live.renderer().shadows().frame_stats()[0].nodes, 8u);
 }
 
+
+// A volume sequence plays as the time moves: each frame read on the player's thread and
+// shown once it is ready; a broken frame is reported by file and frame while the volume
+// keeps the last good one, and playing on past it shows the next.
+TEST_F(LiveRendererTest, SequenceFramesFollowTheTimeAndABrokenFrameKeepsTheLastGood) {
+  const fs::path generated = fs::path(AVSM_DEFAULT_SCENE).parent_path() / "plume_sequence";
+  fs::copy(generated, root_ / "content/plume_sequence", fs::copy_options::recursive);
+  std::string scene = kSceneJson;
+  scene.replace(scene.find("\"lights\""), 0, R"("volumes": [ { "file": "plume_sequence/plume.####.vdb", "grid": "density",
+      "extinction_scale": 6, "transform": { "translation": [-0.4, 0.0, -0.4] } } ],
+  )");
+  write_text(scene_file(), scene);
+  LiveRenderer& live = start();
+  ASSERT_EQ(live.scene().volume_sequences.size(), 1u);
+  const auto shows = [&](int frame) { return live.sequence_frame(0) == frame; };
+  // Polls (the viewer's loop) until `done`, for at most 20 s.
+  const auto poll_until = [&](const std::function<bool()>& done) {
+    for (int tries = 0; tries < 400 && !done(); ++tries) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      live.poll(Clock::now());
+    }
+    return done();
+  };
+  EXPECT_TRUE(shows(1));  // the time's own, waited for at load
+  const std::vector<float> frame_1 = render();
+
+  live.set_time(10.0f / 24.0f);  // frame 11
+  ASSERT_TRUE(poll_until([&] { return shows(11); }));
+  const std::vector<float> frame_11 = render();
+  EXPECT_NE(frame_11, frame_1);
+  EXPECT_FALSE(live.error().has_value());
+
+  fs::resize_file(root_ / "content/plume_sequence/plume.0016.vdb", 1000);
+  live.set_time(15.0f / 24.0f);  // frame 16
+  ASSERT_TRUE(poll_until([&] { return live.error().has_value(); }));
+  EXPECT_EQ(fs::weakly_canonical(live.error()->file), fs::weakly_canonical(root_ / "content/plume_sequence/plume.0016.vdb"));
+  EXPECT_NE(live.error()->summary().find("frame 16 of the sequence"), std::string::npos) << live.error()->summary();
+  EXPECT_TRUE(shows(11));
+  EXPECT_EQ(render(), frame_11);  // the last good frame stays
+
+  live.set_time(20.0f / 24.0f);  // frame 21
+  ASSERT_TRUE(poll_until([&] { return shows(21); }));
+  EXPECT_FALSE(live.error().has_value());
+  EXPECT_NE(render(), frame_11);
+}
 
 // ---- Saving the way editors do ---------------------------------------------------
 // The scene file, an asset (the stage's glTF) and a shader are saved in each way
