@@ -77,6 +77,11 @@ void render_shot(renderer::SceneRenderer& frame, scene::Scene& scene, gpu::Conte
       std::fprintf(stderr, "shot frame %d (%.3f s): %.2f ms%s\n", number, double(entry.time), entry.wall_ms,
                    shot.frames.size() == 1 ? " (first: kept apart)" : "");
   }
+  if (sequences) {
+    const renderer::VolumeSequencePlayer::Stats stats = sequences->stats();
+    shot.sequence_reading = ShotReport::SequenceReading{
+        stats.frames_read, stats.waits, stats.frames_read ? stats.read_ms / double(stats.frames_read) : 0.0};
+  }
 }
 
 const scene::Camera& pick_camera(const scene::Scene& scene, const std::string& wanted) {

@@ -96,7 +96,13 @@ nlohmann::json to_json(const ShotReport& shot) {
                       {"heap_mib", f.memory.heap_mib}, {"image", f.image.generic_string()}});
   const ShotSummary s = shot.summary();
   nlohmann::json video = shot.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(shot.video.generic_string());
+  nlohmann::json reading = nullptr;
+  if (shot.sequence_reading)
+    reading = {{"frames_read", shot.sequence_reading->frames_read},
+               {"mean_read_ms", shot.sequence_reading->mean_read_ms},
+               {"frames_that_waited", shot.sequence_reading->waits}};
   return {{"video", video},
+          {"volume_sequence_reading", reading},
           {"video_note", shot.video_note},
           {"first_frame", shot.range.first},
           {"last_frame", shot.range.last},

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,13 @@ struct ShotReport {
   std::vector<ShotFrame> frames;
   std::filesystem::path video;  // shot.mp4 (relative to the folder); empty when none was written
   std::string video_note;       // why not, when not
+  // The volume sequences' reader (renderer/volume_sequence_player.h), when the scene has any:
+  // frames it read and prepared, their mean ms on its thread, and the frames that waited for it.
+  struct SequenceReading {
+    uint64_t frames_read = 0, waits = 0;
+    double mean_read_ms = 0.0;
+  };
+  std::optional<SequenceReading> sequence_reading;
 
   ShotSummary summary() const;
   // frames/frame_<NNNN>.png, the numbering of the shot's frames (4 digits, more if needed).

@@ -1,4 +1,7 @@
 #include "sweep/compare.h"
+#include <nlohmann/json.hpp>
+#include <map>
+#include <fstream>
 
 #include <algorithm>
 #include <charconv>
@@ -492,6 +495,93 @@ std::vector<Check> compare_images(const gpu::ImageRGBA32F& base, const gpu::Imag
   return {psnr, mae};
 }
 
+namespace {
+
+// A shot's frames as shot.json lists them: frame number -> image (relative to the folder).
+std::map<int, fs::path> shot_frames(const fs::path& dir) {
+  const fs::path file = dir / "shot.json";
+  std::ifstream in(file);
+  std::map<int, fs::path> frames;
+  try {
+    const nlohmann::json shot = nlohmann::json::parse(in);
+    for (const nlohmann::json& frame : shot.at("frames"))
+      frames[frame.at("frame").get<int>()] = frame.at("image").get<std::string>();
+  } catch (const std::exception& error) {
+    throw std::runtime_error(file.string() + ": not a shot.json avsm-capture writes (" + error.what() + ")");
+  }
+  return frames;
+}
+
+std::string frame_list(const std::vector<int>& frames) {
+  std::string text;
+  for (size_t i = 0; i < frames.size() && i < 8; ++i) text += (i ? ", " : "") + std::to_string(frames[i]);
+  return frames.size() > 8 ? text + ", ... (" + std::to_string(frames.size()) + " frames)" : text;
+}
+
+}  // namespace
+
+std::vector<Check> compare_shots(const fs::path& base, const fs::path& now, const ImageThresholds& limits) {
+  const bool base_shot = fs::exists(base / "shot.json"), now_shot = fs::exists(now / "shot.json");
+  if (!base_shot && !now_shot) return {};
+  if (base_shot != now_shot)
+    return {{"shot", base_shot ? "shot" : "-", now_shot ? "shot" : "-", "", "both", Verdict::fail,
+             std::string(base_shot ? "NEW" : "BASE") + " holds no shot.json: compare shots with shots (--frame-range)"}};
+  const std::map<int, fs::path> b = shot_frames(base), n = shot_frames(now);
+  std::vector<int> missing, extra;
+  for (const auto& [frame, image] : b)
+    if (!n.count(frame)) missing.push_back(frame);
+  for (const auto& [frame, image] : n)
+    if (!b.count(frame)) extra.push_back(frame);
+  std::vector<Check> checks;
+  Check count{"shot frames", std::to_string(b.size()), std::to_string(n.size()), "", "BASE's frames", Verdict::pass, ""};
+  if (!missing.empty()) {
+    count.verdict = Verdict::fail;
+    count.message = "NEW lacks frames " + frame_list(missing) + " of BASE's shot";
+  } else if (!extra.empty()) {
+    count.verdict = Verdict::listed;
+    count.message = "frames only NEW has, not compared: " + frame_list(extra);
+  }
+  checks.push_back(count);
+
+  struct Worst {
+    int frame = -1;
+    capture::ImageDifference difference{0.0, std::numeric_limits<double>::infinity()};
+  } worst_psnr, worst_error;
+  for (const auto& [frame, image] : b) {
+    if (!n.count(frame)) continue;
+    const gpu::ImageRGBA32F before = io::read_png(base / image), after = io::read_png(now / n.at(frame));
+    if (before.width != after.width || before.height != after.height) {
+      checks.push_back({"shot frame size", std::to_string(before.width) + "x" + std::to_string(before.height),
+                        std::to_string(after.width) + "x" + std::to_string(after.height), "", "equal", Verdict::fail,
+                        "frame " + std::to_string(frame) + " differs in size: compare shots made with the same --width and --height"});
+      return checks;
+    }
+    const capture::ImageDifference d = capture::image_difference(after, before);
+    if (worst_psnr.frame < 0 || d.psnr_db < worst_psnr.difference.psnr_db) worst_psnr = {frame, d};
+    if (worst_error.frame < 0 || d.mean_abs_error > worst_error.difference.mean_abs_error) worst_error = {frame, d};
+  }
+  if (worst_psnr.frame < 0) return checks;
+  const double psnr = worst_psnr.difference.psnr_db, error = worst_error.difference.mean_abs_error;
+  Check psnr_check{"shot worst psnr (frame " + std::to_string(worst_psnr.frame) + ")", "", "",
+                   std::isinf(psnr) ? "inf (equal)" : format("%.2f dB", psnr), format(">= %g dB", limits.min_psnr_db),
+                   Verdict::pass, ""};
+  if (psnr < limits.min_psnr_db) {
+    psnr_check.verdict = Verdict::fail;
+    psnr_check.message = "shot frame " + std::to_string(worst_psnr.frame) + " differs from BASE's most: PSNR " +
+                         format("%.2f dB", psnr) + format(" (limit %g dB, image.min_psnr_db)", limits.min_psnr_db);
+  }
+  Check error_check{"shot worst mean_abs_error (frame " + std::to_string(worst_error.frame) + ")", "", "",
+                    format("%.5f", error), format("<= %g", limits.max_mean_abs_error), Verdict::pass, ""};
+  if (error > limits.max_mean_abs_error) {
+    error_check.verdict = Verdict::fail;
+    error_check.message = "shot frame " + std::to_string(worst_error.frame) + " differs from BASE's most: mean absolute error " +
+                          format("%.5f", error) + format(" (limit %g, image.max_mean_abs_error)", limits.max_mean_abs_error);
+  }
+  checks.push_back(psnr_check);
+  checks.push_back(error_check);
+  return checks;
+}
+
 SuiteResult compare_captures(const std::string& name, const fs::path& base, const fs::path& now,
                              const Thresholds& limits, const CompareOptions& options) {
   const capture::FrameReport b = capture::read_frame_report(base), n = capture::read_frame_report(now);
@@ -499,7 +589,8 @@ SuiteResult compare_captures(const std::string& name, const fs::path& base, cons
   for (std::vector<Check> part : {compare_images(io::read_exr(base / "frame.exr"), io::read_exr(now / "frame.exr"), limits.image),
                                   compare_timings(b.timings, n.timings, limits.timing),
                                   compare_quality(b.quality, n.quality, limits.quality),
-                                  compare_memory(b.memory, n.memory, limits.memory)})
+                                  compare_memory(b.memory, n.memory, limits.memory),
+                                  compare_shots(base, now, limits.image)})
     suite.checks.insert(suite.checks.end(), part.begin(), part.end());
   return suite;
 }

@@ -75,10 +75,20 @@ std::vector<Check> compare_memory(const capture::MemoryReport& base, const captu
 std::vector<Check> compare_images(const gpu::ImageRGBA32F& base, const gpu::ImageRGBA32F& now,
                                   const ImageThresholds& limits);
 
+// Two shots (avsm-capture --frame-range: shot.json and frames/), frame by frame: each
+// frame both have compared as compare_images() does, and the worst frame reported: "shot
+// worst psnr" and "shot worst mean_abs_error" name it and are judged against the image
+// thresholds; "shot frames" fails when NEW lacks frames BASE has (and lists frames only NEW
+// has). No checks when neither folder holds a shot; one failing check when only one does.
+// Throws std::runtime_error naming a shot.json or frame image that is missing or malformed.
+std::vector<Check> compare_shots(const std::filesystem::path& base, const std::filesystem::path& now,
+                                 const ImageThresholds& limits);
+
 // ---- folders ----
 
 // Every check of two capture folders (avsm-capture --out): settings.json (first),
-// timings.json, memory.json, quality.json (when both have one) and frame.exr. Throws
+// timings.json, memory.json, quality.json (when both have one), frame.exr, and the shot's
+// frames (compare_shots) when they hold shots. Throws
 // std::runtime_error naming the file that is missing or malformed.
 SuiteResult compare_captures(const std::string& name, const std::filesystem::path& base,
                              const std::filesystem::path& now, const Thresholds& limits,

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -445,6 +446,62 @@ std::pair<fs::path, fs::path> sweep_pair() {
                                 job("c", JobStatus::failed, "avsm-capture: error: <out of memory> & more"),
                                 job("d", JobStatus::done)}});
   return {base, now};
+}
+
+// A shot folder: frames first..last as frames/frame_NNNN.png and shot.json listing them;
+// frame f's pixels are `value(f)`.
+void write_shot(const fs::path& dir, int first, int last, const std::function<float(int)>& value) {
+  nlohmann::json frames = nlohmann::json::array();
+  fs::create_directories(dir / "frames");
+  for (int frame = first; frame <= last; ++frame) {
+    const fs::path image_name = fs::path("frames") / ("frame_000" + std::to_string(frame) + ".png");
+    io::write_png_raw(dir / image_name, image(value(frame)));
+    frames.push_back({{"frame", frame}, {"image", image_name.generic_string()}, {"wall_ms", 10.0}});
+  }
+  capture::write_json(dir / "shot.json", {{"first_frame", first}, {"last_frame", last}, {"frames", frames}});
+}
+
+TEST(GateShots, FramesAreComparedOneByOneAndTheWorstIsNamed) {
+  const fs::path base = fresh_folder("shot_base"), now = fresh_folder("shot_new");
+  write_shot(base, 0, 3, [](int) { return 0.5f; });
+  write_shot(now, 0, 3, [](int frame) { return frame == 2 ? 0.25f : 0.5f; });  // frame 2 darker
+  std::vector<Check> checks = compare_shots(base, now, {});
+  ASSERT_NE(find(checks, "shot worst psnr (frame 2)"), nullptr);
+  EXPECT_EQ(find(checks, "shot worst psnr (frame 2)")->verdict, Verdict::fail);
+  EXPECT_NE(find(checks, "shot worst psnr (frame 2)")->message.find("shot frame 2 differs from BASE's most"), std::string::npos);
+  EXPECT_EQ(find(checks, "shot worst mean_abs_error (frame 2)")->verdict, Verdict::fail);
+  EXPECT_EQ(find(checks, "shot frames")->verdict, Verdict::pass);
+
+  write_shot(now, 0, 3, [](int) { return 0.5f; });  // the same frames pass
+  EXPECT_EQ(failures(compare_shots(base, now, {})), 0u);
+  // compare_captures reads them too.
+  write_capture(base, 40, 0.5f);
+  write_capture(now, 40, 0.5f);
+  write_shot(now, 0, 3, [](int frame) { return frame == 1 ? 0.0f : 0.5f; });
+  const SuiteResult suite = compare_captures("capture", base, now, {});
+  EXPECT_NE(find(suite.checks, "shot worst psnr (frame 1)"), nullptr);
+  EXPECT_EQ(suite.failures(), 2u);
+}
+
+TEST(GateShots, MissingFramesFailAndExtraFramesAreListed) {
+  const fs::path base = fresh_folder("shot_base"), now = fresh_folder("shot_new");
+  write_shot(base, 0, 3, [](int) { return 0.5f; });
+  write_shot(now, 0, 2, [](int) { return 0.5f; });
+  std::vector<Check> checks = compare_shots(base, now, {});
+  EXPECT_EQ(find(checks, "shot frames")->verdict, Verdict::fail);
+  EXPECT_EQ(find(checks, "shot frames")->message, "NEW lacks frames 3 of BASE's shot");
+  write_shot(now, 0, 4, [](int) { return 0.5f; });
+  checks = compare_shots(base, now, {});
+  EXPECT_EQ(find(checks, "shot frames")->verdict, Verdict::listed);
+  EXPECT_EQ(failures(checks), 0u);
+  // A shot on one side only, and none on either.
+  fs::remove(now / "shot.json");
+  checks = compare_shots(base, now, {});
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_EQ(checks[0].verdict, Verdict::fail);
+  EXPECT_TRUE(compare_shots(now, now, {}).empty());
+  capture::write_json(now / "shot.json", {{"frames", "not a list"}});
+  EXPECT_THROW(compare_shots(base, now, {}), std::runtime_error);
 }
 
 TEST(GateFolders, SweepsAreComparedJobByJob) {
