@@ -90,6 +90,14 @@ static void decode_texel(VkFormat format, const uint8_t* texel, float* rgba) {
   }
 }
 
+void record_image_readback(VkCommandBuffer cmd, const Image& image, VkImageLayout layout, const Buffer& buffer) {
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {image.desc().width, image.desc().height, 1};
+  vkCmdCopyImageToBuffer(cmd, image.handle(), layout, buffer.handle(), 1, &copy);
+  buffer_barrier(cmd, buffer.handle(), kTransferWrite, kHostRead);
+}
+
 ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout layout, uint32_t mip, uint32_t layer) {
   const ImageDesc& desc = image.desc();
   uint32_t width = std::max(1u, desc.width >> mip), height = std::max(1u, desc.height >> mip);

@@ -49,6 +49,11 @@ struct ImageRGBA32F {
 ImageRGBA32F read_image(const Context& ctx, const Image& image, VkImageLayout layout, uint32_t mip = 0,
                         uint32_t layer = 0);
 
+// Records a copy of `image` (mip 0, layer 0, in `layout` with TRANSFER_SRC usage) into the
+// host-readable `buffer`, visible to the host once the command buffer completed: a frame's
+// own readback, for a frame slot's buffer.
+void record_image_readback(VkCommandBuffer cmd, const Image& image, VkImageLayout layout, const Buffer& buffer);
+
 // Fills mip 0 / layer 0 from tightly packed texels and leaves it in `final_layout`
 // (visible to all later shader reads).
 void upload_image(const Context& ctx, const Image& image, const void* texels, VkDeviceSize bytes,

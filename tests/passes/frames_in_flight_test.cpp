@@ -17,6 +17,7 @@
 #include "capture/frame_outputs.h"
 #include "gpu/barriers.h"
 #include "gpu/resources.h"
+#include "gpu/transfer.h"
 #include "passes/frame/view.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
@@ -109,14 +110,7 @@ Sequence render_sequence(gpu::Context& ctx, renderer::SceneRenderer& renderer, c
     slot_frame[slot.index] = frame;
     place_moving_light(renderer, scene, frame < 0 ? 0 : uint32_t(frame));
     capture::record_timed_frame(renderer, *slot.executor, slot.cmd, view, slot.index, [&](VkCommandBuffer cmd) {
-      VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copy.imageExtent = {kWidth, kHeight, 1};
-      vkCmdCopyImageToBuffer(cmd, renderer.ldr().handle(), renderer::SceneRenderer::kOutputLayout,
-                             readbacks[slot.index].handle(), 1, &copy);
-      gpu::buffer_barrier(cmd, readbacks[slot.index].handle(),
-                          {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
-                          {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT});
+      gpu::record_image_readback(cmd, renderer.ldr(), renderer::SceneRenderer::kOutputLayout, readbacks[slot.index]);
     });
     slots.submit(slot);
   };

@@ -18,6 +18,7 @@
 #include "capture/frame_outputs.h"
 #include "gpu/barriers.h"
 #include "gpu/resources.h"
+#include "gpu/transfer.h"
 #include "passes/frame/view.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
@@ -74,12 +75,7 @@ std::vector<std::vector<uint8_t>> render_frames(gpu::Context& ctx, renderer::Sce
       renderer::FrameSlots::Slot& slot = slots.acquire(finished);
       slot_frame[slot.index] = render == 1 ? int(frame) : -1;
       capture::record_timed_frame(renderer, *slot.executor, slot.cmd, view, slot.index, [&](VkCommandBuffer cmd) {
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = {kWidth, kHeight, 1};
-        vkCmdCopyImageToBuffer(cmd, renderer.ldr().handle(), renderer::SceneRenderer::kOutputLayout,
-                               readbacks[slot.index].handle(), 1, &copy);
-        gpu::buffer_barrier(cmd, readbacks[slot.index].handle(), gpu::kTransferWrite, gpu::kHostRead);
+        gpu::record_image_readback(cmd, renderer.ldr(), renderer::SceneRenderer::kOutputLayout, readbacks[slot.index]);
       });
       slots.submit(slot);
     }

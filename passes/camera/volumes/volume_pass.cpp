@@ -67,7 +67,8 @@ gpu::Buffer device_buffer(const gpu::Context& ctx, VkDeviceSize bytes, const cha
 std::string grid_sizes(const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
   std::string sizes = "the scene's volumes: fewer, or smaller NanoVDB grids (";
   for (size_t i = 0; i < parts.size(); ++i)
-    sizes += (i ? ", " : "") + parts[i]->volume->name + " " + gpu::format_mib(parts[i]->volume->nanovdb.size());
+    sizes += std::string(i ? ", " : "") + "volume " + std::to_string(i) + " '" + parts[i]->volume->name + "' " +
+             gpu::format_mib(parts[i]->volume->nanovdb.size());
   return sizes + ")";
 }
 
