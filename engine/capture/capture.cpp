@@ -14,6 +14,7 @@
 #include <rendergraph/vulkan/executor.h>
 
 #include "capture/files.h"
+#include "capture/flicker.h"
 #include "capture/frame_report.h"
 #include "capture/frame_outputs.h"
 #include "capture/pass_list_json.h"
@@ -503,6 +504,19 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     const float degrees = options.orbit_degrees * float(std::min(index, options.frames - 1));
     return passes::make_view(scene::orbited(camera, glm::radians(degrees)), options.width, options.height);
   };
+  // --flicker: fixed surface points, looked up every frame.
+  std::optional<FlickerMeter> flicker;
+  if (options.flicker) {
+    if (!scene.animation.lights.empty() || !scene.animation.models.empty() || !scene.volume_sequences.empty())
+      throw std::runtime_error("--flicker needs a scene where only the camera moves: its lights, models or volume "
+                               "sequences move, and their exact shadows with them");
+    const FlickerProbes probes = flicker_probes(scene, view_of(0), 64, 36);
+    if (probes.points.empty()) throw std::runtime_error("--flicker: the first frame shows no surface to measure at");
+    frame.set_surface_probes(probes.points, probes.normals);
+    std::vector<std::string> names;
+    for (const scene::Light& light : scene.lights) names.push_back(light.name);
+    flicker.emplace(names, light_shares(scene));
+  }
   if (!options.dump_passes.empty()) {  // the first frame's shadow work, described only
     write_pass_list(options.dump_passes, frame.describe_shadows(view_of(0)));
     std::vector<gpu::ValidationMessage> messages = ctx.validation_log().take();
@@ -536,6 +550,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     frame.finish_frame(slot.index);
     const uint32_t index = slot_frame[slot.index];
     last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
+    if (flicker && !shot && index < options.frames) flicker->add_frame(frame.probe_results());
     // Left out of the timings: the first of repeated frames, or a shot's first frame.
     const bool warm_up = shot ? shot->frames.size() == 1 : index == 0 && options.frames > 1;
     const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), frame.shadows().frame_stats(),
@@ -584,7 +599,9 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
   if (shot) render_shot(frame, scene, ctx, options, *shot, [&] {
     submit_frame(options.frames - 1);
     slots.finish_all(finished);
-    return 1 + render_again_while_unfinished();
+    const uint32_t renders = 1 + render_again_while_unfinished();
+    if (flicker) flicker->add_frame(frame.probe_results());  // the frame as written
+    return renders;
   });
   for (uint32_t index = 0; !shot && index < options.frames; ++index) {
     // Interleaved with the main frames, so both paths see the same machine load; it
@@ -617,6 +634,13 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     out.shot = options.out_dir / "shot.json";
     write_json(out.shot, to_json(*shot));
     report.shot = shot;
+  }
+  if (flicker) {
+    const FlickerReport figures = flicker->report();
+    write_json(options.out_dir / "flicker.json", to_json(figures));
+    if (options.progress)
+      std::fprintf(stderr, "flicker: mean dL %.5f over %u points and %u frame pairs\n", figures.mean_delta_l,
+                   figures.points, figures.frame_pairs);
   }
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());

@@ -79,6 +79,10 @@ struct CaptureOptions {
   // A JSON array of world positions [[x,y,z],...]: writes probes.json with every
   // light's transmittance at each (empty: no probes).
   std::filesystem::path probe_file;
+  // --flicker: flicker.json, how much each light's shadows change from frame to frame at
+  // the surfaces the first frame sees (capture/flicker.h), over --orbit frames or a shot
+  // where only the camera moves.
+  bool flicker = false;
   // Also write report.html into out_dir: one self-contained page with the images,
   // timings, memory figures and frame graph (see report.h).
   bool report = false;

@@ -91,6 +91,9 @@ const char* kUsage =
     "  --interpolation linear|exponential   between AVSM nodes (default linear)\n"
     "  --probe FILE     JSON array [[x,y,z],...]: writes probes.json with each light's\n"
     "                   transmittance at every point\n"
+    "  --flicker        flicker.json: per light, how much its transmittance changes from frame\n"
+    "                   to frame at the surfaces the first frame sees (with --orbit, or a shot\n"
+    "                   where only the camera moves)\n"
     "shadow quality against the exact reference (keeps every light's capture lists):\n"
     "  --compare-to uncompressed   per light, |T - T_exact| at the surfaces and smoke the\n"
     "                   camera sees: quality.json and light<i>_error.png (error x4)\n"
@@ -319,6 +322,8 @@ bool parse_option(const std::string& arg, const std::function<std::string()>& va
     options.dump_passes = value();
   } else if (arg == "--probe") {
     options.probe_file = value();
+  } else if (arg == "--flicker") {
+    options.flicker = true;
   } else if (arg == "--shadow-param") {
     parse_shadow_param(value(), options.shadow);
   } else if (arg == "--compare-to") {
@@ -368,6 +373,10 @@ CaptureCommand parse_capture_arguments(const std::vector<std::string>& args) {
   } else if (o.fps != CaptureOptions{}.fps) {
     usage_error("--fps needs --frame-range (the shot it sets the rate of)");
   }
+  if (o.flicker && !o.probe_file.empty())
+    usage_error("--flicker and --probe exclude each other: both are read through the probe pass");
+  if (o.flicker && o.light_orbit_degrees != 0.0f)
+    usage_error("--flicker needs the lights to hold still (drop --light-orbit): it measures what the camera's motion alone changes");
   if (command.options.path_trace_volumes > 0 && !command.options.compare_volume_shading)
     usage_error("--path-trace-volumes needs --compare-volume-shading (it compares with the frames that renders)");
   return command;
@@ -435,6 +444,7 @@ std::vector<std::string> capture_arguments(const CaptureOptions& o) {
   for (const auto& [name, value] : shadow.parameters) with_value(true, "--shadow-param", name + "=" + exact_text(value));
   with_value(o.exponential_interpolation, "--interpolation", "exponential");
   with_value(!o.probe_file.empty(), "--probe", o.probe_file.string());
+  flag(o.flicker, "--flicker");
   with_value(o.compare_to_uncompressed, "--compare-to", "uncompressed");
   flag(o.measure_resolution, "--measure-resolution");
   for (const TexelPlot& plot : o.plot_texels) with_value(true, "--plot-texel", plot.spec);

@@ -7,10 +7,12 @@
 
 #include "capture/files.h"
 #include "passes/shadows/shadow_maps.h"
-#include "viewer/scene_picking.h"
+#include "renderer/scene_picking.h"
 
 namespace avsm::viewer {
 namespace fs = std::filesystem;
+using renderer::pick_point;
+using renderer::PickedPoint;
 
 namespace {
 

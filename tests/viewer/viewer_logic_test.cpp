@@ -13,12 +13,14 @@
 #include "viewer/control_commands.h"
 #include "viewer/panel.h"
 #include "viewer/scene_overrides.h"
-#include "viewer/scene_picking.h"
+#include "renderer/scene_picking.h"
 #include "viewer/texel_inspector.h"
 #include "viewer/timeline.h"
 #include "viewer/view_layout.h"
 
 namespace avsm::viewer {
+using renderer::pick_point;
+using renderer::PickedPoint;
 
 void PrintTo(const PixelRect& r, std::ostream* out) {
   *out << r.width << "x" << r.height << " at (" << r.x << ", " << r.y << ")";

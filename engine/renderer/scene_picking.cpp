@@ -1,10 +1,10 @@
-#include "viewer/scene_picking.h"
+#include "renderer/scene_picking.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace avsm::viewer {
+namespace avsm::renderer {
 
 namespace {
 
@@ -27,13 +27,25 @@ float triangle_hit(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const
   return t > 0.0f ? t : kNoHit;
 }
 
-float mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
+struct MeshHit {
+  float t = kNoHit;
+  glm::vec3 normal{0.0f};
+};
+
+MeshHit mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
   const auto [enter, leave] = scene::ray_span(mesh.bounds, ray.origin, ray.direction);
-  if (enter > leave || enter >= nearest) return kNoHit;
-  float best = kNoHit;
-  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-    best = std::min(best, triangle_hit(ray, mesh.positions[mesh.indices[i]], mesh.positions[mesh.indices[i + 1]],
-                                       mesh.positions[mesh.indices[i + 2]]));
+  if (enter > leave || enter >= nearest) return {};
+  MeshHit best;
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const glm::vec3 &a = mesh.positions[mesh.indices[i]], &b = mesh.positions[mesh.indices[i + 1]],
+                    &c = mesh.positions[mesh.indices[i + 2]];
+    const float t = triangle_hit(ray, a, b, c);
+    if (t < best.t) best = {t, glm::cross(b - a, c - a)};
+  }
+  if (best.t < kNoHit) {
+    best.normal = glm::normalize(best.normal);
+    if (glm::dot(best.normal, ray.direction) > 0.0f) best.normal = -best.normal;  // the side the camera sees
+  }
   return best;
 }
 
@@ -41,13 +53,13 @@ float mesh_hit(const Ray& ray, const scene::Mesh& mesh, float nearest) {
 
 std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::View& view, glm::vec2 pixel) {
   const Ray ray = pixel_ray(view, pixel);
-  float nearest = kNoHit;
+  MeshHit nearest;
   const scene::Mesh* hit_mesh = nullptr;
   for (const scene::Mesh& mesh : scene.meshes) {
-    const float t = mesh_hit(ray, mesh, nearest);
-    if (t < nearest) nearest = t, hit_mesh = &mesh;
+    const MeshHit hit = mesh_hit(ray, mesh, nearest.t);
+    if (hit.t < nearest.t) nearest = hit, hit_mesh = &mesh;
   }
-  if (hit_mesh) return PickedPoint{ray.origin + nearest * ray.direction, "mesh '" + hit_mesh->name + "'"};
+  if (hit_mesh) return PickedPoint{ray.origin + nearest.t * ray.direction, "mesh '" + hit_mesh->name + "'", nearest.normal};
 
   for (const scene::Volume& volume : scene.volumes) {
     const auto [enter, leave] = scene::ray_span(volume.world_bounds, ray.origin, ray.direction);
@@ -57,5 +69,5 @@ std::optional<PickedPoint> pick_point(const scene::Scene& scene, const passes::V
   return std::nullopt;
 }
 
-}  // namespace avsm::viewer
+}  // namespace avsm::renderer
 
