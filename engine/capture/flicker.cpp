@@ -72,6 +72,8 @@ FlickerReport FlickerMeter::report() const {
       light.mean = std::accumulate(sorted.begin(), sorted.end(), 0.0) / double(sorted.size());
       light.p95 = sorted[std::min(sorted.size() - 1, std::size_t(0.95 * double(sorted.size())))];
       light.max = sorted.back();
+      const auto pops = sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), 0.1f);
+      light.share_over_tenth = double(pops) / double(sorted.size());
     }
     report.lights.push_back(light);
   }
@@ -81,7 +83,8 @@ FlickerReport FlickerMeter::report() const {
 nlohmann::json to_json(const FlickerReport& report) {
   nlohmann::json lights = nlohmann::json::array();
   for (const LightFlicker& light : report.lights)
-    lights.push_back({{"light", light.light}, {"mean_abs_dt", light.mean}, {"p95_abs_dt", light.p95}, {"max_abs_dt", light.max}});
+    lights.push_back({{"light", light.light}, {"mean_abs_dt", light.mean}, {"p95_abs_dt", light.p95}, {"max_abs_dt", light.max},
+                      {"share_over_0_1", light.share_over_tenth}});
   return {{"points", report.points}, {"frame_pairs", report.frame_pairs}, {"mean_delta_l", report.mean_delta_l},
           {"lights", lights}};
 }

@@ -33,6 +33,7 @@ FlickerProbes flicker_probes(const scene::Scene& scene, const passes::View& view
 struct LightFlicker {
   std::string light;
   double mean = 0.0, p95 = 0.0, max = 0.0;  // |ΔT| over points and frame pairs
+  double share_over_tenth = 0.0;            // of those, the share above 0.1: a visible pop, not shimmer
 };
 
 struct FlickerReport {

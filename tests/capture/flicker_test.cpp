@@ -23,6 +23,7 @@ TEST(FlickerMeter, MeasuresChangesAfterTheFirstFrame) {
   EXPECT_DOUBLE_EQ(report.lights[0].mean, 0.5 / 4.0);
   EXPECT_DOUBLE_EQ(report.lights[0].max, 0.5);
   EXPECT_DOUBLE_EQ(report.lights[1].mean, 1.0 / 4.0);
+  EXPECT_DOUBLE_EQ(report.lights[0].share_over_tenth, 1.0 / 4.0);
   // ΔL: (0.75 x 0.5 + 0.25 x 1) over 2 points x 2 pairs.
   EXPECT_DOUBLE_EQ(report.mean_delta_l, (0.75 * 0.5 + 0.25 * 1.0) / 4.0);
   EXPECT_THROW(meter.add_frame({{1.0f, 1.0f}}), std::invalid_argument);
