@@ -550,7 +550,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     frame.finish_frame(slot.index);
     const uint32_t index = slot_frame[slot.index];
     last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
-    if (flicker && !shot && index < options.frames) flicker->add_frame(frame.probe_results());
+    if (flicker && !shot && index < options.frames) flicker->add_frame(frame.probe_results(), last_loss.lost);
     // Left out of the timings: the first of repeated frames, or a shot's first frame.
     const bool warm_up = shot ? shot->frames.size() == 1 : index == 0 && options.frames > 1;
     const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), frame.shadows().frame_stats(),
@@ -639,8 +639,8 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     const FlickerReport figures = flicker->report();
     write_json(options.out_dir / "flicker.json", to_json(figures));
     if (options.progress)
-      std::fprintf(stderr, "flicker: mean dL %.5f over %u points and %u frame pairs\n", figures.mean_delta_l,
-                   figures.points, figures.frame_pairs);
+      std::fprintf(stderr, "flicker: mean dL %.5f over %u points and %u frame pairs (%u unfinished frames left out)\n",
+                   figures.mean_delta_l, figures.points, figures.frame_pairs, figures.unfinished_frames);
   }
   if (!probe_points.empty()) {
     report.probes = probe_report(scene, probe_points, frame.probe_results());

@@ -38,12 +38,14 @@ FlickerMeter::FlickerMeter(std::vector<std::string> lights, std::vector<double> 
   if (shares_.size() != lights_.size()) throw std::invalid_argument("FlickerMeter: one share per light");
 }
 
-void FlickerMeter::add_frame(const std::vector<std::vector<float>>& transmittance) {
+void FlickerMeter::add_frame(const std::vector<std::vector<float>>& transmittance, bool unfinished) {
   if (transmittance.size() != lights_.size())
     throw std::invalid_argument("FlickerMeter: " + std::to_string(transmittance.size()) + " lights' probes for " +
                                 std::to_string(lights_.size()) + " lights");
   // The first frame is kept apart (a paged map may still be building its pages there).
-  if (++frames_ > 2) {
+  if (unfinished) ++unfinished_;
+  if (++frames_ > 2 && !unfinished && !previous_unfinished_) {
+    ++pairs_;
     const std::size_t points = transmittance.empty() ? 0 : transmittance[0].size();
     for (std::size_t p = 0; p < points; ++p) {
       double delta_l = 0.0;
@@ -56,12 +58,14 @@ void FlickerMeter::add_frame(const std::vector<std::vector<float>>& transmittanc
     }
   }
   previous_ = transmittance;
+  previous_unfinished_ = unfinished;
 }
 
 FlickerReport FlickerMeter::report() const {
   FlickerReport report;
   report.points = previous_.empty() ? 0 : uint32_t(previous_[0].size());
-  report.frame_pairs = frames_ > 2 ? frames_ - 2 : 0;
+  report.frame_pairs = pairs_;
+  report.unfinished_frames = unfinished_;
   if (!delta_l_.empty())
     report.mean_delta_l = std::accumulate(delta_l_.begin(), delta_l_.end(), 0.0) / double(delta_l_.size());
   for (std::size_t l = 0; l < lights_.size(); ++l) {
@@ -85,7 +89,8 @@ nlohmann::json to_json(const FlickerReport& report) {
   for (const LightFlicker& light : report.lights)
     lights.push_back({{"light", light.light}, {"mean_abs_dt", light.mean}, {"p95_abs_dt", light.p95}, {"max_abs_dt", light.max},
                       {"share_over_0_1", light.share_over_tenth}});
-  return {{"points", report.points}, {"frame_pairs", report.frame_pairs}, {"mean_delta_l", report.mean_delta_l},
+  return {{"points", report.points}, {"frame_pairs", report.frame_pairs},
+          {"unfinished_frames_left_out", report.unfinished_frames}, {"mean_delta_l", report.mean_delta_l},
           {"lights", lights}};
 }
 

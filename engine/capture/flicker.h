@@ -39,6 +39,7 @@ struct LightFlicker {
 struct FlickerReport {
   uint32_t points = 0;
   uint32_t frame_pairs = 0;  // consecutive pairs measured (after the first frame)
+  uint32_t unfinished_frames = 0;  // left out, with the pairs they are in (see FlickerMeter::add_frame)
   double mean_delta_l = 0.0;  // mean over points and pairs of sum over lights of |ΔT| x the light's share
   std::vector<LightFlicker> lights;
 };
@@ -47,14 +48,17 @@ class FlickerMeter {
  public:
   // `shares`: each light's share of the scene's light (summing to 1).
   FlickerMeter(std::vector<std::string> lights, std::vector<double> shares);
-  // One frame's transmittance, [light][point] (SceneRenderer::probe_results()).
-  void add_frame(const std::vector<std::vector<float>>& transmittance);
+  // One frame's transmittance, [light][point] (SceneRenderer::probe_results()). An
+  // `unfinished` frame (its maps dropped what did not fit: lighter shadows, and larger
+  // buffers the next frame) is wrong for a known reason: its changes are left out, and counted.
+  void add_frame(const std::vector<std::vector<float>>& transmittance, bool unfinished = false);
   FlickerReport report() const;
 
  private:
   std::vector<std::string> lights_;
   std::vector<double> shares_;
-  uint32_t frames_ = 0;
+  uint32_t frames_ = 0, pairs_ = 0, unfinished_ = 0;
+  bool previous_unfinished_ = false;
   std::vector<std::vector<float>> previous_;
   std::vector<std::vector<float>> changes_;  // per light, every |ΔT|
   std::vector<double> delta_l_;              // per point and pair

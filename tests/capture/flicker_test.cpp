@@ -27,6 +27,14 @@ TEST(FlickerMeter, MeasuresChangesAfterTheFirstFrame) {
   // ΔL: (0.75 x 0.5 + 0.25 x 1) over 2 points x 2 pairs.
   EXPECT_DOUBLE_EQ(report.mean_delta_l, (0.75 * 0.5 + 0.25 * 1.0) / 4.0);
   EXPECT_THROW(meter.add_frame({{1.0f, 1.0f}}), std::invalid_argument);
+
+  // An unfinished frame's changes, to it and from it, are left out.
+  meter.add_frame({{0.0f, 0.0f}, {0.0f, 0.0f}}, /*unfinished=*/true);
+  meter.add_frame({{1.0f, 0.5f}, {0.0f, 1.0f}});
+  EXPECT_EQ(meter.report().frame_pairs, 2u);
+  EXPECT_EQ(meter.report().unfinished_frames, 1u);
+  meter.add_frame({{1.0f, 0.5f}, {0.0f, 1.0f}});
+  EXPECT_EQ(meter.report().frame_pairs, 3u);
 }
 
 TEST(FlickerProbes, PointsUnderAGridOfPixelsFaceTheCamera) {
