@@ -171,6 +171,9 @@ ProbeReport probe_report(const scene::Scene& scene, const std::vector<glm::vec3>
 struct ShadowLoss {
   bool lost = false, grew = false, settling = false;
   bool building_pages = false;  // the frame built pages (under a page budget: progress)
+  // Some map dropped what did not fit (capture lists, a deep shadow map's pool): lighter
+  // shadows this frame. Pages still pending are not (their coarser fallback is the frame's own).
+  bool dropped = false;
 };
 
 // --light-orbit: every light of `scene` turned by `radians` about the vertical axis
@@ -191,6 +194,8 @@ ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t ind
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
     loss.settling = loss.settling || (light.pages && light.pages->settling);
     loss.building_pages = loss.building_pages || (light.pages && light.pages->built > 0);
+    loss.dropped = loss.dropped || light.overflowed ||
+                   (light.dsm_pool && (light.dsm_pool->overflowed || light.dsm_pool->build_cut_short));
     if (!light.lost_shadowing()) continue;
     loss.lost = true;
     loss.grew = loss.grew || light.grew;
@@ -550,7 +555,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     frame.finish_frame(slot.index);
     const uint32_t index = slot_frame[slot.index];
     last_loss = report_shadow_loss(frame, std::min(index, options.frames - 1), overflowed_frames);
-    if (flicker && !shot && index < options.frames) flicker->add_frame(frame.probe_results(), last_loss.lost);
+    if (flicker && !shot && index < options.frames) flicker->add_frame(frame.probe_results(), last_loss.dropped);
     // Left out of the timings: the first of repeated frames, or a shot's first frame.
     const bool warm_up = shot ? shot->frames.size() == 1 : index == 0 && options.frames > 1;
     const double wall = timing_log.add_frame(clock, slot.executor->read_timings(), frame.shadows().frame_stats(),

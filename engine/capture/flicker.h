@@ -50,7 +50,9 @@ class FlickerMeter {
   FlickerMeter(std::vector<std::string> lights, std::vector<double> shares);
   // One frame's transmittance, [light][point] (SceneRenderer::probe_results()). An
   // `unfinished` frame (its maps dropped what did not fit: lighter shadows, and larger
-  // buffers the next frame) is wrong for a known reason: its changes are left out, and counted.
+  // buffers the next frame) is wrong for a known reason: its changes are left out, and
+  // counted. Paged maps' pages still pending are not that: the coarser level a lookup falls
+  // back to meanwhile is exactly what flickers.
   void add_frame(const std::vector<std::vector<float>>& transmittance, bool unfinished = false);
   FlickerReport report() const;
 
