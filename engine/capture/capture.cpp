@@ -194,8 +194,7 @@ ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t ind
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
     loss.settling = loss.settling || (light.pages && light.pages->settling);
     loss.building_pages = loss.building_pages || (light.pages && light.pages->built > 0);
-    loss.dropped = loss.dropped || light.overflowed ||
-                   (light.dsm_pool && (light.dsm_pool->overflowed || light.dsm_pool->build_cut_short));
+    loss.dropped = loss.dropped || light.dropped_shadowing();
     if (!light.lost_shadowing()) continue;
     loss.lost = true;
     loss.grew = loss.grew || light.grew;

@@ -152,7 +152,7 @@ void LiveRenderer::set_time(float time, bool wait_for_sequences) {
     show_sequence_frames(wait_for_sequences);
   } catch (const scene::LoadError& e) {  // waited for a frame that cannot be read: it keeps the last
     sequence_error_ = ReloadError{e.file(), 0, e.what()};
-    error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_;
+    update_error();
   }
   if (edited_.animation.empty()) return;
   edited_.animation.pose(edited_, time);
@@ -160,6 +160,8 @@ void LiveRenderer::set_time(float time, bool wait_for_sequences) {
     renderer_->place_light(uint32_t(light), edited_.lights[light].position, edited_.lights[light].direction);
   for (std::size_t mesh : edited_.animation.moving_meshes()) renderer_->update_mesh(uint32_t(mesh), edited_.meshes[mesh]);
 }
+
+void LiveRenderer::update_error() { error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_; }
 
 LiveRenderer::~LiveRenderer() {
   if (renderer_) vkDeviceWaitIdle(ctx_.device());
@@ -218,7 +220,7 @@ PollResult LiveRenderer::poll(Clock::time_point now) {
   if (files_dirty_ || edits_dirty_) reload_scene(files_dirty_, now, result);
   if (!shader_changes.empty()) reload_shaders(now, result);
   result.sequence_frames = show_sequence_frames(/*wait=*/false);  // frames read since the last poll
-  error_ = shader_error_ ? shader_error_ : scene_error_ ? scene_error_ : sequence_error_;
+  update_error();
   result.waiting = scene_files_.busy() || shader_files_.busy();
   return result;
 }

@@ -139,6 +139,7 @@ class LiveRenderer {
   // Hands the renderer the sequence frames of the current time that are ready (`wait`: waits for them).
   // Returns whether it handed any.
   bool show_sequence_frames(bool wait);
+  void update_error();  // error_ from the three below
   scene::Scene loaded_, edited_;
   std::function<void(scene::Scene&)> edit_;
   float time_ = 0.0f;

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -135,6 +136,11 @@ struct Volume {
   float sky_light = 1.0f;
 
   float max_extinction() const { return extinction_scale * stats.max; }
+  // The shortest voxel edge in scene world units: the marches step by fractions of it.
+  float smallest_voxel_edge() const {
+    const glm::mat3 linear(world_from_index);
+    return std::min({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+  }
 };
 
 struct VolumeOptions {

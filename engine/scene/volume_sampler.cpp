@@ -41,11 +41,6 @@ bool clip_to_support(const Volume& volume, const glm::vec3& a, const glm::vec3& 
   return t0 < t1;
 }
 
-float smallest_voxel_size(const Volume& volume) {
-  const glm::mat3 linear(volume.world_from_index);
-  return std::min({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
-}
-
 bool in_empty_brick(const MajorantGrid& majorant, const glm::vec3& index) {
   const glm::ivec3 brick = glm::ivec3(glm::floor((index - glm::vec3(majorant.index_origin)) / float(majorant.brick_size)));
   if (glm::any(glm::lessThan(brick, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(brick, majorant.dims))) return true;
@@ -71,7 +66,7 @@ float optical_depth(const Volume& volume, const glm::vec3& from, const glm::vec3
   float t0, t1;
   if (!clip_to_support(volume, a, b, t0, t1)) return 0.0f;
 
-  if (!(step > 0.0f)) step = 0.25f * smallest_voxel_size(volume);
+  if (!(step > 0.0f)) step = 0.25f * volume.smallest_voxel_edge();
   constexpr double kMaxSteps = 1 << 24;  // bounds the work for absurd inputs
   const auto steps = static_cast<std::uint32_t>(std::clamp(std::ceil(double(length) * (t1 - t0) / step), 1.0, kMaxSteps));
   const float dt = (t1 - t0) / float(steps);

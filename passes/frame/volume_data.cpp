@@ -20,16 +20,10 @@ namespace {
 constexpr size_t kGridAlignment = 32;
 // PNanoVDB in GLSL addresses its buffer with 32-bit byte offsets.
 constexpr uint64_t kMaxGridBytes = uint64_t(std::numeric_limits<uint32_t>::max()) + 1;
-// The march's step, as a fraction of the smallest voxel edge (VolumePass::kStepInVoxels).
-constexpr float kStepInVoxels = 0.25f;
-
-std::string label(const scene::Volume& volume, size_t index) {
-  return "volume " + std::to_string(index) + (volume.name.empty() ? "" : " '" + volume.name + "'");
-}
 
 // The GPU reads the bytes as a NanoVDB float grid through PNanoVDB, which trusts them.
 void check_grid(const scene::Volume& volume, size_t index) {
-  const std::string who = label(volume, index);
+  const std::string who = volume_label(volume, index);
   if (volume.nanovdb.size() < sizeof(nanovdb::GridData))
     throw std::invalid_argument("VolumePass: " + who + " has no NanoVDB grid (" +
                                 std::to_string(volume.nanovdb.size()) + " bytes)");
@@ -47,7 +41,7 @@ void check_majorant(const scene::Volume& volume, size_t index) {
   const scene::MajorantGrid& m = volume.majorant;
   const uint64_t bricks = uint64_t(std::max(m.dims.x, 0)) * uint64_t(std::max(m.dims.y, 0)) * uint64_t(std::max(m.dims.z, 0));
   if (bricks == 0 || m.brick_size < 1 || bricks != m.max_density.size())
-    throw std::invalid_argument("VolumePass: " + label(volume, index) + " has a malformed majorant grid (" +
+    throw std::invalid_argument("VolumePass: " + volume_label(volume, index) + " has a malformed majorant grid (" +
                                 std::to_string(m.max_density.size()) + " values for " + std::to_string(m.dims.x) +
                                 "x" + std::to_string(m.dims.y) + "x" + std::to_string(m.dims.z) + " bricks of " +
                                 std::to_string(m.brick_size) + ")");
@@ -58,13 +52,8 @@ void check_optics(const scene::Volume& volume, size_t index) {
                   glm::all(glm::greaterThanEqual(volume.albedo, glm::vec3(0.0f))) &&
                   glm::all(glm::lessThanEqual(volume.albedo, glm::vec3(1.0f)));
   if (!ok)
-    throw std::invalid_argument("VolumePass: " + label(volume, index) +
+    throw std::invalid_argument("VolumePass: " + volume_label(volume, index) +
                                 " needs a finite extinction scale >= 0 and an albedo in [0, 1]");
-}
-
-float smallest_voxel_edge(const scene::Volume& volume) {
-  const glm::mat3 linear(volume.world_from_index);
-  return std::min({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
 }
 
 // The parameter block without its offsets into the shared buffers (pack_volumes sets them).
@@ -74,13 +63,13 @@ GpuVolume to_gpu(const scene::Volume& volume) {
   // The trilinear support reaches one voxel beyond the active voxels (as in scene::optical_depth).
   gpu.support_min = glm::vec3(volume.active_index_min - 1);
   gpu.support_max = glm::vec3(volume.active_index_max + 1);
-  gpu.step_length = kStepInVoxels * smallest_voxel_edge(volume);
+  gpu.step_length = kMarchStepInVoxels * volume.smallest_voxel_edge();
   gpu.extinction_scale = volume.extinction_scale;
   gpu.albedo = volume.albedo;
   gpu.majorant_origin = volume.majorant.index_origin;
   gpu.brick_size = volume.majorant.brick_size;
   gpu.majorant_dims = volume.majorant.dims;
-  gpu.voxel_size = smallest_voxel_edge(volume);
+  gpu.voxel_size = volume.smallest_voxel_edge();
   gpu.octaves = uint32_t(std::clamp(volume.multiple_scattering.octaves, 1, 8));
   gpu.octave_attenuation = volume.multiple_scattering.attenuation;
   gpu.octave_contribution = volume.multiple_scattering.contribution;
@@ -142,6 +131,10 @@ AtlasRegion atlas_region(const scene::Volume& volume, uint32_t max_texels) {
 
 }  // namespace
 
+std::string volume_label(const scene::Volume& volume, std::size_t index) {
+  return "volume " + std::to_string(index) + (volume.name.empty() ? "" : " '" + volume.name + "'");
+}
+
 PreparedVolume prepare_volume(std::shared_ptr<const scene::Volume> volume, std::size_t index, uint32_t max_3d_texels) {
   check_grid(*volume, index);
   check_majorant(*volume, index);
@@ -151,9 +144,6 @@ PreparedVolume prepare_volume(std::shared_ptr<const scene::Volume> volume, std::
   // The sky's light and the octaves' escape chance read it.
   if (volume->sky_light > 0.0f || volume->multiple_scattering.octaves > 1) part.sky = scene::sky_lighting(*volume);
   part.atlas = atlas_region(*volume, max_3d_texels);
-  part.support_min = glm::vec3(volume->active_index_min - 1);
-  part.support_max = glm::vec3(volume->active_index_max + 1);
-  part.voxel_size = smallest_voxel_edge(*volume);
   part.volume = std::move(volume);
   return part;
 }
@@ -166,7 +156,7 @@ PackedVolumes pack_volumes(const std::vector<std::shared_ptr<const PreparedVolum
     const scene::Volume& volume = *part.volume;
     const size_t grid_offset = (packed.grids.size() + kGridAlignment - 1) / kGridAlignment * kGridAlignment;
     if (grid_offset + volume.nanovdb.size() > kMaxGridBytes)
-      throw std::invalid_argument("VolumePass: " + label(volume, i) +
+      throw std::invalid_argument("VolumePass: " + volume_label(volume, i) +
                                   " does not fit: all NanoVDB grids together must stay under 4 GiB");
     packed.grids.resize(grid_offset + volume.nanovdb.size());
     std::memcpy(packed.grids.data() + grid_offset, volume.nanovdb.data(), volume.nanovdb.size());
@@ -184,7 +174,7 @@ PackedVolumes pack_volumes(const std::vector<std::shared_ptr<const PreparedVolum
                                    std::max(packed.atlas_size.y, part.atlas.texel_size.y),
                                    packed.atlas_size.z + part.atlas.texel_size.z);
     if (uint32_t(packed.atlas_size.z) > max_3d_texels)
-      throw std::invalid_argument("VolumePass: " + label(volume, i) +
+      throw std::invalid_argument("VolumePass: " + volume_label(volume, i) +
                                   " does not fit the density atlas: the volumes' non-empty bricks need " +
                                   std::to_string(packed.atlas_size.z) +
                                   " texel slices, more than this device's 3D image limit of " +

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "scene/volume.h"
@@ -38,9 +39,14 @@ struct PreparedVolume {
   GpuVolume parameters{};   // offsets and atlas placement left for pack_volumes()
   std::vector<float> sky;   // its sky lighting grid, empty when it needs none
   AtlasRegion atlas;
-  glm::vec3 support_min{0.0f}, support_max{0.0f};  // index space
-  float voxel_size = 1.0f;  // smallest voxel edge, world units
 };
+
+// Sample spacing of the reference march, as a fraction of the volume's smallest voxel
+// edge (GpuVolume::step_length; VolumePass::kStepInVoxels).
+inline constexpr float kMarchStepInVoxels = 0.25f;
+
+// "volume 2 'smoke'": how messages name a volume.
+std::string volume_label(const scene::Volume& volume, std::size_t index);
 
 // Checks `volume` (a usable NanoVDB float grid, a well-formed majorant grid, optics in
 // range) and makes its parts. `index` names it in messages. `max_3d_texels` is the

@@ -64,13 +64,14 @@ struct LightShadowStats {
   // the frame, so not in memory.json.
   bool grew = false;
 
-  // Some of the frame's shadowing was lost: capture segments or pool nodes did not fit,
-  // a deep shadow map's build did not finish, or receivers read coarser pages than they
-  // asked for.
-  bool lost_shadowing() const {
-    return overflowed || (dsm_pool && (dsm_pool->overflowed || dsm_pool->build_cut_short)) ||
-           (pages && pages->pending > 0);
+  // Some of the frame's shadowing was dropped: capture segments or pool nodes did not fit,
+  // or a deep shadow map's build did not finish (lighter shadows this frame).
+  bool dropped_shadowing() const {
+    return overflowed || (dsm_pool && (dsm_pool->overflowed || dsm_pool->build_cut_short));
   }
+  // Some of the frame's shadowing was lost: dropped, or receivers read coarser pages than
+  // they asked for.
+  bool lost_shadowing() const { return dropped_shadowing() || (pages && pages->pending > 0); }
   bool operator==(const LightShadowStats&) const = default;
 };
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gpu/barriers.h"
 #include "gpu/context.h"
@@ -67,8 +68,7 @@ gpu::Buffer device_buffer(const gpu::Context& ctx, VkDeviceSize bytes, const cha
 std::string grid_sizes(const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
   std::string sizes = "the scene's volumes: fewer, or smaller NanoVDB grids (";
   for (size_t i = 0; i < parts.size(); ++i)
-    sizes += std::string(i ? ", " : "") + "volume " + std::to_string(i) + " '" + parts[i]->volume->name + "' " +
-             gpu::format_mib(parts[i]->volume->nanovdb.size());
+    sizes += (i ? ", " : "") + volume_label(*parts[i]->volume, i) + " " + gpu::format_mib(parts[i]->volume->nanovdb.size());
   return sizes + ")";
 }
 
@@ -124,10 +124,10 @@ bool VolumePass::fits(const PackedVolumes& packed) const {
 }
 
 void VolumePass::upload_now(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
-  Upload upload = stage(packed, parts, staging_now_);
+  gpu::Buffer staging;  // only streaming keeps staging memory
+  const Upload upload = stage(packed, parts, staging);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) { record_upload(cmd, upload); });
-  staging_now_ = gpu::Buffer();  // only streaming keeps staging memory
-  describe(parts, packed.parameters.size() * sizeof(GpuVolume));
+  describe(parts);
 }
 
 VolumePass::Upload VolumePass::stage(const PackedVolumes& packed, const std::vector<std::shared_ptr<const PreparedVolume>>& parts,
@@ -144,7 +144,7 @@ VolumePass::Upload VolumePass::stage(const PackedVolumes& packed, const std::vec
                    {parameters_.handle(), {layout.parameters, 0, packed.parameters.size() * sizeof(GpuVolume)}},
                    {atlas_.slots().handle(), {layout.slots, 0, packed.slots.size() * sizeof(uint32_t)}}};
   upload.atlas = atlas_copies(parts, packed, layout.atlas);
-  upload.bytes = layout.end;
+  upload.parts = parts;
   return upload;
 }
 
@@ -199,34 +199,28 @@ void VolumePass::stream(std::vector<std::shared_ptr<const PreparedVolume>> parts
     ++stream_stats_.reallocations;
   } else {
     pending_[slot] = stage(packed, parts, staging_[slot]);
-    pending_packed_parameters_[slot] = packed.parameters.size() * sizeof(GpuVolume);
-    pending_parts_[slot] = parts;
   }
-  stream_stats_.bytes += packed.grids.size() + packed.brick_grids.size() * sizeof(float);
   ++stream_stats_.frames;
   parts_ = std::move(parts);
 }
 
 void VolumePass::add_upload(rg::Graph& graph, uint32_t slot) {
   if (slot >= pending_.size() || pending_[slot].staging == VK_NULL_HANDLE) return;
-  Upload upload = std::move(pending_[slot]);
-  pending_[slot] = {};
+  Upload upload = std::exchange(pending_[slot], {});
   // The CPU-side description follows what the GPU holds from this frame on.
-  describe(pending_parts_[slot], pending_packed_parameters_[slot]);
-  pending_parts_[slot].clear();
+  describe(upload.parts);
   graph.add_pass("volume upload", rg::QueueType::Transfer, [](rg::PassBuilder& b) { b.side_effect(); },
                  [this, upload = std::move(upload)](rg::PassContext& c) { record_upload(c.cmd(), upload); });
 }
 
-void VolumePass::describe(const std::vector<std::shared_ptr<const PreparedVolume>>& parts, VkDeviceSize parameter_bytes) {
+void VolumePass::describe(const std::vector<std::shared_ptr<const PreparedVolume>>& parts) {
   boxes_.clear();
   for (const auto& part : parts) {
     const scene::Volume& volume = *part->volume;
-    boxes_.push_back({volume.world_from_index, part->support_min, part->support_max, part->voxel_size,
-                      volume.majorant.brick_size, volume.world_bounds, volume.lighting_cache_downsample,
-                      volume.lighting_cache});
+    const GpuVolume& gpu = part->parameters;
+    boxes_.push_back({volume.world_from_index, gpu.support_min, gpu.support_max, gpu.voxel_size, gpu.brick_size,
+                      volume.world_bounds, volume.lighting_cache_downsample, volume.lighting_cache});
   }
-  parameter_bytes_ = parameter_bytes;
   volume_count_ = uint32_t(parts.size());
 }
 
@@ -242,7 +236,7 @@ void bind_volumes(gpu::Bindings& bindings, const VolumeCasters& volumes, bool wi
 VolumeCasters VolumePass::casters() const {
   const VkBuffer none = placeholder_.handle();
   if (volume_count_ == 0) return {none, none, none, 0, 0, atlas_.view(), atlas_.sampler(), atlas_.slots().handle()};
-  return {grids_.handle(), brick_grids_.handle(), parameters_.handle(), parameter_bytes_, volume_count_,
+  return {grids_.handle(), brick_grids_.handle(), parameters_.handle(), volume_count_ * sizeof(GpuVolume), volume_count_,
           atlas_.view(),   atlas_.sampler(),    atlas_.slots().handle()};
 }
 

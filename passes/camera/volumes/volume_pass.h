@@ -76,7 +76,7 @@ class VolumePass {
   // Sample spacing as a fraction of the volume's smallest voxel edge: the same spacing
   // as the CPU reference (scene::optical_depth), fine enough that the midpoint rule
   // agrees with it to well under 1% on real smoke.
-  static constexpr float kStepInVoxels = 0.25f;
+  static constexpr float kStepInVoxels = kMarchStepInVoxels;
 
   VolumePass(gpu::Context& ctx, const gpu::ShaderLibrary& shaders);
 
@@ -101,7 +101,6 @@ class VolumePass {
   void add_upload(rg::Graph& graph, uint32_t slot);
   struct StreamStats {
     uint64_t frames = 0;         // stream() calls
-    uint64_t bytes = 0;          // grid and brick bytes streamed
     uint64_t reallocations = 0;  // of those, the ones that made the buffers anew
   };
   const StreamStats& stream_stats() const { return stream_stats_; }
@@ -132,14 +131,14 @@ class VolumePass {
 
  private:
   static void check_targets(const rg::Graph& graph, rg::TextureHandle color, rg::TextureHandle depth);
-  // A staged packing: the staging buffer and what to copy from it where.
+  using Parts = std::vector<std::shared_ptr<const PreparedVolume>>;
+  // A staged packing: the staging buffer, what to copy from it where, and the volumes it holds.
   struct Upload {
     VkBuffer staging = VK_NULL_HANDLE;
     std::vector<std::pair<VkBuffer, VkBufferCopy>> copies;
     std::vector<VkBufferImageCopy> atlas;
-    VkDeviceSize bytes = 0;
+    Parts parts;
   };
-  using Parts = std::vector<std::shared_ptr<const PreparedVolume>>;
   // Makes the buffers and atlas for `packed`, `headroom` times its sizes.
   void allocate(const PackedVolumes& packed, const Parts& parts, double headroom);
   bool fits(const PackedVolumes& packed) const;
@@ -147,7 +146,7 @@ class VolumePass {
   void upload_now(const PackedVolumes& packed, const Parts& parts);  // waits for the copies
   void record_upload(VkCommandBuffer cmd, const Upload& upload);
   // The CPU's description of what the GPU holds (boxes, count) from now on.
-  void describe(const Parts& parts, VkDeviceSize parameter_bytes);
+  void describe(const Parts& parts);
   void record(rg::PassContext& c, rg::TextureHandle color, rg::TextureHandle depth, const View& view,
               const gpu::Buffer& lights, uint32_t light_count, const ShadowInputs& shadows, const FogInputs& fog,
               rg::BufferHandle page_requests, bool majorant_skipping) const;
@@ -163,13 +162,9 @@ class VolumePass {
   bool atlas_initialized_ = false;  // in kLayout since its last upload
   std::vector<VolumeBox> boxes_;
   uint32_t volume_count_ = 0;
-  VkDeviceSize parameter_bytes_ = 0;
   Parts parts_;  // as last set or streamed
-  gpu::Buffer staging_now_;
   std::array<gpu::Buffer, kMaxFramesInFlight> staging_;  // per frame slot
   std::array<Upload, kMaxFramesInFlight> pending_;
-  std::array<Parts, kMaxFramesInFlight> pending_parts_;
-  std::array<VkDeviceSize, kMaxFramesInFlight> pending_packed_parameters_{};
   StreamStats stream_stats_;
   bool majorant_skipping_ = true;
 };
