@@ -153,25 +153,33 @@ def measured_rows(tool, scene, work, args, rows, tag):
 def print_resolution(tool, scene, work, args):
     paged = configs(args)[3][1]
     rows = [("dense 256 gaussian r2", []), ("paged, 32 MiB pools", paged),
-            ("paged, 56 MiB pools", paged + ["--page-pool-mib", "56"])]
+            ("paged, 56 MiB pools", paged + ["--page-pool-mib", "56"]),
+            ("paged, 56 MiB of 32^2", paged + ["--page-pool-mib", "56", "--page-size", "32"])]
     print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
-          f"= the widest a texel of the level read is on screen (pixels); resident texels over lit receiver pixels "
-          f"summed over the lights")
-    print(f"{MATCH_HEADER}{'resident/lit':>14}   per light: matched, median px, LOD bias, pages asked / resident "
-          f"of slots")
+          f"= the widest a texel of the level read is on screen (pixels); texels over lit receiver pixels summed "
+          f"over the lights: resident (the pool, with pages kept from earlier frames), asked for (the frame's "
+          f"pages), and needed (the least any map of square texels spends meeting the target: each receiver "
+          f"pixel's area in the map over a texel just 1.5 px wide at its widest there)")
+    print(f"{MATCH_HEADER}{'resident':>10}{'asked':>7}{'needed':>8}   per light: matched, median px, LOD bias, "
+          f"pages asked / resident of slots")
     for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
         lights = resolution["lights"]
         receivers = resolution["receivers"]
-        page_texels = args.page_size * args.page_size
-        resident = sum(p["resident"] for p in pages) * page_texels
-        ratio = f"{resident / receivers:>14.2f}" if pages and receivers else f"{'-':>14}"
+        page_texels = (32 if "32^2" in name else args.page_size) ** 2
+
+        def per_lit(texels):
+            return f"{texels / receivers:.2f}" if pages and receivers else "-"
+        resident = per_lit(sum(p["resident"] for p in pages) * page_texels)
+        asked = per_lit(sum(p["requested"] for p in pages) * page_texels)
+        needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
         per_light = "  ".join(
             f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
             + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
             for l, p in zip(lights, pages or [None] * len(lights)))
         median = statistics.median(l['median_texel_pixels'] for l in lights)
         p95 = max(l['p95_texel_pixels'] for l in lights)
-        print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{ratio}   {per_light}")
+        print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{resident:>10}{asked:>7}{needed:>8}"
+              f"   {per_light}")
     print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels")
 
 

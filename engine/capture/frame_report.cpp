@@ -557,6 +557,7 @@ json to_json(const LightResolution& r, size_t index) {
       {"matched_fraction", r.matched_fraction()},
       {"median_texel_pixels", r.median_texel_pixels},
       {"p95_texel_pixels", r.p95_texel_pixels},
+      {"needed_texels", r.needed_texels},
       {"receivers_per_level", r.levels},
       {"image", resolution_image_name(index)},
   };
@@ -570,6 +571,7 @@ LightResolution light_resolution_from_json(const json& in) {
   r.matched = value_of<uint64_t>(in, "matched");
   r.median_texel_pixels = value_of<double>(in, "median_texel_pixels");
   r.p95_texel_pixels = value_of<double>(in, "p95_texel_pixels");
+  r.needed_texels = value_of<double>(in, "needed_texels");
   r.levels = value_of<std::vector<uint64_t>>(in, "receivers_per_level");
   return r;
 }
@@ -582,6 +584,10 @@ json to_json(const ResolutionReport& r) {
        "the widest a texel of the level a surface lookup reads is on screen, in pixels, at each camera pixel's "
        "opaque surface the light reaches (trilinear: the blended level)"},
       {"matched_texel_pixels", kMatchedTexelPixels},
+      {"needed_texels",
+       "per light: the texels a map whose square texels are just matched_texel_pixels wide at every receiver "
+       "would spend on the receivers (each pixel's area in the map over such a texel's): the least any map of "
+       "square texels needs to meet the target, set by how anisotropic the receivers' footprints are"},
       {"image_colours", kResolutionImageColours},
       {"width", r.width},
       {"height", r.height},

@@ -75,6 +75,7 @@ ResolutionReport summarize_resolution(const std::vector<passes::PixelShadowResol
       figures.paged = figures.paged || p.paged != 0;
       figures.receivers += 1;
       figures.matched += p.texel_pixels <= kMatchedTexelPixels ? 1 : 0;
+      figures.needed_texels += double(p.needed_texels);
       figures.levels[std::min(uint32_t(p.level), kResolutionLevels - 1)] += 1;
       widths.push_back(p.texel_pixels);
     }

@@ -15,7 +15,7 @@
 
 namespace avsm::capture {
 
-inline constexpr float kMatchedTexelPixels = 1.5f;
+inline constexpr float kMatchedTexelPixels = shared::kPagedTexelPixels;
 // Receivers are counted per level read, up to this many levels (coarser ones in the last).
 inline constexpr uint32_t kResolutionLevels = 12;
 
@@ -28,6 +28,10 @@ struct LightResolution {
   uint64_t receivers = 0;  // lit receiver pixels (shadow_resolution.comp says which count)
   uint64_t matched = 0;    // of them, those whose texel is at most kMatchedTexelPixels wide
   double median_texel_pixels = 0.0, p95_texel_pixels = 0.0;
+  // The texels a map whose texels just meet kMatchedTexelPixels at every receiver would
+  // spend on them (PixelShadowResolution::needed_texels): the least any square-texel map
+  // needs, which the receivers' anisotropy sets.
+  double needed_texels = 0.0;
   std::vector<uint64_t> levels;  // receivers per level read (rounded down), kResolutionLevels
   double matched_fraction() const { return receivers ? double(matched) / double(receivers) : 0.0; }
 };

@@ -131,17 +131,46 @@ vec2 shadow_map_uv(GpuShadow s, vec3 p) {
   return clip.xy / clip.w * 0.5 + 0.5;
 }
 
-// The level a receiver at p (light depth d) asks for: the one whose texels match a
-// camera pixel's footprint there, moved by the map's bias (and a volume receiver's);
-// fractional (trilinear).
-// (Matching the texel's widest extent on screen instead, from the derivatives of the
-// position, asked for about twice the pages in the default scene, and under the fixed
-// pool the bias that followed made every texel coarser: docs/shadows.md.)
+// The world-space steps of one camera pixel across and down at the receiver, where the
+// pass knows them (a fragment's derivatives, the resolution pass's depth neighbours;
+// look_up_with_pixel_steps()). Zero: unknown. Private to each invocation.
+vec3 shadow_pixel_step_x = vec3(0.0), shadow_pixel_step_y = vec3(0.0);
+void look_up_with_pixel_steps(vec3 step_x, vec3 step_y) {
+  shadow_pixel_step_x = step_x;
+  shadow_pixel_step_y = step_y;
+}
+
+// A surface the light grazes stretches a texel along the light without end: it asks for
+// at most this many levels finer than a texel facing the camera would need.
+const float kPagedStretchLevels = 2.0;
+
+// The smallest singular value of the 2x2 matrix with columns a and b: how short the
+// shortest step of the map uv is for a one-pixel step on screen.
+float shadow_smallest_stretch(vec2 a, vec2 b) {
+  float e = dot(a, a), f = dot(a, b), g = dot(b, b);
+  return sqrt(max(0.5 * (e + g - sqrt((e - g) * (e - g) + 4.0 * f * f)), 0.0));
+}
+
+// The level a receiver at p (light depth d) asks for, moved by the map's bias (and a
+// volume receiver's); fractional (trilinear). A surface whose pixel steps are known asks
+// for the coarsest level whose texels are at most kPagedTexelPixels wide on screen at
+// their widest (a texel the light stretches across the surface counts at its longest,
+// as capture/resolution.h measures): in the default scene at 640x360 that matched 98.8%
+// of the lit receivers, where texels one camera pixel's footprint wide matched 88.8%
+// with 14% fewer pages. Other receivers (hair, smoke, probes) take texels as wide as a
+// camera pixel's footprint at p, facing the camera.
 float shadow_paged_lod(GpuShadow s, vec3 p, float d, uint receiver) {
   float pixel_size = distance(p, s.camera_position.xyz) * s.texel_camera.w;
   float bias = s.page_lod_bias + (receiver == kReceiverVolume ? s.page_volume_lod_bias : 0.0);
-  float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20)) + bias;
-  return clamp(lod, 0.0, float(min(s.mip_count - 1u, s.page_fallback_level)));
+  float lod = log2(max(pixel_size / max(shadow_texel_size(s, d), 1e-20), 1e-20));
+  if (receiver == kReceiverSurface && dot(shadow_pixel_step_x, shadow_pixel_step_x) > 0.0) {
+    vec2 uv = shadow_map_uv(s, p);
+    float stretch = shadow_smallest_stretch(shadow_map_uv(s, p + shadow_pixel_step_x) - uv,
+                                            shadow_map_uv(s, p + shadow_pixel_step_y) - uv);
+    lod = max(log2(max(kPagedTexelPixels * stretch * float(s.resolution), 1e-20)),
+              lod + log2(kPagedTexelPixels) - kPagedStretchLevels);
+  }
+  return clamp(lod + bias, 0.0, float(min(s.mip_count - 1u, s.page_fallback_level)));
 }
 
 // The finest level at or above `level` whose pages hold all four bilinear taps around

@@ -24,6 +24,10 @@ GPU_CONST(uint, kDenseLayout, 0u)
 GPU_CONST(uint, kNoPageRequests, 0xffffffffu)
 // A page-table word: no slot.
 GPU_CONST(uint, kPageAbsent, 0u)
+// How wide a paged map's texels may be on screen, in camera pixels at their widest: a
+// receiver asks for the coarsest level whose texels are no wider (the resolution
+// target of issue 33, which capture/resolution.h measures against).
+GPU_CONST(float, kPagedTexelPixels, 1.5f)
 
 // Levels of a virtual map: from virtual_resolution texels down to one page.
 GPU_FUNCTION uint page_level_count(uint virtual_resolution, uint page_size) {

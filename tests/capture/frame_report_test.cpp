@@ -182,15 +182,16 @@ TEST(FrameReport, QualityRoundTrip) {
 }
 
 // Six pixels of two lights: the summary counts each light's lit receivers, those whose
-// texel is at most 1.5 pixels wide, their median and levels; the file reads back.
+// texel is at most 1.5 pixels wide, their median, levels and needed texels (the pixel
+// without a receiver left out); the file reads back.
 TEST(FrameReport, ResolutionSummaryAndRoundTrip) {
   scene::Scene scene;
   scene.lights.resize(2);
   scene.lights[0].name = "sun";
   using P = passes::PixelShadowResolution;
   const std::vector<P> pixels = {
-      {0.5f, 1.0f, 0, 1}, {-1.0f, 0.0f, 0, 1}, {3.0f, 2.0f, 0, 1},  // light 0: two receivers
-      {0.0f, 1.5f, 1, 0}, {0.0f, 1.6f, 1, 0}, {0.0f, 0.4f, 1, 0},   // light 1: three
+      {0.5f, 1.0f, 2.0f, 0, 1}, {-1.0f, 0.0f, 9.0f, 0, 1}, {3.0f, 2.0f, 0.5f, 0, 1},  // light 0: two receivers
+      {0.0f, 1.5f, 1.0f, 1, 0}, {0.0f, 1.6f, 1.0f, 1, 0}, {0.0f, 0.4f, 1.0f, 1, 0},   // light 1: three
   };
   const ResolutionReport report = summarize_resolution(pixels, 3, 1, scene);
   ASSERT_EQ(report.lights.size(), 2u);
@@ -202,6 +203,7 @@ TEST(FrameReport, ResolutionSummaryAndRoundTrip) {
   EXPECT_EQ(report.lights[0].matched, 1u);
   EXPECT_EQ(report.lights[0].levels[0], 1u);
   EXPECT_EQ(report.lights[0].levels[3], 1u);
+  EXPECT_DOUBLE_EQ(report.lights[0].needed_texels, 2.5);
   EXPECT_EQ(report.lights[1].matched, 2u);  // 1.5 counts, 1.6 does not
   EXPECT_FLOAT_EQ(report.lights[1].median_texel_pixels, 1.5f);
   EXPECT_EQ(report.receivers(), 5u);

@@ -8,7 +8,8 @@
 //  - the widest a texel of that level is on screen, in pixels: the texel's width in
 //    map uv over the smallest singular value of the map uv's screen Jacobian (found
 //    from the neighbouring depth texels, in the same map), so a texel stretched by a
-//    grazing light counts at its longest.
+//    grazing light counts at its longest;
+//  - how many texels a map that just meets the target there would spend on the pixel.
 // Hair and smoke receivers are not measured.
 #extension GL_GOOGLE_include_directive : require
 
@@ -25,13 +26,6 @@ layout(binding = 0) uniform sampler2D depth_texture;
 layout(std430, binding = 1) writeonly buffer Results { PixelShadowResolution results[]; };  // [light * width * height + y * width + x]
 layout(std430, binding = 2) readonly buffer Lights { GpuLight lights[]; };
 
-// The smallest singular value of the 2x2 matrix with columns a and b: how short the
-// shortest step of the map uv is for a one-pixel step on screen.
-float smallest_stretch(vec2 a, vec2 b) {
-  float e = dot(a, a), f = dot(a, b), g = dot(b, b);
-  return sqrt(max(0.5 * (e + g - sqrt((e - g) * (e - g) + 4.0 * f * f)), 0.0));
-}
-
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), pc.image_size))) return;
@@ -45,6 +39,7 @@ void main() {
   vec3 step_x, step_y;
   bool has_steps = has_surface && depth_surface_step(camera, pixel, p, ivec2(1, 0), step_x) &&
                    depth_surface_step(camera, pixel, p, ivec2(0, 1), step_y);
+  look_up_with_pixel_steps(has_steps ? step_x : vec3(0.0), has_steps ? step_y : vec3(0.0));  // as the opaque pass's derivatives
   vec3 normal = has_surface ? depth_surface_normal(camera, pixel, p, to_camera) : to_camera;
 
   for (uint light = 0u; light < pc.light_count; ++light) {
@@ -58,15 +53,19 @@ void main() {
                   s.technique != kShadowNone && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
     ShadowLevels read = shadow_lookup_levels(s, q, uv, shadow_light_depth(s, q), kReceiverSurface);
     float texel_uv = shadow_read_texel_uv(s, read);
-    float stretch = smallest_stretch(shadow_map_uv(s, q + step_x) - uv, shadow_map_uv(s, q + step_y) - uv);
+    vec2 uv_x = shadow_map_uv(s, q + step_x) - uv, uv_y = shadow_map_uv(s, q + step_y) - uv;
+    float stretch = shadow_smallest_stretch(uv_x, uv_y);
+    float matched_texel_uv = kPagedTexelPixels * stretch;
     PixelShadowResolution result;
     result.level = counts ? float(read.first) + (read.count == 2 ? read.blend : 0.0) : -1.0;
     result.texel_pixels = stretch > 0.0 ? texel_uv / stretch : 1e30;
+    result.needed_texels = stretch > 0.0 ? abs(uv_x.x * uv_y.y - uv_x.y * uv_y.x) / (matched_texel_uv * matched_texel_uv) : 0.0;
     result.map = record;
     result.paged = shadow_is_paged(s) ? 1u : 0u;
     uint entry = light * pixel_count + pixel_index;  // member by member: glslang 11 emits an invalid store for the whole struct
     results[entry].level = result.level;
     results[entry].texel_pixels = result.texel_pixels;
+    results[entry].needed_texels = result.needed_texels;
     results[entry].map = result.map;
     results[entry].paged = result.paged;
   }

@@ -57,6 +57,8 @@ vec3 mapped_normal(GpuMaterial m, vec3 n) {
 
 void main() {
   GpuMaterial m = materials[pc.material];
+  // Before any branch: derivatives are defined in uniform control flow only.
+  look_up_with_pixel_steps(dFdx(in_world), dFdy(in_world));
   vec4 albedo = m.base_color;
   if (m.has_texture != 0u) albedo *= texture(base_color_texture, in_uv);
   if (m.alpha_mask != 0u && albedo.a < m.alpha_cutoff) discard;
@@ -99,8 +101,10 @@ void main() {
 #endif
     } else {
       vec3 radiance = light_radiance(lights[i], in_world, to_light);
-      // A light behind the surface itself does not reach it, whatever the normal texture says.
-      if (dot(geometric_n, to_light) <= 0.0 || dot(n, to_light) <= 0.0) continue;
+      // A light behind the surface itself does not reach it, whatever the normal texture says;
+      // nor does a spot outside its cone or a light beyond its range. Neither looks its map
+      // up (nor asks for its pages).
+      if (dot(geometric_n, to_light) <= 0.0 || dot(n, to_light) <= 0.0 || all(equal(radiance, vec3(0.0)))) continue;
       reflected = pbr_direct(surface, n, to_camera, to_light, radiance);
     }
     float t = surface_light_subset_transmittance(i, in_world, geometric_n, to_light, subset_index, subset_size);

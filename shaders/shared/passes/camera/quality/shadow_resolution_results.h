@@ -10,6 +10,9 @@ GPU_NAMESPACE_BEGIN
 #define GPU_PIXEL_SHADOW_RESOLUTION(F, A)                                                                   \
   F(float, level)         /* the level read, with the trilinear blend; < 0: no surface the light reaches */ \
   F(float, texel_pixels)  /* the widest a texel of that level is on screen, in pixels */                    \
+  F(float, needed_texels) /* the pixel's area in the map over a square texel's that is kPagedTexelPixels  \
+                             wide at its widest there: the fewest texels that cover the pixel in any map  \
+                             of square texels that meets the target (whole levels take more) */           \
   F(uint, map)            /* the map record read (a point light's face, a cascade) */                       \
   F(uint, paged)          /* 1 for a paged map */
 GPU_STRUCT(PixelShadowResolution, GPU_PIXEL_SHADOW_RESOLUTION)
