@@ -144,17 +144,35 @@ def match_cells(name, fraction, median, p95):
 
 
 def measured_rows(tool, scene, work, args, rows, tag):
-    """Per row: its name, resolution.json and page figures at --match-width x --match-height."""
-    for i, (name, flags) in enumerate(rows):
-        yield (name,) + resolution_figures(tool, scene, os.path.join(work, f"{tag}_{i}"), args.match_width,
+    """Per row (name, flags[, scene]): its name, resolution.json and page figures at --match-width x
+    --match-height."""
+    for i, (name, flags, *own_scene) in enumerate(rows):
+        yield (name,) + resolution_figures(tool, own_scene[0] if own_scene else scene,
+                                           os.path.join(work, f"{tag}_{i}"), args.match_width,
                                            args.match_height, flags)
+
+
+def with_light_pools(scene, pools_mib):
+    """A copy of `scene` beside it (its assets are relative) whose lights have these page pools."""
+    with open(scene) as f:
+        data = json.load(f)
+    for light, mib in zip(data["lights"], pools_mib):
+        light.setdefault("shadow", {})["page_pool_mib"] = mib
+    path = os.path.join(os.path.dirname(scene), f"bench_paged_pools_{os.getpid()}.scene.json")
+    with open(path, "w") as f:
+        json.dump(data, f)
+    return path
 
 
 def print_resolution(tool, scene, work, args):
     paged = configs(args)[3][1]
+    # The sun asks for about 1.4x the spot's pages: pools sized per light, 112 MiB in all (what
+    # the 128 MiB storage binding holds beside the dense maps), each asked to about 80%.
+    per_light_pools = with_light_pools(scene, [66, 46])
     rows = [("dense 256 gaussian r2", []), ("paged, 32 MiB pools", paged),
             ("paged, 56 MiB pools", paged + ["--page-pool-mib", "56"]),
-            ("paged, 56 MiB of 32^2", paged + ["--page-pool-mib", "56", "--page-size", "32"])]
+            ("paged, 56 MiB of 32^2", paged + ["--page-pool-mib", "56", "--page-size", "32"]),
+            ("paged, 66+46 MiB of 32^2", paged + ["--page-size", "32"], per_light_pools)]
     print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
           f"= the widest a texel of the level read is on screen (pixels); texels over lit receiver pixels summed "
           f"over the lights: resident (the pool, with pages kept from earlier frames), asked for (the frame's "
@@ -162,25 +180,29 @@ def print_resolution(tool, scene, work, args):
           f"pixel's area in the map over a texel just 1.5 px wide at its widest there)")
     print(f"{MATCH_HEADER}{'resident':>10}{'asked':>7}{'needed':>8}   per light: matched, median px, LOD bias, "
           f"pages asked / resident of slots")
-    for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
-        lights = resolution["lights"]
-        receivers = resolution["receivers"]
-        page_texels = (32 if "32^2" in name else args.page_size) ** 2
+    try:
+        for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
+            lights = resolution["lights"]
+            receivers = resolution["receivers"]
+            page_texels = (32 if "32^2" in name else args.page_size) ** 2
 
-        def per_lit(texels):
-            return f"{texels / receivers:.2f}" if pages and receivers else "-"
-        resident = per_lit(sum(p["resident"] for p in pages) * page_texels)
-        asked = per_lit(sum(p["requested"] for p in pages) * page_texels)
-        needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
-        per_light = "  ".join(
-            f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
-            + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
-            for l, p in zip(lights, pages or [None] * len(lights)))
-        median = statistics.median(l['median_texel_pixels'] for l in lights)
-        p95 = max(l['p95_texel_pixels'] for l in lights)
-        print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{resident:>10}{asked:>7}{needed:>8}"
-              f"   {per_light}")
-    print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels")
+            def per_lit(texels):
+                return f"{texels / receivers:.2f}" if pages and receivers else "-"
+            resident = per_lit(sum(p["resident"] for p in pages) * page_texels)
+            asked = per_lit(sum(p["requested"] for p in pages) * page_texels)
+            needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
+            per_light = "  ".join(
+                f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
+                + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
+                for l, p in zip(lights, pages or [None] * len(lights)))
+            median = statistics.median(l['median_texel_pixels'] for l in lights)
+            p95 = max(l['p95_texel_pixels'] for l in lights)
+            print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{resident:>10}{asked:>7}{needed:>8}"
+                  f"   {per_light}")
+    finally:
+        os.remove(per_light_pools)
+    print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels; 66+46: the sun's and the "
+          "spot's pools")
 
 
 def print_clipmap(tool, work, args):
