@@ -132,7 +132,10 @@ def resolution_figures(tool, scene, out, width, height, flags):
                     "--frames", "1", "--quiet", "--measure-resolution"] + flags, check=True, capture_output=True)
     resolution = json.load(open(os.path.join(out, "resolution.json")))
     memory = json.load(open(os.path.join(out, "memory.json")))
-    pages = [l["pages"] for l in memory["lights"] if "pages" in l]
+    settings = json.load(open(os.path.join(out, "settings.json")))
+    # Each paged light's page figures, with its texels per page (settings.json's page size).
+    pages = [dict(l["pages"], page_texels=light["page_size"] ** 2)
+             for l, light in zip(memory["lights"], settings["lights"]) if "pages" in l]
     return resolution, pages
 
 
@@ -184,12 +187,11 @@ def print_resolution(tool, scene, work, args):
         for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
             lights = resolution["lights"]
             receivers = resolution["receivers"]
-            page_texels = (32 if "32^2" in name else args.page_size) ** 2
 
             def per_lit(texels):
                 return f"{texels / receivers:.2f}" if pages and receivers else "-"
-            resident = per_lit(sum(p["resident"] for p in pages) * page_texels)
-            asked = per_lit(sum(p["requested"] for p in pages) * page_texels)
+            resident = per_lit(sum(p["resident"] * p["page_texels"] for p in pages))
+            asked = per_lit(sum(p["requested"] * p["page_texels"] for p in pages))
             needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
             per_light = "  ".join(
                 f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
