@@ -2,10 +2,12 @@
 """Paged maps (shadow.layout paged) against dense ones on the default scene, measured in
 one run with the configurations interleaved over rounds:
 
-  dense 256 gaussian r2   today's default (a 256^2 map per light, soft kernel on the sun)
+  dense 256 gaussian r2   the default scene before it was paged (a 256^2 map per light,
+                          soft kernel on the sun): "today's default" in the targets
   dense 256 bilinear      the same maps without the kernel
   dense 1024 bilinear     the finest dense map lavapipe holds: the quality reference
-  paged 16384/64          a 16384^2 virtual map per light in 64^2 pages, no kernel
+  paged (default scene)   the default scene as it is: a 16384^2 virtual map per light in
+                          32^2 pages, pools of 66 and 46 MiB, no kernel
 
 A static camera first. Per configuration: the converged frame's GPU ms (the fastest
 measured frame: a paged capture's first frames build its pages), the opaque pass and the
@@ -53,13 +55,19 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def configs(args):
-    paged = ["--shadow-layout", "paged", "--kernel", "none", "--fit", "scene", "--filter", "trilinear",
-             "--virtual-res", str(args.virtual_res), "--page-size", str(args.page_size)]
-    return [("dense 256 gaussian r2", []),
-            ("dense 256 bilinear", ["--kernel", "none"]),
-            ("dense 1024 bilinear", ["--kernel", "none", "--shadow-res", "1024"]),
-            (f"paged {args.virtual_res}/{args.page_size}", paged)]
+# The default scene's lights as they were before it was paged (the targets' "today").
+DENSE_DEFAULT = [{"layout": "dense", "fit": "view", "filter": "bilinear", "kernel": "gaussian", "kernel_radius": 2,
+                  "resolution": 256},
+                 {"layout": "dense", "filter": "trilinear", "resolution": 256}]
+
+
+def configs(args, dense_scene):
+    """(name, flags, scene) per configuration; dense_scene: the default scene with DENSE_DEFAULT."""
+    paged = ["--virtual-res", str(args.virtual_res)] + (["--page-size", str(args.page_size)] if args.page_size else [])
+    return [("dense 256 gaussian r2", [], dense_scene),
+            ("dense 256 bilinear", ["--kernel", "none"], dense_scene),
+            ("dense 1024 bilinear", ["--kernel", "none", "--shadow-res", "1024"], dense_scene),
+            ("paged (default scene)", paged, None)]
 
 
 def capture(tool, scene, out, args, flags, frames=4, orbit=0.0, light_orbit=0.0):
@@ -150,32 +158,32 @@ def measured_rows(tool, scene, work, args, rows, tag):
     """Per row (name, flags[, scene]): its name, resolution.json and page figures at --match-width x
     --match-height."""
     for i, (name, flags, *own_scene) in enumerate(rows):
-        yield (name,) + resolution_figures(tool, own_scene[0] if own_scene else scene,
+        yield (name,) + resolution_figures(tool, own_scene[0] if own_scene and own_scene[0] else scene,
                                            os.path.join(work, f"{tag}_{i}"), args.match_width,
                                            args.match_height, flags)
 
 
-def with_light_pools(scene, pools_mib):
-    """A copy of `scene` beside it (its assets are relative) whose lights have these page pools."""
+def with_light_shadows(scene, shadows, tag):
+    """A copy of `scene` beside it (its assets are relative) with these settings over its lights'
+    shadow blocks (a kernel replaces the paged-only ones)."""
     with open(scene) as f:
         data = json.load(f)
-    for light, mib in zip(data["lights"], pools_mib):
-        light.setdefault("shadow", {})["page_pool_mib"] = mib
-    path = os.path.join(os.path.dirname(scene), f"bench_paged_pools_{os.getpid()}.scene.json")
+    for light, shadow in zip(data["lights"], shadows):
+        light.setdefault("shadow", {}).update(shadow)
+    path = os.path.join(os.path.dirname(scene), f"bench_paged_{tag}_{os.getpid()}.scene.json")
     with open(path, "w") as f:
         json.dump(data, f)
     return path
 
 
-def print_resolution(tool, scene, work, args):
-    paged = configs(args)[3][1]
-    # The sun asks for about 1.4x the spot's pages: pools sized per light, 112 MiB in all (what
-    # the 128 MiB storage binding holds beside the dense maps), each asked to about 80%.
-    per_light_pools = with_light_pools(scene, [66, 46])
-    rows = [("dense 256 gaussian r2", []), ("paged, 32 MiB pools", paged),
-            ("paged, 56 MiB pools", paged + ["--page-pool-mib", "56"]),
-            ("paged, 56 MiB of 32^2", paged + ["--page-pool-mib", "56", "--page-size", "32"]),
-            ("paged, 66+46 MiB of 32^2", paged + ["--page-size", "32"], per_light_pools)]
+def print_resolution(tool, scene, dense_scene, work, args):
+    # The default scene's sun asks for about 1.4x the spot's pages: its pools are sized per
+    # light, 112 MiB in all (what the 128 MiB storage binding holds), each asked to about 80%.
+    of_64 = ["--page-size", "64"]
+    rows = [("dense 256 gaussian r2", [], dense_scene), ("paged, 32 MiB of 64^2", of_64 + ["--page-pool-mib", "32"]),
+            ("paged, 56 MiB of 64^2", of_64 + ["--page-pool-mib", "56"]),
+            ("paged, 56 MiB of 32^2", ["--page-pool-mib", "56"]),
+            ("default: 66+46 MiB of 32^2", [])]
     print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
           f"= the widest a texel of the level read is on screen (pixels); texels over lit receiver pixels summed "
           f"over the lights: resident (the pool, with pages kept from earlier frames), asked for (the frame's "
@@ -183,26 +191,23 @@ def print_resolution(tool, scene, work, args):
           f"pixel's area in the map over a texel just 1.5 px wide at its widest there)")
     print(f"{MATCH_HEADER}{'resident':>10}{'asked':>7}{'needed':>8}   per light: matched, median px, LOD bias, "
           f"pages asked / resident of slots")
-    try:
-        for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
-            lights = resolution["lights"]
-            receivers = resolution["receivers"]
+    for name, resolution, pages in measured_rows(tool, scene, work, args, rows, "resolution"):
+        lights = resolution["lights"]
+        receivers = resolution["receivers"]
 
-            def per_lit(texels):
-                return f"{texels / receivers:.2f}" if pages and receivers else "-"
-            resident = per_lit(sum(p["resident"] * p["page_texels"] for p in pages))
-            asked = per_lit(sum(p["requested"] * p["page_texels"] for p in pages))
-            needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
-            per_light = "  ".join(
-                f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
-                + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
-                for l, p in zip(lights, pages or [None] * len(lights)))
-            median = statistics.median(l['median_texel_pixels'] for l in lights)
-            p95 = max(l['p95_texel_pixels'] for l in lights)
-            print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{resident:>10}{asked:>7}{needed:>8}"
-                  f"   {per_light}")
-    finally:
-        os.remove(per_light_pools)
+        def per_lit(texels):
+            return f"{texels / receivers:.2f}" if pages and receivers else "-"
+        resident = per_lit(sum(p["resident"] * p["page_texels"] for p in pages))
+        asked = per_lit(sum(p["requested"] * p["page_texels"] for p in pages))
+        needed = f"{sum(l['needed_texels'] for l in lights) / receivers:.2f}" if receivers else "-"
+        per_light = "  ".join(
+            f"{l['light']} {100 * l['matched_fraction']:.0f}% {l['median_texel_pixels']:.2f}"
+            + (f" b{p['lod_bias']:g} {p['requested']}/{p['resident']}/{p['pool_slots']}" if p else "")
+            for l, p in zip(lights, pages or [None] * len(lights)))
+        median = statistics.median(l['median_texel_pixels'] for l in lights)
+        p95 = max(l['p95_texel_pixels'] for l in lights)
+        print(f"{match_cells(name, resolution['matched_fraction'], median, p95)}{resident:>10}{asked:>7}{needed:>8}"
+              f"   {per_light}")
     print("   target: >= 95% matched; resident texels <= 2x lit receiver pixels; 66+46: the sun's and the "
           "spot's pools")
 
@@ -212,7 +217,7 @@ def print_clipmap(tool, work, args):
     scene) where the virtual resolution, not the pool, bounds the texels near the camera."""
     scene = os.path.join(ROOT, "content", "examples", "cascades.scene.json")
     base = ["--shadow-layout", "paged", "--kernel", "none", "--fit", "scene", "--cascades", "1",
-            "--filter", "trilinear", "--page-size", str(args.page_size), "--page-pool-mib", str(args.clipmap_pool)]
+            "--filter", "trilinear", "--page-size", str(args.page_size or 64), "--page-pool-mib", str(args.clipmap_pool)]
     rows = [("dense 1024 cascades x3", ["--shadow-res", "1024"])] + \
            [(f"paged {v}", base + ["--virtual-res", str(v)]) for v in (16384, 65536, 262144)]
     print(f"\na large scene: content/examples/cascades.scene.json (150 m), {args.match_width}x{args.match_height}, "
@@ -233,13 +238,14 @@ def main():
     parser.add_argument("--width", type=int, default=640)
     parser.add_argument("--height", type=int, default=360)
     parser.add_argument("--rounds", type=int, default=2)
-    parser.add_argument("--page-size", type=int, default=64)
+    parser.add_argument("--page-size", type=int, help="the paged row's page size (default: the scene's, 32; "
+                        "the large scene's: 64)")
     parser.add_argument("--virtual-res", type=int, default=16384)
     parser.add_argument("--orbit", type=float, default=2.0)
     parser.add_argument("--orbit-frames", type=int, default=10)
     parser.add_argument("--light-orbit", type=float, default=2.0)
     parser.add_argument("--moving-frames", type=int, default=8)
-    parser.add_argument("--budgets", type=int, nargs="+", default=[8, 16, 32],
+    parser.add_argument("--budgets", type=int, nargs="+", default=[16, 32, 64],
                         help="page builds per frame per light, for the moving light")
     parser.add_argument("--match-width", type=int, default=1280)
     parser.add_argument("--match-height", type=int, default=720)
@@ -252,41 +258,50 @@ def main():
     if not os.path.exists(tool):
         sys.exit(f"{tool} not found: build first")
     os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
-    if args.only:
+    dense_scene = with_light_shadows(scene, DENSE_DEFAULT, "dense")
+    try:
         with tempfile.TemporaryDirectory() as work:
-            (print_resolution(tool, scene, work, args) if args.only == "resolution" else print_clipmap(tool, work, args))
-        return
-    rows = configs(args)
+            if args.only == "resolution":
+                print_resolution(tool, scene, dense_scene, work, args)
+            elif args.only == "clipmap":
+                print_clipmap(tool, work, args)
+            else:
+                run_all(tool, compare, scene, dense_scene, work, args)
+    finally:
+        os.remove(dense_scene)
+
+
+def run_all(tool, compare, scene, dense_scene, work, args):
+    rows = configs(args, dense_scene)
     orbit_rows = [rows[0], rows[1], rows[3]]
-    results = {name: [] for name, _ in rows}
-    errors = {name: [] for name, _ in rows}
-    orbits = {name: [] for name, _ in orbit_rows}
-    moving_rows = [rows[0]] + [(f"{rows[3][0]}, {b} a frame", rows[3][1] + ["--page-builds", str(b)])
+    results = {name: [] for name, *_ in rows}
+    errors = {name: [] for name, *_ in rows}
+    orbits = {name: [] for name, *_ in orbit_rows}
+    moving_rows = [rows[0]] + [(f"paged, {b} a frame", rows[3][1] + ["--page-builds", str(b)], None)
                                for b in args.budgets]
-    moving = {name: [] for name, _ in moving_rows}
+    moving = {name: [] for name, *_ in moving_rows}
     skip = 2  # measured frames left out of the orbit figures: the paged maps' first builds
-    with tempfile.TemporaryDirectory() as work:
-        for r in range(args.rounds):
-            for i, (name, flags) in enumerate(rows):
-                results[name].append(capture(tool, scene, os.path.join(work, f"{r}_{i}"), args, flags))
-            reference = os.path.join(work, f"{r}_2")
-            for i, (name, _) in enumerate(rows):
-                errors[name].append(mean_abs_error(compare, reference, os.path.join(work, f"{r}_{i}")))
-            for i, (name, flags) in enumerate(orbit_rows):
-                result = capture(tool, scene, os.path.join(work, f"{r}_orbit_{i}"), args, flags,
-                                 frames=args.orbit_frames, orbit=args.orbit)
-                orbits[name].append(orbit_figures(result, skip))
-            for i, (name, flags) in enumerate(moving_rows):
-                result = capture(tool, scene, os.path.join(work, f"{r}_moving_{i}"), args, flags,
-                                 frames=args.moving_frames, light_orbit=args.light_orbit)
-                moving[name].append(moving_light_figures(result, args.moving_frames))
+    for r in range(args.rounds):
+        for i, (name, flags, own) in enumerate(rows):
+            results[name].append(capture(tool, own or scene, os.path.join(work, f"{r}_{i}"), args, flags))
+        reference = os.path.join(work, f"{r}_2")
+        for i, (name, *_) in enumerate(rows):
+            errors[name].append(mean_abs_error(compare, reference, os.path.join(work, f"{r}_{i}")))
+        for i, (name, flags, own) in enumerate(orbit_rows):
+            result = capture(tool, own or scene, os.path.join(work, f"{r}_orbit_{i}"), args, flags,
+                             frames=args.orbit_frames, orbit=args.orbit)
+            orbits[name].append(orbit_figures(result, skip))
+        for i, (name, flags, own) in enumerate(moving_rows):
+            result = capture(tool, own or scene, os.path.join(work, f"{r}_moving_{i}"), args, flags,
+                             frames=args.moving_frames, light_orbit=args.light_orbit)
+            moving[name].append(moving_light_figures(result, args.moving_frames))
     today = statistics.median(x["frame"] for x in results[rows[0][0]])
     print(f"default scene, {args.width}x{args.height}, 2 lights, AVSM-8; GPU ms, medians of {args.rounds} "
           f"interleaved rounds; converged frame = the fastest of 4 (+ frames rendered again until converged); "
           f"frames without the capture's light pictures")
     print(f"   {'configuration':<24}{'frame ms':>10}{'x today':>9}{'opaque':>9}{'shadow':>9}{'1st frame':>11}"
           f"{'|d| /255':>10}   pages asked / resident / built (per light)")
-    for name, _ in rows:
+    for name, *_ in rows:
         xs = results[name]
         frame = statistics.median(x["frame"] for x in xs)
         pages = "  ".join(f"{p['requested']}/{p['resident']}/{p['built']}" for p in xs[-1]["pages"])
@@ -299,7 +314,7 @@ def main():
           f"first {skip + 1} left out (warm-up and first builds); medians per frame")
     print(f"   {'configuration':<24}{'frame ms':>10}{'x today':>9}{'shadow':>9}{'x dense':>9}"
           f"{'built':>8}{'most':>6}{'resident':>10}{'built %':>9}")
-    for name, _ in orbit_rows:
+    for name, *_ in orbit_rows:
         xs = orbits[name]
         frame = statistics.median(o["frame"] for o in xs)
         shadow = statistics.median(o["shadow"] for o in xs)
@@ -310,9 +325,8 @@ def main():
               f"{built:>8.0f}{max(o['most built'] for o in xs):>6}{resident:>10}{share}")
     print("   x dense: the shadow passes against the dense 256 bilinear full rebuild in the same run")
     print_moving_light(moving, today, args)
-    with tempfile.TemporaryDirectory() as work:
-        print_resolution(tool, scene, work, args)
-        print_clipmap(tool, work, args)
+    print_resolution(tool, scene, dense_scene, work, args)
+    print_clipmap(tool, work, args)
 
 
 if __name__ == "__main__":

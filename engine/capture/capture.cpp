@@ -30,6 +30,7 @@
 #include "gpu/vk_check.h"
 #include "io/image_io.h"
 #include "passes/frame/view.h"
+#include "passes/shadows/shadow_settings.h"
 #include "renderer/frame_slots.h"
 #include "renderer/scene_renderer.h"
 #include "renderer/volume_sequence_player.h"
@@ -363,16 +364,23 @@ class VolumeShadingRun {
       : ctx_(ctx), frame_(frame), scene_(scene), paths_(path_traced_paths), main_(frame.volume_shading()),
         executor_(ctx, mode) {}
 
-  // One reference frame; `keep` reads its HDR image back.
-  void render_reference(VkCommandBuffer cmd, const passes::View& view, bool measured, bool keep) {
-    render_as(scene::VolumeShading::Mode::reference, cmd, view, measured, keep ? &reference_ : nullptr);
+  // One reference frame, timed beside the main frames.
+  void render_reference(VkCommandBuffer cmd, const passes::View& view, bool measured) {
+    render_as(scene::VolumeShading::Mode::reference, cmd, view, measured, nullptr);
   }
-  // After the last main frame was written: the hidden frame, and the comparison files.
+  // After the last main frame was written: the reference and hidden frames the comparison
+  // reads, and the comparison files.
   fs::path finish(const fs::path& out_dir, VkCommandBuffer cmd, const passes::View& view,
                   const FrameTimingLog& main_log) {
     const gpu::ImageRGBA32F fast = gpu::read_image(ctx_, frame_.hdr(), renderer::SceneRenderer::kOutputLayout);
     gpu::ImageRGBA32F hidden, error;
     FrameTimingLog unused;
+    // The reference marches the smoke where the fast frame's lighting cache does not, so a
+    // paged map may lack pages it asks for: rendered again until its maps are finished.
+    for (uint32_t again = 0; again < kMaxReferenceFrames; ++again) {
+      render_as(scene::VolumeShading::Mode::reference, cmd, view, false, &reference_, &unused);
+      if (!maps_unfinished()) break;
+    }
     render_as(scene::VolumeShading::Mode::hidden, cmd, view, false, &hidden, &unused);
     const VolumeShadingComparison comparison = compare_volume_shading(fast, reference_, hidden, &error);
     io::write_png_raw(out_dir / "volume_error.png", error);
@@ -391,6 +399,16 @@ class VolumeShadingRun {
   }
 
  private:
+  static constexpr uint32_t kMaxReferenceFrames = 16;
+
+  // The last frame asked for pages it did not find, lacked room that has grown since, or
+  // moved a paged map's bias.
+  bool maps_unfinished() const {
+    for (const passes::LightShadowStats& light : frame_.shadows().frame_stats())
+      if ((light.lost_shadowing() && light.grew) || (light.pages && light.pages->settling)) return true;
+    return false;
+  }
+
   void render_as(scene::VolumeShading::Mode mode, VkCommandBuffer cmd, const passes::View& view, bool measured,
                  gpu::ImageRGBA32F* keep, FrameTimingLog* log = nullptr) {
     scene::VolumeShading shading = main_;
@@ -435,7 +453,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
 
   // The scene first: a bad file should fail before any device work.
   scene::Scene scene = scene::load_scene(options.scene);
-  for (scene::Light& light : scene.lights) options.shadow.apply(light);
+  for (scene::Light& light : scene.lights) passes::apply_shadow_overrides(options.shadow, light);
   // The instant rendered (a shot's first frame's): the renderer is made with the scene there.
   const std::optional<float> first_time = options.frame_range ? options.frame_range->time_of(options.frame_range->first) : options.time;
   if (first_time) {
@@ -612,8 +630,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
     // renders with nothing else in flight.
     if (volume_run) {
       slots.finish_all(finished);
-      volume_run->render_reference(comparison_cmd, view_of(index), /*measured=*/index > 0 || options.frames == 1,
-                                   /*keep=*/index + 1 == options.frames);
+      volume_run->render_reference(comparison_cmd, view_of(index), /*measured=*/index > 0 || options.frames == 1);
     }
     submit_frame(index);
   }

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 
+#include "passes/shadows/shadow_settings.h"
+
 namespace avsm::viewer {
 
 namespace {
 
 void apply_light(const LightOverride& o, scene::Light& light) {
-  o.apply(light.shadow);
+  passes::apply_shadow_overrides(o, light);
   if (o.enabled && !*o.enabled) light.intensity = 0.0f;
   if (o.position) light.position = *o.position;
   if (o.direction && glm::length(*o.direction) > 0.0f) light.direction = glm::normalize(*o.direction);

@@ -91,6 +91,30 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
   if (s.page_builds_per_frame < 0) refuse("needs shadow.page_builds_per_frame of 0 (no limit) or more");
 }
 
+namespace {
+
+bool asks_for_dense_map(const scene::ShadowOverrides& o, const scene::Light& light) {
+  scene::ShadowSettings technique_only;
+  if (o.technique) technique_only.technique = *o.technique;
+  return (o.technique && find_shadow_technique(*o.technique) && !pages_technique(technique_only)) || o.resolution ||
+         (o.kernel && *o.kernel != scene::ShadowKernel::none) || (o.build && *o.build == scene::ShadowBuild::fixed) ||
+         (o.cascades && *o.cascades > 1 && light.type == scene::LightType::directional) ||
+         (o.clusters && *o.clusters > 1 && light.type != scene::LightType::point && !scene::is_area_light(light.type)) ||
+         (o.fit && *o.fit == scene::ShadowFit::view && light.type == scene::LightType::directional);
+}
+
+}  // namespace
+
+void apply_shadow_overrides(const scene::ShadowOverrides& overrides, scene::Light& light) {
+  const bool to_dense = !overrides.layout && light.shadow.layout == scene::ShadowLayout::paged &&
+                        asks_for_dense_map(overrides, light);
+  overrides.apply(light);
+  if (!to_dense) return;
+  light.shadow.layout = scene::ShadowLayout::dense;
+  // Cascades split the camera's view: a paged sun covers the scene, its cascades do not.
+  if (light.shadow.cascades > 1 && !overrides.fit) light.shadow.fit = scene::ShadowFit::view;
+}
+
 bool paged_keeps_lists(const scene::ShadowSettings& s) {
   const ShadowTechnique* technique = find_shadow_technique(s.technique);
   return technique != nullptr && technique->reads_capture_lists();

@@ -51,6 +51,15 @@ void check_paged_settings(const scene::Light& light, const std::string& who);
 // virtual-light maps cannot be built from them.
 void check_virtual_light_settings(const scene::Light& light, const std::string& who);
 
+// Writes `overrides` (the capture's flags, a sweep job's, the viewer's edits) over
+// `light`'s shadow settings (ShadowOverrides::apply(Light&)). An override that asks for
+// what only a dense map has (a technique pages cannot hold, a map resolution, a kernel,
+// the fixed build, cascades, clusters or a directional light fitted to the view) makes a
+// paged light dense, unless it names the layout too: `avsm-capture --technique dsm` on a
+// paged scene renders deep shadow maps rather than refusing, and `--shadow-res 64` means
+// a 64^2 map rather than only a paged map's fallback level. With --shadow-layout paged it still refuses.
+void apply_shadow_overrides(const scene::ShadowOverrides& overrides, scene::Light& light);
+
 // Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose
 // lookups walk them) rather than AVSM curves.
 bool paged_keeps_lists(const scene::ShadowSettings& s);

@@ -29,6 +29,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "passes/shadows/shadow_settings.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "gpu/transfer.h"
@@ -496,12 +497,9 @@ TEST_F(AvsmShadowTest, AvsmSortSortsLongListsCompletely) {
 
 scene::Scene default_scene(int nodes, int resolution) {
   scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
-  for (scene::Light& light : scene.lights) {
-    light.shadow.technique = "avsm";
-    light.shadow.nodes = nodes;
-    light.shadow.resolution = resolution;
-    light.shadow.sort = true;
-  }
+  // Dense maps of that resolution (the default scene's are paged), as --shadow-res gives.
+  for (scene::Light& light : scene.lights)
+    passes::apply_shadow_overrides({.technique = "avsm", .nodes = nodes, .resolution = resolution, .sort = true}, light);
   return scene;
 }
 

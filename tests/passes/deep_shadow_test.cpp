@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "passes/shadows/shadow_settings.h"
 #include "gpu/transfer.h"
 #include "passes/shadows/techniques/dsm/deep_shadow.h"
 #include "passes/shadows/shadow_maps.h"
@@ -73,11 +74,10 @@ std::string describe(const std::vector<DsmNode>& nodes) {
 TEST_F(DeepShadowTest, BuildMatchesCppReferenceAndTheExactCurveOnTheDefaultScene) {
   scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
   ASSERT_FALSE(scene.lights.empty());
-  for (scene::Light& light : scene.lights) {
-    light.shadow.technique = "dsm";
-    light.shadow.resolution = kResolution;
-    light.shadow.parameters = {{"error", double(kError)}};
-  }
+  // Dense deep shadow maps (the default scene's are paged), as --technique dsm gives.
+  for (scene::Light& light : scene.lights)
+    passes::apply_shadow_overrides(
+        {.technique = "dsm", .resolution = int(kResolution), .parameters = {{"error", double(kError)}}}, light);
   // The lookups' copy of the lists is what the test reads back (the build's own lists are transient).
   renderer::SceneRenderer renderer(ctx(), shaders(), scene, kFrameWidth, kFrameHeight, {.keep_reference = true});
   rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);

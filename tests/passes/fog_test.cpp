@@ -12,6 +12,7 @@
 #include <iostream>
 #include <vector>
 
+#include "passes/shadows/shadow_settings.h"
 #include "capture/fog_comparison.h"
 #include "gpu/transfer.h"
 #include "passes/frame/view.h"
@@ -50,7 +51,13 @@ class FogTest : public testing::GpuTest {
   }
 };
 
-scene::Scene default_scene() { return scene::load_scene(AVSM_DEFAULT_SCENE); }
+// With dense maps of its lights' resolution (its own are paged, and take more than the
+// two frames render() draws to be finished), as --shadow-res gives.
+scene::Scene default_scene() {
+  scene::Scene scene = scene::load_scene(AVSM_DEFAULT_SCENE);
+  for (scene::Light& light : scene.lights) passes::apply_shadow_overrides({.resolution = light.shadow.resolution}, light);
+  return scene;
+}
 
 // A low ground fog over a thin global one, lit forward: the sun's and the spot's shafts
 // through the plume, the curtain and the stage's meshes.

@@ -6,7 +6,8 @@
 Copies the shader sources (SHADERS_DIR, the repository's shaders/) and the default
 scene (SCENE_DIR) into WORK_DIR, starts `VIEWER --control --validation` on the copies
 (AVSM_SOURCE_DIR points the live shader compiler at them) and, between frames,
-edits the copies as a user would in an editor:
+edits the copies as a user would in an editor (the copy's lights start dense; the
+default scene's are paged):
   1. a syntax error in tonemap.comp: the reply names tonemap.comp and its line, and
      the frame still renders with the last good pipelines;
   2. the fix, with the exposure scaled by 0.25: shaders reloaded, the error gone,
@@ -104,6 +105,11 @@ def main():
     shutil.copytree(shaders.parent / "passes" / "shadows" / "techniques", source_root / "passes" / "shadows" / "techniques")
     shutil.copytree(scene_dir, work / "scene")
     scene_file = work / "scene" / "scene.json"
+    # Dense maps, the sun's fitted to the view, as steps 6 to 8 need; step 9 pages the sun.
+    dense = json.loads(scene_file.read_text())
+    for light in dense["lights"]:
+        light["shadow"].update(layout="dense", fit="view")
+    scene_file.write_text(json.dumps(dense, indent=1))
     tonemap = source_root / "shaders" / "passes" / "camera" / "tonemap.comp"
     hair_file = work / "scene" / "curtain.hair"
     good_tonemap, good_scene, good_hair = tonemap.read_text(), scene_file.read_text(), hair_file.read_bytes()

@@ -13,14 +13,15 @@ namespace {
 
 // Requests within this share of the pool leave the bias alone; above it the bias grows.
 constexpr float kPoolHigh = 0.85f;
-// Below this share the bias shrinks. A quarter level less asks for about 1.4x the pages
-// in theory, but up to 1.7x in the default scene at 640x360 (the pages at the edges of
-// each level's band on screen), so at 0.55 the bias swung back and forth; from 0.4 even
-// 2x stays under kPoolHigh.
-constexpr float kPoolLow = 0.4f;
 constexpr float kBiasStep = 0.25f;
-// Where a moving bias aims: between kPoolLow and kPoolHigh.
-constexpr float kPoolTarget = 0.6f;
+// A quarter level less asks for about 1.4x the pages in theory, but up to 1.7x in the
+// default scene at 640x360 (the pages at the edges of each level's band on screen). The
+// bias comes down only as far as this worst case keeps the requests under kPoolHigh.
+constexpr float kGrowthPerStep = 1.7f;
+// Below this share the bias shrinks: one step down stays under kPoolHigh.
+constexpr float kPoolLow = kPoolHigh / kGrowthPerStep;
+// Where a growing bias aims (at 4x fewer pages per level): between kPoolLow and kPoolHigh.
+constexpr float kPoolTarget = 0.7f;
 
 bool is_power_of_two(uint32_t x) { return x != 0 && (x & (x - 1)) == 0; }
 
@@ -168,20 +169,20 @@ void PageTable::adapt_lod_bias() {
   seen_at_bias_[int(std::lround(lod_bias_ / kBiasStep))] = {stats_.requested, request_clock_};
   const float before = lod_bias_;
   // Requests fall about 4x per level (2x per side), so the bias that brings them to
-  // kPoolTarget is log4 of the excess (or of the room left): one frame's move, in whole
-  // quarter steps, rather than a step a frame (each of which would rebuild the pages it
+  // kPoolTarget is log4 of the excess: one frame's move, in whole quarter steps, rather than a step a frame (each of which would rebuild the pages it
   // moves, and keep a capture waiting).
-  const auto quarters = [&] { return std::ceil(std::abs(std::log(share / kPoolTarget)) / std::log(4.0f) / kBiasStep) * kBiasStep; };
   if (share > kPoolHigh) {
-    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters()), float(fallback_level_));
+    const float quarters = std::ceil(std::log(share / kPoolTarget) / std::log(4.0f) / kBiasStep) * kBiasStep;
+    lod_bias_ = std::min(lod_bias_ + std::max(kBiasStep, quarters), float(fallback_level_));
   } else if (stats_.unserved > 0) {
     lod_bias_ = std::min(lod_bias_ + kBiasStep, float(fallback_level_));
   } else if (share < kPoolLow) {
-    // Down by whole quarters short of the target, so that it is not overshot (one step
-    // when nothing asked: every receiver read the coarsest level), but not to a bias
-    // whose requests overflowed lately: a pool too small for any bias to land its
-    // requests between kPoolLow and kPoolHigh would swing between two.
-    float lower = std::max(lod_bias_ - (share > 0.0f ? std::max(kBiasStep, quarters() - kBiasStep) : kBiasStep), 0.0f);
+    // Down by as many steps as the worst growth keeps under kPoolHigh (one step when
+    // nothing asked: every receiver read the coarsest level), but not to a bias whose
+    // requests overflowed lately: a pool too small for any bias to land its requests
+    // between kPoolLow and kPoolHigh would swing between two.
+    const float steps = share > 0.0f ? std::max(1.0f, std::floor(std::log(kPoolHigh / share) / std::log(kGrowthPerStep))) : 1.0f;
+    float lower = std::max(lod_bias_ - steps * kBiasStep, 0.0f);
     while (lower < lod_bias_ && overflowed_lately(lower)) lower += kBiasStep;
     lod_bias_ = std::min(lower, lod_bias_);
   }

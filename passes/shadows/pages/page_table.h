@@ -19,8 +19,8 @@
 //
 // When requests outgrow the pool, the pages that do not fit are counted (unserved)
 // and served by coarser levels, and a level-of-detail bias grows until the requests
-// fit in about 85% of the pool; it shrinks back when they would fit again. Either move
-// is made in one frame, by log4 of the excess or of the room left.
+// fit in about 85% of the pool; it shrinks back when they would fit again, even where a
+// quarter level asks for 1.7x the pages. Either move is made in one frame.
 #include <glm/vec2.hpp>
 
 #include "passes/shadows/uv_rect.h"
