@@ -183,7 +183,7 @@ def print_resolution(tool, scene, dense_scene, work, args):
     rows = [("dense 256 gaussian r2", [], dense_scene), ("paged, 32 MiB of 64^2", of_64 + ["--page-pool-mib", "32"]),
             ("paged, 56 MiB of 64^2", of_64 + ["--page-pool-mib", "56"]),
             ("paged, 56 MiB of 32^2", ["--page-pool-mib", "56"]),
-            ("default: 66+46 MiB of 32^2", [])]
+            ("default: 66+46 of 32^2", [])]
     print(f"\nresolution matched: {args.match_width}x{args.match_height}, one converged frame each; texel width "
           f"= the widest a texel of the level read is on screen (pixels); texels over lit receiver pixels summed "
           f"over the lights: resident (the pool, with pages kept from earlier frames), asked for (the frame's "
