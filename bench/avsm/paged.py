@@ -165,7 +165,7 @@ def measured_rows(tool, scene, work, args, rows, tag):
 
 def with_light_shadows(scene, shadows, tag):
     """A copy of `scene` beside it (its assets are relative) with these settings over its lights'
-    shadow blocks (a kernel replaces the paged-only ones)."""
+    shadow blocks (a dense layout ignores the paged-only ones left there)."""
     with open(scene) as f:
         data = json.load(f)
     for light, shadow in zip(data["lights"], shadows):

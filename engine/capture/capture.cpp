@@ -175,7 +175,23 @@ struct ShadowLoss {
   // Some map dropped what did not fit (capture lists, a deep shadow map's pool): lighter
   // shadows this frame. Pages still pending are not (their coarser fallback is the frame's own).
   bool dropped = false;
+  // Rendering the frame again does better: what it lacked has grown, or a bias settles.
+  bool worth_rendering_again() const { return (lost && grew) || settling; }
 };
+
+// What the last completed frame of `frame` lost (report_shadow_loss() also warns about it).
+ShadowLoss shadow_loss(const renderer::SceneRenderer& frame) {
+  ShadowLoss loss;
+  for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
+    loss.settling = loss.settling || (light.pages && light.pages->settling);
+    loss.building_pages = loss.building_pages || (light.pages && light.pages->built > 0);
+    loss.dropped = loss.dropped || light.dropped_shadowing();
+    if (!light.lost_shadowing()) continue;
+    loss.lost = true;
+    loss.grew = loss.grew || light.grew;
+  }
+  return loss;
+}
 
 // --light-orbit: every light of `scene` turned by `radians` about the vertical axis
 // through the scene's centre, as placed lights (ShadowMaps::place_light: a paged map's
@@ -191,14 +207,8 @@ void place_lights_turned(renderer::SceneRenderer& frame, const scene::Scene& sce
 
 // Warns about every light whose frame lost shadowing.
 ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t index, uint64_t& overflowed_frames) {
-  ShadowLoss loss;
   for (const passes::LightShadowStats& light : frame.shadows().frame_stats()) {
-    loss.settling = loss.settling || (light.pages && light.pages->settling);
-    loss.building_pages = loss.building_pages || (light.pages && light.pages->built > 0);
-    loss.dropped = loss.dropped || light.dropped_shadowing();
     if (!light.lost_shadowing()) continue;
-    loss.lost = true;
-    loss.grew = loss.grew || light.grew;
     if (light.page_slot_full)
       std::fprintf(stderr,
                    "avsm-capture: warning: frame %u: light '%s': a page's capture asked for %llu segments and its "
@@ -228,6 +238,7 @@ ShadowLoss report_shadow_loss(const renderer::SceneRenderer& frame, uint32_t ind
                    index + 1, light.light.c_str(), light.dsm_pool->needed_dispatches,
                    light.dsm_pool->build_dispatches, light.dsm_pool->needed_dispatches);
   }
+  const ShadowLoss loss = shadow_loss(frame);
   if (loss.lost) ++overflowed_frames;
   return loss;
 }
@@ -379,7 +390,7 @@ class VolumeShadingRun {
     // paged map may lack pages it asks for: rendered again until its maps are finished.
     for (uint32_t again = 0; again < kMaxReferenceFrames; ++again) {
       render_as(scene::VolumeShading::Mode::reference, cmd, view, false, &reference_, &unused);
-      if (!maps_unfinished()) break;
+      if (!shadow_loss(frame_).worth_rendering_again()) break;
     }
     render_as(scene::VolumeShading::Mode::hidden, cmd, view, false, &hidden, &unused);
     const VolumeShadingComparison comparison = compare_volume_shading(fast, reference_, hidden, &error);
@@ -400,14 +411,6 @@ class VolumeShadingRun {
 
  private:
   static constexpr uint32_t kMaxReferenceFrames = 16;
-
-  // The last frame asked for pages it did not find, lacked room that has grown since, or
-  // moved a paged map's bias.
-  bool maps_unfinished() const {
-    for (const passes::LightShadowStats& light : frame_.shadows().frame_stats())
-      if ((light.lost_shadowing() && light.grew) || (light.pages && light.pages->settling)) return true;
-    return false;
-  }
 
   void render_as(scene::VolumeShading::Mode mode, VkCommandBuffer cmd, const passes::View& view, bool measured,
                  gpu::ImageRGBA32F* keep, FrameTimingLog* log = nullptr) {
@@ -606,7 +609,7 @@ CaptureOutputs run_capture(const CaptureOptions& options) {
       const bool building_pages = page_budget && last_loss.building_pages;
       return frames_again < (building_pages ? kMaxFramesBuildingPages : kMaxFramesAgain);
     };
-    for (; ((last_loss.lost && last_loss.grew) || last_loss.settling) && may_render_again(); ++frames_again) {
+    for (; last_loss.worth_rendering_again() && may_render_again(); ++frames_again) {
       if (options.progress)
         std::fprintf(stderr, "frame %u: shadow maps unfinished (buffers grown, pages asked for, a page bias settling): rendering it again\n",
                      options.frames);

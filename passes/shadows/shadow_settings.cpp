@@ -60,6 +60,7 @@ void check_virtual_light_settings(const scene::Light& light, const std::string& 
 
 // What paged maps build today: AVSM from capture lists, one virtual map per light (six
 // for a point light) that stays where the scene put it.
+// (asks_for_dense_map() below lists the overrides these refusals turn into a dense map.)
 void check_paged_settings(const scene::Light& light, const std::string& who) {
   const scene::ShadowSettings& s = light.shadow;
   auto refuse = [&](const std::string& why) {
@@ -93,6 +94,8 @@ void check_paged_settings(const scene::Light& light, const std::string& who) {
 
 namespace {
 
+// The overrides check_paged_settings() would refuse (for this light's type), and a map
+// resolution: keep the two lists together.
 bool asks_for_dense_map(const scene::ShadowOverrides& o, const scene::Light& light) {
   scene::ShadowSettings technique_only;
   if (o.technique) technique_only.technique = *o.technique;

@@ -57,7 +57,8 @@ void check_virtual_light_settings(const scene::Light& light, const std::string& 
 // the fixed build, cascades, clusters or a directional light fitted to the view) makes a
 // paged light dense, unless it names the layout too: `avsm-capture --technique dsm` on a
 // paged scene renders deep shadow maps rather than refusing, and `--shadow-res 64` means
-// a 64^2 map rather than only a paged map's fallback level. With --shadow-layout paged it still refuses.
+// a 64^2 map rather than only a paged map's fallback level. With --shadow-layout paged
+// it still refuses.
 void apply_shadow_overrides(const scene::ShadowOverrides& overrides, scene::Light& light);
 
 // Whether a paged map keeps its pages' capture lists (the uncompressed reference, whose

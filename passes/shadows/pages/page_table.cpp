@@ -169,7 +169,8 @@ void PageTable::adapt_lod_bias() {
   seen_at_bias_[int(std::lround(lod_bias_ / kBiasStep))] = {stats_.requested, request_clock_};
   const float before = lod_bias_;
   // Requests fall about 4x per level (2x per side), so the bias that brings them to
-  // kPoolTarget is log4 of the excess: one frame's move, in whole quarter steps, rather than a step a frame (each of which would rebuild the pages it
+  // kPoolTarget is log4 of the excess: one frame's move, in whole quarter steps,
+  // rather than a step a frame (each of which would rebuild the pages it
   // moves, and keep a capture waiting).
   if (share > kPoolHigh) {
     const float quarters = std::ceil(std::log(share / kPoolTarget) / std::log(4.0f) / kBiasStep) * kBiasStep;
