@@ -312,9 +312,8 @@ void ShadowMaps::finish_page_requests(MapState& map, uint32_t slot, LightShadowS
     const auto* bits = static_cast<const uint32_t*>(page_requests_[slot].mapped()) + face.page_requests_offset;
     // What the frame's receivers asked for and did not find (its table, not today's).
     const std::vector<uint32_t>& table = face.declared[slot].page_table;
-    for (uint32_t e = 0; e < entries; ++e)
-      if ((bits[e / 32] >> (e % 32) & 1u) != 0 && table[e] == shared::kPageAbsent) ++stats.pages->pending;
     faces.emplace_back(bits, words);
+    for_each_set_bit(faces.back(), entries, [&](uint32_t e) { stats.pages->pending += table[e] == shared::kPageAbsent; });
   }
   map.pages->add_requests(faces, map.declared[slot].page_window_centre);
   stats.pages->settling = map.pages->stats().settling;  // its requests moved the bias

@@ -72,7 +72,7 @@ bool PageTable::has_entry(const PageKey& key) const { return entry_at(key, windo
 PageKey PageTable::key_at(uint32_t entry, glm::uvec2 centre) const {
   if (entry >= entries()) throw std::out_of_range("page table: no entry " + std::to_string(entry));
   const uint32_t face = entry / face_entries_, local = entry % face_entries_;
-  const uint32_t level = uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), local) - level_first_.begin()) - 1;
+  const uint32_t level = level_of(entry);
   const uint32_t grid = shared::page_table_grid(virtual_resolution_, page_size_, window_, level);
   const uint32_t index = local - level_first_[level];
   const glm::uvec2 place(index % grid, index / grid);
@@ -82,22 +82,39 @@ PageKey PageTable::key_at(uint32_t entry, glm::uvec2 centre) const {
 
 PageKey PageTable::key(uint32_t entry) const { return key_at(entry, window_centre_); }
 
+uint32_t PageTable::level_of(uint32_t entry) const {
+  const uint32_t local = entry % face_entries_;
+  return uint32_t(std::upper_bound(level_first_.begin(), level_first_.end(), local) - level_first_.begin()) - 1;
+}
+
+std::vector<uint32_t> PageTable::resident_entries() const {
+  std::vector<uint32_t> resident;
+  for (uint32_t owner : slot_owner_)
+    if (owner != kNoSlot) resident.push_back(owner);
+  std::sort(resident.begin(), resident.end());
+  return resident;
+}
+
 uint32_t PageTable::move_window(glm::uvec2 centre) {
   if (centre == window_centre_) return 0;
   const glm::uvec2 before = window_centre_;
   // The windowed levels come first in each face's entries; the whole ones never move.
   const uint32_t windowed = level_first_[shared::page_window_levels(virtual_resolution_, page_size_, window_)];
+  auto leaves = [&](uint32_t e) { return e % face_entries_ < windowed && entry_at(key_at(e, before), centre) != e; };
+  // Only resident and requested pages hold state: the others' entries are as good as new.
   uint32_t left = 0;
-  for (uint32_t face = 0; face < faces_; ++face)
-    for (uint32_t e = face * face_entries_; e < face * face_entries_ + windowed; ++e) {
-      if (entry_at(key_at(e, before), centre) == e) continue;  // stays in the window
-      if (pages_[e].slot != kNoSlot) {
-        free_slots_.push_back(pages_[e].slot);
-        release(e);
-        ++left;
-      }
-      pages_[e] = Page{};
-    }
+  for (uint32_t e : resident_entries()) {
+    if (!leaves(e)) continue;
+    free_slots_.push_back(pages_[e].slot);
+    release(e);
+    pages_[e] = Page{};
+    ++left;
+  }
+  std::erase_if(requested_, [&](uint32_t e) {
+    if (!leaves(e)) return false;
+    pages_[e] = Page{};
+    return true;
+  });
   left_window_since_plan_ += left;
   window_centre_ = centre;
   ++revision_;
@@ -108,11 +125,10 @@ std::vector<std::vector<uint32_t>> PageTable::requests_in_window(std::span<const
                                                                  glm::uvec2 centre) const {
   std::vector<std::vector<uint32_t>> moved(faces.size(), std::vector<uint32_t>((face_entries_ + 31) / 32, 0u));
   for (uint32_t f = 0; f < faces.size() && f < faces_; ++f)
-    for (uint32_t local = 0; local < face_entries_ && local / 32 < faces[f].size(); ++local) {
-      if ((faces[f][local / 32] >> (local % 32) & 1u) == 0) continue;
+    for_each_set_bit(faces[f], face_entries_, [&](uint32_t local) {
       const uint32_t now = entry_at(key_at(f * face_entries_ + local, centre), window_centre_);
       if (now != kNoEntry) moved[f][(now % face_entries_) / 32] |= 1u << (now % face_entries_ % 32);
-    }
+    });
   return moved;
 }
 
@@ -129,19 +145,23 @@ void PageTable::add_requests(std::span<const std::span<const uint32_t>> faces, g
     return;
   }
   ++request_clock_;
-  uint32_t requested = 0;
-  for (uint32_t e = 0; e < entries(); ++e) {
+  for (uint32_t e : requested_) pages_[e].requested = false;
+  requested_.clear();
+  auto ask = [&](uint32_t e) {
     Page& page = pages_[e];
-    const uint32_t face = e / face_entries_, local = e % face_entries_, word = local / 32;
-    const std::span<const uint32_t> bits = face < faces.size() ? faces[face] : std::span<const uint32_t>();
-    page.requested = (word < bits.size() && (bits[word] >> (local % 32) & 1u) != 0) ||
-                     (required_level_ < levels_ && local >= level_first_[required_level_] &&
-                      local < level_first_[required_level_ + 1]);
-    if (!page.requested) continue;
+    if (page.requested) return;
+    page.requested = true;
     page.last_request = request_clock_;
-    ++requested;
-  }
-  stats_.requested = requested;
+    requested_.push_back(e);
+  };
+  for (uint32_t f = 0; f < faces.size() && f < faces_; ++f)
+    for_each_set_bit(faces[f], face_entries_, [&](uint32_t local) { ask(f * face_entries_ + local); });
+  if (required_level_ < levels_)
+    for (uint32_t f = 0; f < faces_; ++f)
+      for (uint32_t local = level_first_[required_level_]; local < level_first_[required_level_ + 1]; ++local)
+        ask(f * face_entries_ + local);
+  std::sort(requested_.begin(), requested_.end());
+  stats_.requested = uint32_t(requested_.size());
   adapt_lod_bias();
 }
 
@@ -152,8 +172,10 @@ void PageTable::require_level(uint32_t level) {
 }
 
 bool PageTable::has_pending_requests() const {
-  for (uint32_t e = 0; e < entries(); ++e)
+  for (uint32_t e : requested_)
     if (needs_build(e)) return true;
+  for (uint32_t face = 0; face < faces_; ++face)
+    if (needs_build((face + 1) * face_entries_ - 1)) return true;
   return false;
 }
 
@@ -222,15 +244,23 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   left_window_since_plan_ = 0;
   // Wanted: coarsest level first, every face's (within a face its entries come last), so
   // the stand-ins for missing fine pages improve first.
+  // Only requested pages and the roots may need a build; ties go to the later entry.
   std::vector<uint32_t> wanted;
-  for (uint32_t e = entries(); e-- > 0;)
+  for (uint32_t e : requested_)
     if (needs_build(e)) wanted.push_back(e);
-  std::stable_sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) { return key(a).level > key(b).level; });
+  for (uint32_t face = 0; face < faces_; ++face) {
+    const uint32_t root = (face + 1) * face_entries_ - 1;
+    if (!pages_[root].requested && needs_build(root)) wanted.push_back(root);
+  }
+  std::sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) {
+    const uint32_t level_a = level_of(a), level_b = level_of(b);
+    return level_a != level_b ? level_a > level_b : a > b;
+  });
   // Slots to take back, least recently requested first: resident pages nobody asked for
   // in the last frame, of any face (never a face's root).
   std::vector<uint32_t> evictable;
-  for (uint32_t e = 0; e < entries(); ++e)
-    if (pages_[e].slot != kNoSlot && !pages_[e].requested && !is_root(e)) evictable.push_back(e);
+  for (uint32_t e : resident_entries())
+    if (!pages_[e].requested && !is_root(e)) evictable.push_back(e);
   std::stable_sort(evictable.begin(), evictable.end(),
                    [&](uint32_t a, uint32_t b) { return pages_[a].last_request < pages_[b].last_request; });
   size_t next_evictable = 0;
@@ -255,11 +285,9 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
     pages_[e].current = true;  // built by this frame, before its lookups
     builds.push_back({e, key(e), pages_[e].slot});
   }
-  for (uint32_t e = 0; e < entries(); ++e) {
-    const Page& page = pages_[e];
-    if (page.slot != kNoSlot) ++stats.resident;
-    if (page.requested && (page.slot == kNoSlot || !page.current)) ++stats.pending;
-  }
+  stats.resident = uint32_t(slots_ - free_slots_.size());  // a slot is free or held
+  for (uint32_t e : requested_)
+    if (pages_[e].slot == kNoSlot || !pages_[e].current) ++stats.pending;
   stats.built = uint32_t(builds.size());
   if (!builds.empty()) ++revision_;  // pages rebuilt in their slots change the map, not the table
   stats.lod_bias = lod_bias_;
@@ -280,13 +308,13 @@ void PageTable::invalidate(uint32_t entry) {
 }
 
 void PageTable::invalidate_all() {
-  for (uint32_t e = 0; e < entries(); ++e) invalidate(e);
+  for (uint32_t e : resident_entries()) invalidate(e);  // the others have nothing to lose
 }
 
 uint32_t PageTable::invalidate_overlapping(std::span<const UvRect> rects, uint32_t face) {
   uint32_t count = 0;
-  for (uint32_t e = face * face_entries_; e < (face + 1) * face_entries_; ++e) {
-    if (pages_[e].slot == kNoSlot) continue;
+  for (uint32_t e : resident_entries()) {
+    if (e / face_entries_ != face) continue;
     const UvRect page = window(key(e), 1.0f);
     if (std::none_of(rects.begin(), rects.end(), [&](const UvRect& r) { return r.overlaps(page); })) continue;
     invalidate(e);

@@ -21,10 +21,15 @@
 // and served by coarser levels, and a level-of-detail bias grows until the requests
 // fit in about 85% of the pool; it shrinks back when they would fit again, even where a
 // quarter level asks for 1.7x the pages. Either move is made in one frame.
+//
+// A frame visits only the requested entries (their request bits, a few among many words),
+// the faces' roots and the pool's resident pages: its CPU cost follows the requests and
+// the pool, not the virtual resolution (bench/pages/run.sh).
 #include <glm/vec2.hpp>
 
 #include "passes/shadows/uv_rect.h"
 
+#include <bit>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -47,6 +52,17 @@ struct PageBuild {
   PageKey key;
   uint32_t slot = 0;
 };
+
+// Calls visit(i) for each set bit i of `bits` (bit i of word i / 32) below `count`: request
+// bits, a few set among many words.
+template <class Visit>
+void for_each_set_bit(std::span<const uint32_t> bits, uint32_t count, Visit&& visit) {
+  for (uint32_t word = 0; word < bits.size() && word * 32 < count; ++word)
+    for (uint32_t rest = bits[word]; rest != 0; rest &= rest - 1) {
+      const uint32_t i = word * 32 + uint32_t(std::countr_zero(rest));
+      if (i < count) visit(i);
+    }
+}
 
 // One frame's figures of a paged map (memory.json, the report, the viewer's panel).
 struct PageStats {
@@ -142,6 +158,10 @@ class PageTable {
   };
   // A face's coarsest page: always resident.
   bool is_root(uint32_t entry) const { return entry % face_entries_ == face_entries_ - 1; }
+  uint32_t level_of(uint32_t entry) const;
+  // The entries that hold a slot, in ascending order (per frame the table visits these,
+  // the requested ones and the roots, never every entry: O(slots + requests)).
+  std::vector<uint32_t> resident_entries() const;
   bool needs_build(uint32_t entry) const;
   // entry() and key() with the windows centred on `centre`; kNoEntry outside them.
   static constexpr uint32_t kNoEntry = ~0u;
@@ -161,6 +181,7 @@ class PageTable {
   uint32_t fallback_level_ = 0;  // also the most the bias grows to, in levels
   std::vector<uint32_t> level_first_;  // entry of each level's first page
   std::vector<Page> pages_;
+  std::vector<uint32_t> requested_;  // entries whose Page::requested is set, ascending
   std::vector<uint32_t> table_;
   std::vector<uint32_t> free_slots_;
   std::vector<uint32_t> slot_owner_;  // entry per slot, or kNoSlot
