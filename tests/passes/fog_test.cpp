@@ -32,21 +32,25 @@ struct FogSwitches {
   bool enabled = true;
   std::optional<bool> per_pixel;
   uint32_t width = kSmallWidth, height = kSmallHeight;
+  int frames = 2;  // the second frame has capture buffers that fit
+  passes::ShadowOptions shadows;
+  std::vector<passes::LightShadowStats>* shadow_stats = nullptr;  // the last frame's, when given
 };
 
 class FogTest : public testing::GpuTest {
  protected:
   gpu::ImageRGBA32F render(const scene::Scene& scene, FogSwitches switches = {}) {
-    renderer::SceneRenderer renderer(ctx(), shaders(), scene, switches.width, switches.height);
+    renderer::SceneRenderer renderer(ctx(), shaders(), scene, switches.width, switches.height, switches.shadows);
     renderer.set_fog_enabled(switches.enabled);
     renderer.set_fog_marched_per_pixel(switches.per_pixel);
     rg::vulkan::Executor executor(ctx(), gpu::TimestampMode::Exact);
     const passes::View view = passes::make_view(scene.cameras.front(), switches.width, switches.height);
-    for (int frame = 0; frame < 2; ++frame) {  // the second frame has capture buffers that fit
+    for (int frame = 0; frame < switches.frames; ++frame) {
       rg::Graph graph = renderer.build_frame(view);
       ctx().submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
       renderer.finish_frame();
     }
+    if (switches.shadow_stats) *switches.shadow_stats = renderer.shadows().frame_stats();
     return gpu::read_image(ctx(), renderer.hdr(), renderer::SceneRenderer::kOutputLayout);
   }
 };
@@ -162,6 +166,47 @@ TEST_F(FogTest, TheFroxelGridMatchesThePerPixelMarch) {
   std::cout << "[ fog vs march ] " << comparison.fogged_pixels << " fogged pixels, relative L1 of the fog's effect "
             << comparison.relative_l1() << "\n";
   EXPECT_TRUE(comparison.within_bound()) << comparison.relative_l1();
+}
+
+// The ground fog under paged lights whose receivers all read the level that is a dense
+// 128^2 map (a 512^2 virtual map in pages of 32, shadow.resolution 128, a page bias of 8):
+// the froxels ask for the pages they read, find them, and the frame, fog and all, is the
+// dense maps' frame. Pages of that level equal the dense map bit for bit
+// (PagedMapsTest.OneForcedLevelWithEveryPageResidentIsTheDenseMapBitForBit).
+TEST_F(FogTest, PagedLightsHeldAtTheDenseLevelGiveTheDenseFrame) {
+  scene::Scene dense = default_scene();
+  for (scene::Light& light : dense.lights) {
+    passes::apply_shadow_overrides({.resolution = 128}, light);
+    light.shadow.kernel = scene::ShadowKernel::none;
+    light.shadow.filter = scene::ShadowFilter::bilinear;
+  }
+  dense.fog = ground_fog();
+  scene::Scene paged = dense;
+  for (scene::Light& light : paged.lights) {
+    light.shadow.layout = scene::ShadowLayout::paged;
+    light.shadow.virtual_resolution = 512;
+    light.shadow.page_size = 32;
+    light.shadow.page_lod_bias = 8.0f;
+    light.shadow.page_pool_mib = 1.0;  // 32 slots of AVSM-8: the 21 pages of level 2 and above
+  }
+  const gpu::ImageRGBA32F expected = render(dense);
+  std::vector<passes::LightShadowStats> stats;
+  const gpu::ImageRGBA32F fogged =
+      render(paged, {.frames = 3, .shadows = {.unlimited_page_builds = true}, .shadow_stats = &stats});
+  for (size_t light = 0; light < paged.lights.size(); ++light) {
+    ASSERT_TRUE(stats.at(light).pages) << paged.lights[light].name << " is paged";
+    EXPECT_EQ(stats[light].pages->pending, 0u) << paged.lights[light].name;
+    EXPECT_GE(stats[light].pages->resident, 16u) << paged.lights[light].name << ": level 2 is 16 pages";
+  }
+  ASSERT_EQ(expected.pixels.size(), fogged.pixels.size());
+  double most = 0.0;
+  for (size_t i = 0; i < expected.pixels.size(); ++i)
+    most = std::max(most, std::abs(double(expected.pixels[i]) - double(fogged.pixels[i])) /
+                              std::max(1.0, double(std::abs(expected.pixels[i]))));
+  std::cout << "[ paged fog ] largest relative |d| against the dense maps' frame: " << most << "\n";
+  EXPECT_EQ(most, 0.0);
+  dense.fog = {};
+  EXPECT_FALSE(same_pixels(render(dense), expected)) << "not vacuous: the fog shows";
 }
 
 // Opaque hair in front of a far background, in a uniform fog lit by the sky alone (no
