@@ -339,17 +339,20 @@ SweepIndex collect_with_slurm(const fs::path& sweep_dir) {
 SweepIndex wait_for_slurm(const fs::path& sweep_dir, std::chrono::seconds timeout) {
   const std::optional<SlurmSubmission> submission = read_slurm_submission(sweep_dir);
   if (!submission) return collect(sweep_dir);  // nothing submitted: nothing to wait for
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  // Polls squeue, at first every second (small sweeps finish fast), then less often so
-  // a long sweep does not load the controller.
-  std::chrono::milliseconds pause(1000);
+  const auto start = std::chrono::steady_clock::now(), deadline = start + timeout;
+  // Polls squeue every tenth of the time waited so far, from every second to every 30
+  // seconds: a sweep is seen finished within a tenth of its time (doubling the pause
+  // could overshoot by as long again), and a long one does not load the controller.
+  using std::chrono::milliseconds;
   for (;;) {
     SweepIndex index = collect_with_slurm(sweep_dir);
     const bool unfinished = std::any_of(submission->tasks.begin(), submission->tasks.end(),
                                         [&](size_t task) { return !is_finished(index.jobs[task].status); });
-    if (!unfinished || std::chrono::steady_clock::now() + pause > deadline) return index;
+    const auto now = std::chrono::steady_clock::now();
+    const milliseconds pause =
+        std::clamp(std::chrono::duration_cast<milliseconds>(now - start) / 10, milliseconds(1000), milliseconds(30000));
+    if (!unfinished || now + pause > deadline) return index;
     std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::milliseconds(30000));
   }
 }
 
