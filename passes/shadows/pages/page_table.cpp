@@ -175,7 +175,7 @@ bool PageTable::has_pending_requests() const {
   for (uint32_t e : requested_)
     if (needs_build(e)) return true;
   for (uint32_t face = 0; face < faces_; ++face)
-    if (needs_build((face + 1) * face_entries_ - 1)) return true;
+    if (needs_build(root(face))) return true;
   return false;
 }
 
@@ -248,10 +248,8 @@ std::vector<PageBuild> PageTable::plan_builds(uint32_t budget) {
   std::vector<uint32_t> wanted;
   for (uint32_t e : requested_)
     if (needs_build(e)) wanted.push_back(e);
-  for (uint32_t face = 0; face < faces_; ++face) {
-    const uint32_t root = (face + 1) * face_entries_ - 1;
-    if (!pages_[root].requested && needs_build(root)) wanted.push_back(root);
-  }
+  for (uint32_t face = 0; face < faces_; ++face)
+    if (!pages_[root(face)].requested && needs_build(root(face))) wanted.push_back(root(face));
   std::sort(wanted.begin(), wanted.end(), [&](uint32_t a, uint32_t b) {
     const uint32_t level_a = level_of(a), level_b = level_of(b);
     return level_a != level_b ? level_a > level_b : a > b;

@@ -158,6 +158,7 @@ class PageTable {
   };
   // A face's coarsest page: always resident.
   bool is_root(uint32_t entry) const { return entry % face_entries_ == face_entries_ - 1; }
+  uint32_t root(uint32_t face) const { return (face + 1) * face_entries_ - 1; }
   uint32_t level_of(uint32_t entry) const;
   // The entries that hold a slot, in ascending order (per frame the table visits these,
   // the requested ones and the roots, never every entry: O(slots + requests)).
